@@ -1,0 +1,65 @@
+// The `groom` command framework: every subcommand lives in its own cli/cmd_NAME.cpp and registers
+// itself with a static Registrar, so adding a command touches no shared file. cli/ is the only
+// layer that parses arguments, prints, or decides exit codes.
+#pragma once
+
+#include "kernel/progress.h"
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <initializer_list>
+#include <memory>
+#include <string>
+
+namespace groom::cli {
+
+/// Options every command takes.
+struct CommonOptions {
+    int threads = 0;       ///< 0 = all cores
+    bool quiet = false;    ///< errors only
+    bool verbose = false;  ///< extra detail on stderr
+    bool force = false;    ///< allow -o onto an input file
+};
+
+/// What a command's setup function gets: its CLI11 subcommand and the common options (already added).
+/// The setup function adds its own options and sets `run`, called after parsing succeeds.
+struct CommandContext {
+    CLI::App* app = nullptr;
+    CommonOptions* common = nullptr;
+    std::function<void()> run;
+};
+
+struct CommandInfo {
+    const char* name;
+    const char* summary;
+    int order;  ///< position in `groom --help`
+    void (*setup)(CommandContext&);
+};
+
+/// Registers a command at static-initialisation time.
+struct Registrar {
+    explicit Registrar(CommandInfo info);
+};
+
+/// Runs the groom command line; returns the process exit code (0 ok, 2 usage error, 1 failure).
+int run(int argc, char** argv);
+
+// --- helpers for command implementations -----------------------------------------------------------
+
+/// Messages on stderr: note() unless --quiet, detail() only with --verbose.
+void note(const CommonOptions& o, const std::string& message);
+void detail(const CommonOptions& o, const std::string& message);
+
+/// Throws InvalidParam when `output` names the same file as one of `inputs` and --force is absent
+/// (so a typo cannot overwrite the user's input), or when output is empty.
+void check_output(const std::string& output, std::initializer_list<std::string> inputs, const CommonOptions& o);
+
+/// A progress bar on stderr when it is a terminal, line-based when not (only with --verbose),
+/// nothing with --quiet.
+std::unique_ptr<Progress> make_progress(const CommonOptions& o);
+
+/// Parses "x,y,z" (or "a,b" etc.) into floats, naming the option in errors.
+std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max);
+
+}  // namespace groom::cli

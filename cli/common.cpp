@@ -1,0 +1,144 @@
+#include "cli/command.h"
+
+#include "kernel/error.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <mutex>
+
+namespace groom::cli {
+
+void note(const CommonOptions& o, const std::string& message)
+{
+    if (!o.quiet) std::cerr << message << "\n";
+}
+
+void detail(const CommonOptions& o, const std::string& message)
+{
+    if (o.verbose && !o.quiet) std::cerr << message << "\n";
+}
+
+namespace {
+bool same_file(const std::string& a, const std::string& b)
+{
+    struct stat sa {}, sb {};
+    if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+}  // namespace
+
+void check_output(const std::string& output, std::initializer_list<std::string> inputs, const CommonOptions& o)
+{
+    if (output.empty()) throw InvalidParam("-o: an output path is required");
+    if (output == "-" || o.force) return;
+    for (const std::string& in : inputs) {
+        if (!in.empty() && in != "-" && same_file(in, output)) {
+            throw InvalidParam("-o " + output + " is also an input file; refusing to overwrite it (pass --force to allow)");
+        }
+    }
+}
+
+namespace {
+
+/// Draws `label [#####.....] 42%` on a terminal, redrawn at most ~10 times per second.
+class TerminalProgress final : public Progress {
+public:
+    explicit TerminalProgress(bool tty, bool verbose) : tty_(tty), verbose_(verbose) {}
+    void begin(std::string_view label, int64_t total) override
+    {
+        std::lock_guard lock(mutex_);
+        label_ = std::string(label);
+        total_ = std::max<int64_t>(total, 1);
+        done_ = 0;
+        start_ = last_ = std::chrono::steady_clock::now();
+        if (!tty_ && verbose_) std::cerr << label_ << " ...\n";
+    }
+    void advance(int64_t n) override
+    {
+        const int64_t done = done_ += n;
+        if (!tty_) return;
+        const auto now = std::chrono::steady_clock::now();
+        std::unique_lock lock(mutex_, std::try_to_lock);
+        if (!lock || now - last_ < std::chrono::milliseconds(100)) return;
+        last_ = now;
+        draw(done);
+    }
+    void end() override
+    {
+        std::lock_guard lock(mutex_);
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        if (tty_) {
+            draw(total_);
+            std::fprintf(stderr, " %.2fs\n", secs);
+        }
+        else if (verbose_) {
+            std::fprintf(stderr, "%s done in %.2fs\n", label_.c_str(), secs);
+        }
+    }
+
+private:
+    void draw(int64_t done)
+    {
+        const double f = std::min(1.0, double(done) / double(total_));
+        const int width = 30, filled = static_cast<int>(f * width);
+        std::fprintf(stderr, "\r%-24s [%s%s] %3d%%", label_.c_str(), std::string(filled, '#').c_str(),
+                     std::string(width - filled, '.').c_str(), static_cast<int>(f * 100.0));
+        std::fflush(stderr);
+    }
+
+    bool tty_, verbose_;
+    std::mutex mutex_;
+    std::string label_;
+    int64_t total_ = 1;
+    std::atomic<int64_t> done_{0};
+    std::chrono::steady_clock::time_point start_, last_;
+};
+
+}  // namespace
+
+std::unique_ptr<Progress> make_progress(const CommonOptions& o)
+{
+    if (o.quiet) return nullptr;
+    const bool tty = ::isatty(STDERR_FILENO) != 0;
+    if (!tty && !o.verbose) return nullptr;
+    return std::make_unique<TerminalProgress>(tty, o.verbose);
+}
+
+std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max)
+{
+    std::vector<float> out;
+    size_t start = 0;
+    while (start <= text.size()) {
+        size_t end = text.find(',', start);
+        if (end == std::string::npos) end = text.size();
+        std::string item = text.substr(start, end - start);
+        // Trim spaces the shell may have let through.
+        item.erase(0, item.find_first_not_of(' '));
+        item.erase(item.find_last_not_of(' ') + 1);
+        float v = 0.0f;
+        const auto res = std::from_chars(item.data(), item.data() + item.size(), v);
+        if (item.empty() || res.ec != std::errc() || res.ptr != item.data() + item.size() || !std::isfinite(v)) {
+            throw InvalidParam(option + ": expected a comma-separated list of numbers, got '" + text + "' ('" + item +
+                               "' is not a finite number)");
+        }
+        out.push_back(v);
+        start = end + 1;
+        if (end == text.size()) break;
+    }
+    if (out.size() < expected_min || out.size() > expected_max) {
+        const std::string want = expected_min == expected_max ? std::to_string(expected_min)
+                                                              : std::to_string(expected_min) + " to " + std::to_string(expected_max);
+        throw InvalidParam(option + ": expected " + want + " comma-separated numbers, got " + std::to_string(out.size()) + " ('" +
+                           text + "')");
+    }
+    return out;
+}
+
+}  // namespace groom::cli

@@ -1,0 +1,56 @@
+// Surface: what every op asks of the scalp. The real implementation is ScalpField (an OpenVDB level
+// set, fields/scalp_field.h); AnalyticSphere and AnalyticPlane answer exactly and are what tests
+// check ops against. All queries are const and thread-safe.
+#pragma once
+
+#include "kernel/math/vec.h"
+
+namespace groom {
+
+class Surface {
+public:
+    virtual ~Surface() = default;
+
+    /// Signed distance from p to the surface, scene units; negative inside (behind the oriented normals).
+    virtual float distance(const float3& p) const = 0;
+    /// Unit outward normal of the surface at its point closest to p.
+    virtual float3 normal(const float3& p) const = 0;
+    /// The closest point on the surface to p.
+    virtual float3 closest_point(const float3& p) const = 0;
+
+    bool inside(const float3& p) const { return distance(p) < 0.0f; }
+
+    /// First point where the segment a->b enters the surface (sign change from outside to inside),
+    /// accurate to `tolerance` (scene units; 0 = a default relative to the segment). Returns false
+    /// when the segment never crosses into the inside. The default marches by the distance bound.
+    virtual bool first_intersection(const float3& a, const float3& b, float3& hit, float tolerance = 0.0f) const;
+};
+
+/// The exact sphere |p - center| = radius, outside = away from the center.
+class AnalyticSphere final : public Surface {
+public:
+    AnalyticSphere(const float3& center, float radius) : center_(center), radius_(radius) {}
+    float distance(const float3& p) const override { return groom::distance(p, center_) - radius_; }
+    float3 normal(const float3& p) const override { return normalize(p - center_, float3(0, 1, 0)); }
+    float3 closest_point(const float3& p) const override { return center_ + normal(p) * radius_; }
+    const float3& center() const { return center_; }
+    float radius() const { return radius_; }
+
+private:
+    float3 center_;
+    float radius_;
+};
+
+/// The exact plane through `origin` with unit normal `normal` (outside = the side the normal faces).
+class AnalyticPlane final : public Surface {
+public:
+    AnalyticPlane(const float3& origin, const float3& normal) : origin_(origin), normal_(normalize(normal)) {}
+    float distance(const float3& p) const override { return dot(p - origin_, normal_); }
+    float3 normal(const float3&) const override { return normal_; }
+    float3 closest_point(const float3& p) const override { return p - normal_ * distance(p); }
+
+private:
+    float3 origin_, normal_;
+};
+
+}  // namespace groom

@@ -1,0 +1,78 @@
+#include "kernel/math/polyline.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace groom {
+
+float polyline_length(std::span<const float3> pts)
+{
+    double len = 0.0;
+    for (size_t i = 1; i < pts.size(); ++i) len += distance(pts[i - 1], pts[i]);
+    return static_cast<float>(len);
+}
+
+std::vector<double> cumulative_lengths(std::span<const float3> pts)
+{
+    std::vector<double> out(pts.size(), 0.0);
+    for (size_t i = 1; i < pts.size(); ++i) {
+        const double dx = double(pts[i].x) - pts[i - 1].x, dy = double(pts[i].y) - pts[i - 1].y,
+                     dz = double(pts[i].z) - pts[i - 1].z;
+        out[i] = out[i - 1] + std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+    return out;
+}
+
+float3 point_at_length(std::span<const float3> pts, std::span<const double> cumulative, double s)
+{
+    if (pts.empty()) return {};
+    if (pts.size() == 1 || s <= 0.0) return pts.front();
+    if (s >= cumulative.back()) return pts.back();
+    // First point whose cumulative length exceeds s; the segment before it holds s.
+    const size_t hi = std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin();
+    const size_t lo = hi - 1;
+    const double seg = cumulative[hi] - cumulative[lo];
+    const float t = seg > 0.0 ? static_cast<float>((s - cumulative[lo]) / seg) : 0.0f;
+    return lerp(pts[lo], pts[hi], t);
+}
+
+std::vector<float3> resample_by_count(std::span<const float3> pts, int count)
+{
+    std::vector<float3> out(static_cast<size_t>(std::max(count, 0)));
+    if (out.empty() || pts.empty()) return out;
+    const std::vector<double> cum = cumulative_lengths(pts);
+    const double total = cum.back();
+    for (int i = 0; i < count; ++i) {
+        out[i] = count == 1 ? pts.front() : point_at_length(pts, cum, total * i / (count - 1));
+    }
+    if (count >= 2) {
+        out.front() = pts.front();
+        out.back() = total > 0.0 ? pts.back() : pts.front();
+    }
+    return out;
+}
+
+std::vector<float3> polyline_tangents(std::span<const float3> pts)
+{
+    const size_t n = pts.size();
+    std::vector<float3> t(n, float3(0, 1, 0));
+    if (n < 2) return t;
+    std::vector<bool> valid(n, false);
+    for (size_t i = 0; i < n; ++i) {
+        const float3 a = pts[i == 0 ? 0 : i - 1];
+        const float3 b = pts[i + 1 == n ? n - 1 : i + 1];
+        const float3 d = b - a;
+        if (length_squared(d) > 0.0f) {
+            t[i] = normalize(d);
+            valid[i] = true;
+        }
+    }
+    // Fill degenerate tangents from the nearest valid neighbour (forward, then backward).
+    for (size_t i = 1; i < n; ++i)
+        if (!valid[i] && valid[i - 1]) { t[i] = t[i - 1]; valid[i] = true; }
+    for (size_t i = n - 1; i-- > 0;)
+        if (!valid[i] && valid[i + 1]) { t[i] = t[i + 1]; valid[i] = true; }
+    return t;
+}
+
+}  // namespace groom

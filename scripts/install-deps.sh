@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages groom builds against, skipping what is already present.
+# Safe to run repeatedly; needs root (or sudo) only when something is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libblosc-dev
+  libcgal-dev libopenmesh-dev libeigen3-dev libtbb-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libpng-dev
+)
+# Extra tools only some scripts use (sanitizers need clang's runtime). Pass --with-tools to add them.
+if [[ "${1:-}" == "--with-tools" ]]; then
+  packages+=(clang libclang-rt-14-dev python3-openvdb)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,85 @@
+#include "test_support.h"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace groom::test {
+
+TempDir::TempDir()
+{
+    static std::atomic<int> counter{0};
+    path_ = std::filesystem::temp_directory_path() /
+            ("groom_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir()
+{
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+}
+
+std::filesystem::path shared_datasets()
+{
+    const std::filesystem::path p = std::filesystem::path(GROOM_SOURCE_DIR) / ".." / "shared" / "datasets";
+    return std::filesystem::is_directory(p) ? std::filesystem::canonical(p) : std::filesystem::path();
+}
+
+std::string shared_file(const std::string& relative)
+{
+    const auto root = shared_datasets();
+    if (root.empty()) return {};
+    const auto p = root / relative;
+    return std::filesystem::exists(p) ? p.string() : std::string();
+}
+
+std::string read_bytes(const std::string& path)
+{
+    std::ifstream f(path, std::ios::binary);
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+void write_text(const std::string& path, const std::string& text)
+{
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+RunResult run_groom(const std::vector<std::string>& args, const std::string& stdin_text)
+{
+    TempDir dir;
+    const std::string in = dir.file("stdin"), out = dir.file("stdout"), err = dir.file("stderr");
+    write_text(in, stdin_text);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        const int fi = ::open(in.c_str(), O_RDONLY), fo = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644),
+                  fe = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        ::dup2(fi, 0);
+        ::dup2(fo, 1);
+        ::dup2(fe, 2);
+        std::vector<std::string> all{GROOM_BINARY};
+        all.insert(all.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (auto& a : all) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    RunResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    r.out = read_bytes(out);
+    r.err = read_bytes(err);
+    return r;
+}
+
+}  // namespace groom::test

@@ -1,0 +1,49 @@
+// Shared helpers for the test suites: temporary folders, the real datasets beside the repository,
+// and running the `groom` executable.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace groom::test {
+
+/// A fresh, empty folder removed at destruction.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    const std::filesystem::path& path() const { return path_; }
+    std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+private:
+    std::filesystem::path path_;
+};
+
+/// `../shared/datasets` beside the repository, or empty when absent (a user's fresh clone).
+std::filesystem::path shared_datasets();
+
+/// Path of one real dataset file, or empty when ../shared is absent.
+std::string shared_file(const std::string& relative);
+
+struct RunResult {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+/// Runs the groom executable with `args` (no shell), capturing stdout and stderr.
+RunResult run_groom(const std::vector<std::string>& args, const std::string& stdin_text = {});
+
+/// Whole file as bytes (empty if missing).
+std::string read_bytes(const std::string& path);
+void write_text(const std::string& path, const std::string& text);
+
+}  // namespace groom::test
+
+/// Skips the current test, saying why, when the real datasets are absent.
+#define GROOM_REQUIRE_SHARED(var, relative)                                                                   \
+    const std::string var = ::groom::test::shared_file(relative);                                           \
+    if (var.empty()) GTEST_SKIP() << "../shared/datasets/" << relative << " not found (real data is only beside " \
+                                     "the repository in CI and developer checkouts, not in a user's clone)"

@@ -1,0 +1,374 @@
+// Curve file formats: exact round trips, real guide strands, cubic USD against closed forms, and
+// malformed input checked for the error text.
+#include "kernel/error.h"
+#include "kernel/io/curve_io.h"
+#include "kernel/math/spline.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+
+using namespace groom;
+using groom::test::TempDir;
+using groom::test::read_bytes;
+using groom::test::write_text;
+
+namespace {
+
+/// Awkward floats on purpose: values with no short decimal form, tiny and huge magnitudes, -0.
+CurveSet sample_curves(bool with_attributes = true)
+{
+    const std::vector<int64_t> counts{3, 5, 2, 4};
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions();
+    for (size_t i = 0; i < P.size(); ++i) {
+        const float t = static_cast<float>(i);
+        P[i] = {std::nextafter(0.1f * t, 1.0f), std::sin(t) * 1e-7f + 1.0f / 3.0f, -1234.5678f * t - 1e-30f};
+    }
+    P[0].z = -0.0f;
+    if (!with_attributes) return cs;
+    auto w = cs.add<float>(Domain::Point, attr::width);
+    for (size_t i = 0; i < w.size(); ++i) w[i] = 0.01f / (1.0f + static_cast<float>(i));
+    auto cd = cs.add<float3>(Domain::Point, "Cd");
+    for (size_t i = 0; i < cd.size(); ++i) cd[i] = {0.1f * i, 0.7f, 1.0f / (i + 3.0f)};
+    auto seg = cs.add<int32_t>(Domain::Point, "segment");
+    for (size_t i = 0; i < seg.size(); ++i) seg[i] = static_cast<int32_t>(i) - 5;
+    auto id = cs.add<int64_t>(Domain::Curve, attr::id);
+    for (size_t c = 0; c < id.size(); ++c) id[c] = (int64_t(1) << 40) + static_cast<int64_t>(c) * 7;
+    auto len = cs.add<float>(Domain::Curve, "clump");
+    for (size_t c = 0; c < len.size(); ++c) len[c] = 1.0f / (c + 7.0f);
+    cs.add<float3>(Domain::Curve, "root_uv")[2] = {0.25f, 0.5f, 0.0f};
+    cs.set_detail_string("source", "groom test \"quoted\"\nsecond line \\ backslash");
+    cs.add<float>(Domain::Detail, "scale")[0] = 0.017f;
+    cs.add<int32_t>(Domain::Detail, "seed")[0] = -42;
+    cs.add<float3>(Domain::Detail, "up")[0] = {0.0f, 1.0f, 0.0f};
+    return cs;
+}
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expect_points_bit_exact(const CurveSet& a, const CurveSet& b)
+{
+    ASSERT_EQ(a.num_curves(), b.num_curves());
+    ASSERT_EQ(a.num_points(), b.num_points());
+    for (size_t c = 0; c <= a.num_curves(); ++c) EXPECT_EQ(a.offsets()[c], b.offsets()[c]);
+    auto pa = a.positions(), pb = b.positions();
+    for (size_t i = 0; i < pa.size(); ++i) {
+        EXPECT_TRUE(same_bits(pa[i].x, pb[i].x) && same_bits(pa[i].y, pb[i].y) && same_bits(pa[i].z, pb[i].z))
+            << "point " << i << ": " << pa[i].x << "," << pa[i].y << "," << pa[i].z << " vs " << pb[i].x << "," << pb[i].y << "," << pb[i].z;
+    }
+}
+
+/// Every column of `a` exists in `b` with the same domain, type and bit-identical values.
+void expect_attributes_equal(const CurveSet& a, const CurveSet& b)
+{
+    for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
+        for (const Attribute& col : a.attributes(d).all()) {
+            const Attribute* other = b.attributes(d).find(col.name);
+            ASSERT_NE(other, nullptr) << domain_name(d) << " attribute " << col.name << " lost";
+            ASSERT_EQ(other->type(), col.type()) << col.name;
+            ASSERT_EQ(other->size(), col.size()) << col.name;
+            std::visit(
+                [&](const auto& va) {
+                    using V = std::decay_t<decltype(va)>;
+                    const V& vb = std::get<V>(other->data);
+                    if constexpr (std::is_same_v<V, std::vector<std::string>>) {
+                        EXPECT_EQ(va, vb) << col.name;
+                    }
+                    else {
+                        EXPECT_EQ(std::memcmp(va.data(), vb.data(), va.size() * sizeof(va[0])), 0) << col.name;
+                    }
+                },
+                col.data);
+        }
+        EXPECT_EQ(a.attributes(d).count(), b.attributes(d).count()) << "extra attributes on " << domain_name(d);
+    }
+}
+
+void expect_parse_error(const std::string& path, const std::string& text, const std::string& needle)
+{
+    write_text(path, text);
+    try {
+        read_curves(path);
+        ADD_FAILURE() << "no error reading " << path;
+    }
+    catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "message: " << e.what() << "\nexpected to contain: " << needle;
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << "message does not name the file: " << e.what();
+    }
+}
+
+}  // namespace
+
+TEST(CurveIoUsda, RoundTripKeepsEveryPointAndAttributeBitExactly)
+{
+    TempDir dir;
+    const CurveSet src = sample_curves();
+    write_curves(src, dir.file("a.usda"));
+    const CurveSet back = read_curves(dir.file("a.usda"));
+    expect_points_bit_exact(src, back);
+    expect_attributes_equal(src, back);
+}
+
+TEST(CurveIoUsda, WritesSchemaRulesFromNotes)
+{
+    TempDir dir;
+    write_curves(sample_curves(), dir.file("a.usda"));
+    const std::string text = read_bytes(dir.file("a.usda"));
+    EXPECT_EQ(text.rfind("#usda 1.0\n", 0), 0u);
+    EXPECT_NE(text.find("upAxis = \"Y\""), std::string::npos);
+    EXPECT_NE(text.find("defaultPrim = \"groom\""), std::string::npos);
+    EXPECT_NE(text.find("def BasisCurves \"groom\""), std::string::npos);
+    EXPECT_NE(text.find("uniform token type = \"linear\""), std::string::npos);
+    EXPECT_NE(text.find("float[] widths = ["), std::string::npos);
+    EXPECT_NE(text.find("int64[] primvars:id = ["), std::string::npos);
+    EXPECT_NE(text.find("float3[] primvars:Cd = ["), std::string::npos);
+    EXPECT_NE(text.find("string primvars:source = \"groom test \\\"quoted\\\"\\nsecond"), std::string::npos);
+    // One BasisCurves prim only.
+    EXPECT_EQ(text.find("def BasisCurves", text.find("def BasisCurves") + 1), std::string::npos);
+}
+
+TEST(CurveIoUsda, ReadsPrimsInsideXformWithCommentsMetadataAndOtherPrims)
+{
+    TempDir dir;
+    const std::string text = R"(#usda 1.0
+(
+    defaultPrim = "root"   # trailing comment
+    metersPerUnit = 0.01
+    customLayerData = { string creator = "hand (written) [test]" }
+)
+
+def Xform "root" (
+    kind = "component"
+    prepend apiSchemas = ["MaterialBindingAPI"]
+)
+{
+    double3 xformOp:translate = (0, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def Mesh "ignored" { int[] faceVertexCounts = [3] point3f[] points = [(0,0,0), (1,0,0), (0,1,0)] }
+    def BasisCurves "hair" (
+        doc = """a
+multi-line doc"""
+    )
+    {
+        uniform token type = "linear"
+        int[] curveVertexCounts = [2, 3]
+        point3f[] points = [(0, 0, 0), (0, 1, 0),
+                            (1, 0, 0), (1, 1, 0), (1, 2.5, -0)]  // second curve
+        float[] widths = [0.1] (interpolation = "constant")
+        color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (
+            interpolation = "uniform"
+        )
+        float[] primvars:u = [0, 1, 0, 0.5, 1] (interpolation = "vertex")
+        rel material:binding = </root/mat>
+        float3[] extent.timeSamples = { 1: [(0,0,0),(1,2.5,0)], }
+    }
+}
+)";
+    write_text(dir.file("x.usda"), text);
+    const CurveSet cs = read_curves(dir.file("x.usda"));
+    ASSERT_EQ(cs.num_curves(), 2u);
+    ASSERT_EQ(cs.num_points(), 5u);
+    EXPECT_EQ(cs.positions()[4], float3(1, 2.5f, 0));
+    auto w = cs.find<float>(Domain::Point, attr::width);
+    ASSERT_EQ(w.size(), 5u);
+    for (float v : w) EXPECT_EQ(v, 0.1f);
+    auto color = cs.find<float3>(Domain::Curve, "displayColor");
+    ASSERT_EQ(color.size(), 2u);
+    EXPECT_EQ(color[1], float3(0, 1, 0));
+    auto u = cs.find<float>(Domain::Point, "u");
+    ASSERT_EQ(u.size(), 5u);
+    EXPECT_EQ(u[3], 0.5f);
+}
+
+TEST(CurveIoUsda, ConcatenatesEveryBasisCurvesPrim)
+{
+    TempDir dir;
+    write_text(dir.file("two.usda"), R"(#usda 1.0
+def BasisCurves "a" { uniform token type = "linear" int[] curveVertexCounts = [2] point3f[] points = [(0,0,0),(0,1,0)] }
+def Scope "s" { def BasisCurves "b" { uniform token type = "linear" int[] curveVertexCounts = [3] point3f[] points = [(1,0,0),(1,1,0),(1,2,0)] } }
+)");
+    const CurveSet cs = read_curves(dir.file("two.usda"));
+    ASSERT_EQ(cs.num_curves(), 2u);
+    EXPECT_EQ(cs.points_in(1), 3);
+    EXPECT_EQ(cs.positions()[4], float3(1, 2, 0));
+}
+
+TEST(CurveIoUsda, CubicCatmullRomMatchesClosedForm)
+{
+    // Control points on the parabola y = x^2 at x = -1, 0, 1, 2: the Catmull-Rom segment between
+    // x = 0 and x = 1 reproduces a quadratic exactly (the basis reproduces polynomials up to degree 2).
+    TempDir dir;
+    write_text(dir.file("c.usda"), R"(#usda 1.0
+def BasisCurves "c" {
+    uniform token type = "cubic"
+    uniform token basis = "catmullRom"
+    int[] curveVertexCounts = [4]
+    point3f[] points = [(-1, 1, 0), (0, 0, 0), (1, 1, 0), (2, 4, 0)]
+    float[] widths = [1, 2, 3, 4] (interpolation = "vertex")
+})");
+    CurveReadOptions opt;
+    opt.cubic_samples_per_segment = 10;
+    const CurveSet cs = read_curves(dir.file("c.usda"), opt);
+    ASSERT_EQ(cs.num_curves(), 1u);
+    ASSERT_EQ(cs.num_points(), 11u);
+    auto P = cs.positions();
+    auto w = cs.find<float>(Domain::Point, attr::width);
+    for (int j = 0; j <= 10; ++j) {
+        const float x = j / 10.0f;
+        EXPECT_NEAR(P[j].x, x, 1e-6f);
+        EXPECT_NEAR(P[j].y, x * x, 1e-6f);
+        EXPECT_NEAR(w[j], 2.0f + x, 1e-6f);  // widths are linear in the index: reproduced exactly
+    }
+}
+
+TEST(CurveIoUsda, CubicBsplinePinnedMatchesClosedForm)
+{
+    // A uniform cubic B-spline over collinear, evenly spaced control points is the straight line
+    // through them at uniform speed; pinned ends (phantom 2*p0 - p1) keep that, so the curve runs
+    // exactly from the first to the last control point.
+    TempDir dir;
+    write_text(dir.file("b.usda"), R"(#usda 1.0
+def BasisCurves "b" {
+    uniform token type = "cubic"
+    uniform token basis = "bspline"
+    uniform token wrap = "pinned"
+    int[] curveVertexCounts = [3]
+    point3f[] points = [(0, 0, 0), (0, 1, 0), (0, 2, 0)]
+})");
+    CurveReadOptions opt;
+    opt.cubic_samples_per_segment = 4;
+    const CurveSet cs = read_curves(dir.file("b.usda"), opt);
+    ASSERT_EQ(cs.num_points(), 9u);  // 2 segments x 4 + 1
+    auto P = cs.positions();
+    for (int j = 0; j <= 8; ++j) {
+        EXPECT_NEAR(P[j].x, 0.0f, 1e-6f);
+        EXPECT_NEAR(P[j].y, j * 0.25f, 1e-6f);
+    }
+}
+
+TEST(CurveIoUsda, RejectsMalformedInputNamingFileLineExpectedAndFound)
+{
+    TempDir dir;
+    const std::string head = "#usda 1.0\ndef BasisCurves \"c\" {\n uniform token type = \"linear\"\n";
+    expect_parse_error(dir.file("empty.usda"), "", "empty");
+    expect_parse_error(dir.file("noheader.usda"), "def BasisCurves \"c\" {}\n", "expected the '#usda 1.0' header");
+    expect_parse_error(dir.file("trunc.usda"), head + " int[] curveVertexCounts = [2]\n point3f[] points = [(0,0,0), (1,",
+                       "trunc.usda:5: expected a number, found end of file");
+    expect_parse_error(dir.file("count.usda"), head + " int[] curveVertexCounts = [3]\n point3f[] points = [(0,0,0), (1,1,1)]\n}\n",
+                       "count.usda:4: curveVertexCounts sum to 3 but 'points' (line 5) has 2 points");
+    expect_parse_error(dir.file("nan.usda"), head + " int[] curveVertexCounts = [2]\n point3f[] points = [(0,0,0), (nan,1,1)]\n}\n",
+                       "nan.usda:5: points[1] is not finite");
+    expect_parse_error(dir.file("widths.usda"),
+                       head + " int[] curveVertexCounts = [2]\n point3f[] points = [(0,0,0), (1,1,1)]\n float[] widths = [1,2,3] (interpolation = \"vertex\")\n}\n",
+                       "widths.usda:6: widths has 3 values but interpolation 'vertex' needs 2");
+    expect_parse_error(dir.file("brace.usda"), head + " int[] curveVertexCounts = [2]\n", "expected '}' closing prim </c>, found end of file");
+    expect_parse_error(dir.file("none.usda"), "#usda 1.0\ndef Xform \"x\" {}\n", "expected a 'def BasisCurves' prim, found none");
+    expect_parse_error(dir.file("bezier.usda"), "#usda 1.0\ndef BasisCurves \"c\" { int[] curveVertexCounts = [4] point3f[] points = [(0,0,0),(0,0,0),(0,0,0),(0,0,0)] }\n",
+                       "cubic basis 'bezier' is not supported");
+    expect_parse_error(dir.file("short.usda"), "#usda 1.0\ndef BasisCurves \"c\" { uniform token type = \"cubic\" uniform token basis = \"bspline\"\n int[] curveVertexCounts = [3] point3f[] points = [(0,0,0),(0,0,0),(0,0,0)] }\n",
+                       "short.usda:3: cubic nonperiodic curve 0 has 3 points; it needs at least 4");
+    expect_parse_error(dir.file("periodic.usda"), head + " uniform token wrap = \"periodic\" int[] curveVertexCounts = [2] point3f[] points = [(0,0,0),(0,0,1)] }\n",
+                       "wrap 'periodic'");
+}
+
+TEST(CurveIoUsda, RefusesNamesUsdCannotHoldWithoutLeavingAFile)
+{
+    TempDir dir;
+    CurveSet cs = sample_curves(false);
+    cs.add<float>(Domain::Point, "bad name");
+    EXPECT_THROW(write_curves(cs, dir.file("o.usda")), InvalidParam);
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+TEST(CurveIoObj, RoundTripKeepsEveryPointBitExactly)
+{
+    TempDir dir;
+    const CurveSet src = sample_curves(false);
+    write_curves(src, dir.file("a.obj"));
+    const CurveSet back = read_curves(dir.file("a.obj"));
+    expect_points_bit_exact(src, back);
+}
+
+TEST(CurveIoObj, UsdaToObjToUsdaKeepsPoints)
+{
+    TempDir dir;
+    const CurveSet src = sample_curves();
+    write_curves(src, dir.file("a.usda"));
+    write_curves(read_curves(dir.file("a.usda")), dir.file("b.obj"));
+    write_curves(read_curves(dir.file("b.obj")), dir.file("c.usda"));
+    expect_points_bit_exact(src, read_curves(dir.file("c.usda")));
+}
+
+TEST(CurveIoObj, ReadsNegativeIndicesSlashFormsAndComments)
+{
+    TempDir dir;
+    write_text(dir.file("a.obj"), "# c\no strands\nv 0 0 0\nv 0 1 0 1.0\nv 0 2 0\nl -3 -2/5 -1  # tail\nvt 0 0\nv 5 5 5\nv 6 6 6\nl 4 5\n");
+    const CurveSet cs = read_curves(dir.file("a.obj"));
+    ASSERT_EQ(cs.num_curves(), 2u);
+    EXPECT_EQ(cs.points_in(0), 3);
+    EXPECT_EQ(cs.positions()[2], float3(0, 2, 0));
+    EXPECT_EQ(cs.positions()[4], float3(6, 6, 6));
+}
+
+TEST(CurveIoObj, RejectsMalformedInput)
+{
+    TempDir dir;
+    expect_parse_error(dir.file("empty.obj"), "", "file is empty");
+    expect_parse_error(dir.file("range.obj"), "v 0 0 0\nv 1 1 1\nl 1 2 3\n", "range.obj:3: vertex index 3 out of range (2 vertices)");
+    expect_parse_error(dir.file("nan.obj"), "v 0 0 0\nv nan 1 1\nl 1 2\n", "nan.obj:2: vertex coordinate is not finite");
+    expect_parse_error(dir.file("trunc.obj"), "v 0 0 0\nv 1 1\n", "trunc.obj:2: expected 3 vertex coordinates, found end of line");
+    expect_parse_error(dir.file("zero.obj"), "v 0 0 0\nl 0 1\n", "zero.obj:2: vertex index 0 is invalid");
+    expect_parse_error(dir.file("word.obj"), "v 0 0 0\nbogus 1\n", "word.obj:2: expected an OBJ record");
+    expect_parse_error(dir.file("mesh.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "this is a mesh");
+    expect_parse_error(dir.file("neg.obj"), "v 0 0 0\nl -1 -2\n", "neg.obj:2: relative vertex index -2 reaches before the first vertex");
+}
+
+TEST(CurveIo, UnknownExtensionIsRefused)
+{
+    TempDir dir;
+    EXPECT_THROW(write_curves(sample_curves(false), dir.file("a.abc")), InvalidParam);
+    write_text(dir.file("a.txt"), "x");
+    EXPECT_THROW(read_curves(dir.file("a.txt")), IoError);
+    EXPECT_THROW(read_curves(dir.file("missing.usda")), IoError);
+}
+
+TEST(CurveIoReal, SintelGuidesHave228StrandsOf32Points)
+{
+    GROOM_REQUIRE_SHARED(path, "sintel_tressfx_opengl/sintel_guides.obj");
+    const CurveSet cs = read_curves(path);
+    EXPECT_EQ(cs.num_curves(), 228u);
+    EXPECT_EQ(cs.num_points(), 228u * 32u);
+    for (size_t c = 0; c < cs.num_curves(); ++c) ASSERT_EQ(cs.points_in(c), 32);
+    EXPECT_EQ(cs.positions()[0], float3(-8.315415f, 34.92955f, -2.681878f));  // first `v` line of the file
+}
+
+TEST(CurveIoReal, PonytailGuidesHave16PointsPerStrand)
+{
+    const std::pair<const char*, size_t> files[] = {{"amd_tressfx_ponytail/front_top_guides.obj", 876},
+                                                    {"amd_tressfx_ponytail/side_guides.obj", 3066},
+                                                    {"amd_tressfx_ponytail/back_guides.obj", 517},
+                                                    {"amd_tressfx_ponytail/tail_guides.obj", 474}};
+    size_t total = 0;
+    for (const auto& [rel, strands] : files) {
+        GROOM_REQUIRE_SHARED(path, rel);
+        const CurveSet cs = read_curves(path);
+        EXPECT_EQ(cs.num_curves(), strands) << rel;
+        EXPECT_EQ(cs.num_points(), strands * 16) << rel;
+        total += cs.num_curves();
+    }
+    EXPECT_EQ(total, 4933u);  // the dataset README's count
+}
+
+TEST(CurveIoReal, SintelGuidesRoundTripThroughUsdaExactly)
+{
+    GROOM_REQUIRE_SHARED(path, "sintel_tressfx_opengl/sintel_guides.obj");
+    TempDir dir;
+    const CurveSet src = read_curves(path);
+    write_curves(src, dir.file("s.usda"));
+    expect_points_bit_exact(src, read_curves(dir.file("s.usda")));
+}

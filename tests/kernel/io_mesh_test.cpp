@@ -1,0 +1,127 @@
+// Mesh readers and topology statistics: faces are never dropped, statistics match hand-counted
+// shapes, malformed files name the line.
+#include "kernel/error.h"
+#include "kernel/io/mesh_io.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+using namespace groom;
+using groom::test::TempDir;
+using groom::test::write_text;
+
+namespace {
+
+size_t count_lines_starting(const std::string& path, const std::string& prefix)
+{
+    std::ifstream f(path);
+    size_t n = 0;
+    for (std::string line; std::getline(f, line);) n += line.rfind(prefix, 0) == 0;
+    return n;
+}
+
+/// A closed cube: 8 vertices, 6 quads.
+std::string cube_obj()
+{
+    return "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+           "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+}
+
+void expect_mesh_error(const std::string& path, const std::string& text, const std::string& needle)
+{
+    write_text(path, text);
+    try {
+        read_mesh(path);
+        ADD_FAILURE() << "no error reading " << path;
+    }
+    catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what() << "\nexpected: " << needle;
+    }
+}
+
+}  // namespace
+
+TEST(MeshIoObj, ReadsNgonsNegativeIndicesAndSlashForms)
+{
+    TempDir dir;
+    write_text(dir.file("m.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\nvt 0 0\nvn 0 0 1\n"
+                                  "f 1/1/1 2/1/1 3/1/1 5//1 4\nf -5 -4 -3\n");
+    const PolygonSoup s = read_mesh(dir.file("m.obj"));
+    ASSERT_EQ(s.num_faces(), 2u);
+    ASSERT_EQ(s.face(0).size(), 5u);
+    EXPECT_EQ(s.face(0)[3], 4);
+    EXPECT_EQ(s.face(1)[0], 0);
+    EXPECT_EQ(s.face(1)[2], 2);
+}
+
+TEST(MeshStats, ClosedCubeHasNoBoundaryAndOneShell)
+{
+    TempDir dir;
+    write_text(dir.file("c.obj"), cube_obj());
+    const MeshStats st = mesh_stats(read_mesh(dir.file("c.obj")));
+    EXPECT_EQ(st.vertices, 8);
+    EXPECT_EQ(st.faces, 6);
+    EXPECT_EQ(st.quads, 6);
+    EXPECT_EQ(st.shells, 1);
+    EXPECT_EQ(st.boundary_edges, 0);
+    EXPECT_EQ(st.non_manifold_edges, 0);
+    EXPECT_EQ(st.duplicate_vertices, 0);
+    EXPECT_EQ(st.degenerate_faces, 0);
+}
+
+TEST(MeshStats, CountsBoundaryNonManifoldDuplicatesDegenerateAndShells)
+{
+    // Three triangles sharing edge (1,2) (a fin: non-manifold), one triangle elsewhere whose
+    // vertices duplicate positions of nothing, and one zero-area triangle.
+    PolygonSoup s;
+    s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {5, 5, 5}, {6, 5, 5}, {5, 6, 5}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+    const int32_t f0[] = {0, 1, 2}, f1[] = {1, 0, 3}, f2[] = {0, 1, 4}, f3[] = {5, 6, 7}, f4[] = {8, 9, 10};
+    for (auto f : {std::span<const int32_t>(f0), std::span<const int32_t>(f1), std::span<const int32_t>(f2), std::span<const int32_t>(f3),
+                   std::span<const int32_t>(f4)})
+        s.add_face(f);
+    const MeshStats st = mesh_stats(s);
+    EXPECT_EQ(st.duplicate_vertices, 1);        // point 8 repeats point 1
+    EXPECT_EQ(st.non_manifold_edges, 1);        // edge (0,1) used three times
+    EXPECT_EQ(st.boundary_edges, 6 + 3 + 3);    // fin's outer edges, triangle f3, triangle f4
+    EXPECT_EQ(st.degenerate_faces, 1);          // f4 is collinear
+    EXPECT_EQ(st.shells, 2);                    // f4 touches the fin through the welded point 8 == 1
+    EXPECT_EQ(st.triangles, 5);
+}
+
+TEST(MeshIoObj, RejectsMalformedInput)
+{
+    TempDir dir;
+    expect_mesh_error(dir.file("empty.obj"), "", "empty.obj: file is empty");
+    expect_mesh_error(dir.file("range.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9001\n", "range.obj:4: vertex index 9001 out of range (3 vertices)");
+    expect_mesh_error(dir.file("nan.obj"), "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:2: vertex coordinate is not finite");
+    expect_mesh_error(dir.file("curves.obj"), "v 0 0 0\nv 1 0 0\nl 1 2\n", "these are curves");
+}
+
+TEST(MeshIoObj, WriteReadRoundTripKeepsFaces)
+{
+    TempDir dir;
+    write_text(dir.file("c.obj"), cube_obj());
+    const PolygonSoup a = read_mesh(dir.file("c.obj"));
+    write_mesh(a, dir.file("d.obj"));
+    const PolygonSoup b = read_mesh(dir.file("d.obj"));
+    EXPECT_EQ(a.points.size(), b.points.size());
+    EXPECT_EQ(a.face_offsets, b.face_offsets);
+    EXPECT_EQ(a.face_indices, b.face_indices);
+}
+
+TEST(MeshIoReal, PonytailHeadKeepsEveryFace)
+{
+    GROOM_REQUIRE_SHARED(path, "amd_tressfx_ponytail/ponytail_head.obj");
+    const PolygonSoup s = read_mesh(path);
+    EXPECT_EQ(s.num_faces(), count_lines_starting(path, "f "));
+    EXPECT_EQ(s.points.size(), count_lines_starting(path, "v "));
+    const MeshStats st = mesh_stats(s);
+    // The dataset README: 11,744 vertices, 17,894 triangles, 2,604 duplicates, 108 non-manifold edges after welding.
+    EXPECT_EQ(st.vertices, 11744);
+    EXPECT_EQ(st.faces, 17894);
+    EXPECT_EQ(st.duplicate_vertices, 2604);
+    EXPECT_EQ(st.non_manifold_edges, 108);
+}

@@ -1,0 +1,473 @@
+#include "ops/curl.h"
+
+#include "kernel/error.h"
+#include "kernel/math/frames.h"
+#include "kernel/math/polyline.h"
+#include "kernel/math/spline.h"
+#include "kernel/parallel.h"
+#include "kernel/rng.h"
+#include "ops/hair_types.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace groom {
+
+namespace {
+
+// Rng streams (kernel/rng.h): one per purpose so adding a draw never shifts another.
+constexpr uint64_t kStreamCurve = 0x6375726c01;   // per curve: frequency, phase
+constexpr uint64_t kStreamShape = 0x6375726c02;   // per cycle: shape pick
+constexpr uint64_t kStreamAmp = 0x6375726c03;     // per cycle: amplitude
+constexpr uint64_t kStreamOffset = 0x6375726c04;  // per cycle: offset radius and direction
+
+constexpr int64_t kMaxPoints = int64_t(1) << 31;
+
+std::string num(double v)
+{
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+std::string range_text(const FloatRange& r) { return num(r.lo) + "," + num(r.hi); }
+
+bool finite(const FloatRange& r) { return std::isfinite(r.lo) && std::isfinite(r.hi); }
+
+const HairTypePreset& preset_of(const CurlParams& p)
+{
+    const HairTypePreset* preset = find_hair_type(p.hair_type);
+    if (!preset) throw InvalidParam("curl: --type must be one of " + hair_type_list() + " (got '" + p.hair_type + "')");
+    return *preset;
+}
+
+float smoothstep(float x)
+{
+    x = std::clamp(x, 0.0f, 1.0f);
+    return x * x * (3.0f - 2.0f * x);
+}
+
+/// One cycle's cross-section: centre + amplitude * R(phase) * shape(t).
+struct Cycle {
+    int shape = kCircle;
+    float amplitude = 0.0f;
+    float ox = 0.0f, oy = 0.0f;
+};
+
+/// Per-curve draws that fix its output size (computed in the count pass, reused in the fill).
+struct CurveSetup {
+    float frequency = 0.0f;
+    int64_t points = 0;
+};
+
+struct Resolved {
+    const HairTypePreset* preset = nullptr;
+    CurlShapeTiers tiers;
+    FloatRange amplitude;
+    float amplitude_mid = 0.0f;
+};
+
+/// The curl offset in the cross-section plane at cycle coordinate u (u = 0 where the curl starts),
+/// before the root envelope. Sec. 3.1: each cycle takes its own shape; around each join the two
+/// neighbouring cycles' closed curves are cross-faded with a C1 smoothstep, so position and tangent
+/// stay continuous (both shapes are smooth at t = 0, see curl_shapes.h).
+ShapePoint curl_offset(std::span<const Cycle> cycles, const ShapeParams& sp, float cos_phase, float sin_phase, float blend, double u)
+{
+    const int64_t last = int64_t(cycles.size()) - 1;
+    const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, last);
+    const float t = float(u - double(k));  // in [0, 1) inside the curl; negative before it, > 1 past the end
+    auto eval = [&](int64_t c, float tc) {
+        const Cycle& cy = cycles[size_t(c)];
+        const ShapePoint s = curl_shape_point(cy.shape, sp, tc);
+        const float x = cy.amplitude * s.x, y = cy.amplitude * s.y;
+        return ShapePoint{cy.ox + cos_phase * x - sin_phase * y, cy.oy + sin_phase * x + cos_phase * y};
+    };
+    const ShapePoint here = eval(k, t);
+    if (blend <= 0.0f) return here;
+    ShapePoint other;
+    float w;  // weight of `here`
+    if (t < blend && k > 0) {
+        other = eval(k - 1, t + 1.0f);
+        w = smoothstep((t + blend) / (2.0f * blend));
+    }
+    else if (t > 1.0f - blend && k < last) {
+        other = eval(k + 1, t - 1.0f);
+        w = 1.0f - smoothstep((t - (1.0f - blend)) / (2.0f * blend));
+    }
+    else {
+        return here;
+    }
+    return {w * here.x + (1.0f - w) * other.x, w * here.y + (1.0f - w) * other.y};
+}
+
+/// Root envelope: 0 on the straight part (u <= 0), a smoothstep up to 1 over `ramp` cycles.
+float root_envelope(double u, float ramp)
+{
+    if (u < 0.0) return 0.0f;
+    if (ramp <= 0.0f) return 1.0f;
+    return smoothstep(float(u / double(ramp)));
+}
+
+/// Frame and centre at centreline arc length s, interpolated between grid points spaced ds.
+void centre_at(std::span<const float3> centre, std::span<const Frame> frames, double ds, double s, float3& c, float3& n, float3& b)
+{
+    const int64_t last = int64_t(centre.size()) - 1;
+    const double x = ds > 0.0 ? s / ds : 0.0;
+    const int64_t j = std::clamp<int64_t>(int64_t(std::floor(x)), 0, std::max<int64_t>(last - 1, 0));
+    const float f = last > 0 ? float(std::clamp(x - double(j), 0.0, 1.0)) : 0.0f;
+    const int64_t j1 = std::min(j + 1, last);
+    c = lerp(centre[size_t(j)], centre[size_t(j1)], f);
+    const float3 t = normalize(lerp(frames[size_t(j)].t, frames[size_t(j1)].t, f), frames[size_t(j)].t);
+    float3 nn = lerp(frames[size_t(j)].n, frames[size_t(j1)].n, f);
+    nn = normalize(nn - t * dot(nn, t), frames[size_t(j)].n);
+    n = nn;
+    b = cross(t, nn);
+}
+
+Resolved resolve(const CurlParams& p)
+{
+    Resolved r;
+    r.preset = &preset_of(p);
+    r.tiers = curl_shape_tiers(p);
+    if (p.amplitude.lo == 0.0f && p.amplitude.hi == 0.0f) {
+        const float a = r.preset->radius_cm * p.units_per_cm;
+        r.amplitude = {0.8f * a, 1.2f * a};  // +-20% around the type's radius: our choice
+    }
+    else {
+        r.amplitude = p.amplitude;
+    }
+    r.amplitude_mid = 0.5f * (r.amplitude.lo + r.amplitude.hi);
+    return r;
+}
+
+}  // namespace
+
+void CurlParams::validate() const
+{
+    preset_of(*this);
+    if (!(uniformity >= 0.0f && uniformity <= 1.0f)) {
+        throw InvalidParam("curl: --uniformity must be in [0, 1] (got " + num(uniformity) + ")");
+    }
+    if (dominant < -1 || dominant >= curl_shape_count()) {
+        throw InvalidParam("curl: --dominant must be one of " + curl_shape_list() + " (got " + std::to_string(dominant) + ")");
+    }
+    for (size_t i = 0; i < shapes.size(); ++i) {
+        if (shapes[i] < 0 || shapes[i] >= curl_shape_count()) {
+            throw InvalidParam("curl: --shapes entries must be among " + curl_shape_list() + " (got " + std::to_string(shapes[i]) + ")");
+        }
+        for (size_t j = 0; j < i; ++j) {
+            if (shapes[j] == shapes[i]) {
+                throw InvalidParam("curl: --shapes lists " + std::string(curl_shape_name(shapes[i])) + " twice");
+            }
+        }
+    }
+    const bool amp_default = amplitude.lo == 0.0f && amplitude.hi == 0.0f;
+    if (!finite(amplitude) || (!amp_default && !(amplitude.lo >= 0.0f && amplitude.hi > 0.0f && amplitude.lo <= amplitude.hi))) {
+        throw InvalidParam("curl: --amplitude must be lo,hi with 0 <= lo <= hi and hi > 0, scene units (got " + range_text(amplitude) + ")");
+    }
+    const bool freq_default = frequency.lo == 0.0f && frequency.hi == 0.0f;
+    if (!finite(frequency) || (!freq_default && !(frequency.lo > 0.0f && frequency.lo <= frequency.hi))) {
+        throw InvalidParam("curl: --frequency must be lo,hi with 0 < lo <= hi, cycles per scene unit (got " + range_text(frequency) + ")");
+    }
+    if (!finite(phase) || !(phase.lo <= phase.hi)) {
+        throw InvalidParam("curl: --phase must be lo,hi with lo <= hi, turns (got " + range_text(phase) + ")");
+    }
+    if (!finite(offset) || !(offset.lo >= 0.0f && offset.lo <= offset.hi)) {
+        throw InvalidParam("curl: --offset must be lo,hi with 0 <= lo <= hi, scene units (got " + range_text(offset) + ")");
+    }
+    if (!(units_per_cm > 0.0f) || !std::isfinite(units_per_cm)) {
+        throw InvalidParam("curl: --units-per-cm must be > 0 (got " + num(units_per_cm) + ")");
+    }
+    if (!(root_ease >= 0.0f) || !std::isfinite(root_ease)) {
+        throw InvalidParam("curl: --root-ease must be >= 0, scene units (got " + num(root_ease) + ")");
+    }
+    if (!(root_ramp >= 0.0f) || !std::isfinite(root_ramp)) {
+        throw InvalidParam("curl: --root-ramp must be >= 0, cycles (got " + num(root_ramp) + ")");
+    }
+    if (samples < 4 || samples > 256) {
+        throw InvalidParam("curl: --samples must be in 4..256 points per cycle (got " + std::to_string(samples) + ")");
+    }
+    if (!(blend >= 0.0f && blend < 0.5f)) {
+        throw InvalidParam("curl: --blend must be in [0, 0.5) cycles (got " + num(blend) + ")");
+    }
+    shape.validate();
+    curl_shape_tiers(*this);  // the dominant must be allowed, and U < 1 needs another shape
+}
+
+CurlShapeTiers curl_shape_tiers(const CurlParams& p)
+{
+    const HairTypePreset& preset = preset_of(p);
+    CurlShapeTiers t;
+    t.dominant = p.dominant >= 0 ? p.dominant : preset.dominant;
+    std::vector<int> allowed = p.shapes;
+    if (allowed.empty()) {
+        for (int i = 0; i < curl_shape_count(); ++i) allowed.push_back(i);
+    }
+    auto is_allowed = [&](int s) { return std::find(allowed.begin(), allowed.end(), s) != allowed.end(); };
+    if (!is_allowed(t.dominant)) {
+        throw InvalidParam("curl: --dominant " + std::string(curl_shape_name(t.dominant)) +
+                           (p.dominant < 0 ? " (the default of type " + p.hair_type + ")" : std::string()) +
+                           " is not among the allowed --shapes");
+    }
+    for (int s : preset.secondary) {
+        if (s != t.dominant && is_allowed(s)) t.secondary.push_back(s);
+    }
+    for (int s : allowed) {
+        if (s != t.dominant && std::find(t.secondary.begin(), t.secondary.end(), s) == t.secondary.end()) t.rest.push_back(s);
+    }
+    if (p.uniformity < 1.0f && t.secondary.empty() && t.rest.empty()) {
+        throw InvalidParam("curl: --uniformity " + num(p.uniformity) + " leaves " + num(1.0 - p.uniformity) +
+                           " of the cycles to other shapes, but --shapes allows only " + std::string(curl_shape_name(t.dominant)) +
+                           " (use --uniformity 1 or allow more shapes)");
+    }
+    const double u = p.uniformity, rest = 1.0 - u;
+    const double share_b = t.secondary.empty() ? 0.0 : (t.rest.empty() ? rest : rest * kCurlTierBShare);
+    const double share_c = t.rest.empty() ? 0.0 : rest - share_b;
+    t.probability.assign(size_t(curl_shape_count()), 0.0);
+    t.probability[size_t(t.dominant)] = u;
+    t.order.push_back(t.dominant);
+    for (int s : t.secondary) {
+        t.probability[size_t(s)] = share_b / double(t.secondary.size());
+        t.order.push_back(s);
+    }
+    for (int s : t.rest) {
+        t.probability[size_t(s)] = share_c / double(t.rest.size());
+        t.order.push_back(s);
+    }
+    double sum = 0.0;
+    for (int s : t.order) {
+        sum += t.probability[size_t(s)];
+        t.cumulative.push_back(sum);
+    }
+    t.cumulative.front() = u;  // exactly U for tier A, whatever the rounding of the others
+    t.cumulative.back() = 1.0;
+    return t;
+}
+
+int pick_curl_shape(const CurlShapeTiers& tiers, double x)
+{
+    for (size_t i = 0; i < tiers.order.size(); ++i) {
+        if (x < tiers.cumulative[i]) return tiers.order[i];
+    }
+    return tiers.order.back();
+}
+
+CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress)
+{
+    params.validate();
+    const Resolved res = resolve(params);
+    const auto P = src.positions();
+    const size_t nc = src.num_curves();
+    const std::vector<int64_t> ids = src.curve_ids();
+    const auto src_width = src.find<float>(Domain::Point, attr::width);
+    ProgressStep step(progress, "curl", int64_t(nc));
+
+    // Count: each curve's frequency (a per-curve draw) and length fix its output point count.
+    std::vector<CurveSetup> setup(nc);
+    parallel_for(int64_t(nc), 256, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = src.points_of(size_t(c));
+            const auto in = P.subspan(size_t(r.begin), size_t(r.size()));
+            const double len = r.size() >= 2 ? double(polyline_length(in)) : 0.0;
+            Rng rng(params.seed, uint64_t(ids[size_t(c)]), kStreamCurve);
+            const bool freq_default = params.frequency.lo == 0.0f && params.frequency.hi == 0.0f;
+            const float f = freq_default ? res.preset->ratio / res.amplitude_mid : rng.uniform(params.frequency.lo, params.frequency.hi);
+            setup[size_t(c)].frequency = f;
+            if (!(len > 0.0)) {
+                setup[size_t(c)].points = r.size();
+                continue;
+            }
+            const double want = std::ceil(len * double(f) * double(params.samples)) + 1.0;
+            // Clamped before the integer conversion so absurd frequencies reach the limit check.
+            setup[size_t(c)].points = std::max<int64_t>(r.size(), int64_t(std::min(want, double(kMaxPoints))));
+        }
+    });
+    int64_t total = 0;
+    for (const CurveSetup& s : setup) total += s.points;
+    if (total >= kMaxPoints) {
+        throw LimitExceeded("curl: the output would have " + std::to_string(total) + " points (limit " + std::to_string(kMaxPoints) +
+                            "); lower --samples or --frequency");
+    }
+
+    std::vector<int64_t> counts(nc);
+    for (size_t c = 0; c < nc; ++c) counts[c] = setup[c].points;
+    CurveSet dst = CurveSet::from_counts(counts);
+    auto dP = dst.positions();
+    auto dshape = dst.add<int32_t>(Domain::Point, "shape");
+    auto dcycle = dst.add<int32_t>(Domain::Point, "cycle");
+    std::span<float> dwidth;
+    if (!src_width.empty()) dwidth = dst.add<float>(Domain::Point, attr::width);
+    // Other point attributes are gathered from the nearest input point; only built when needed.
+    bool gather = false;
+    for (const Attribute& a : src.attributes(Domain::Point).all()) {
+        if (a.name != attr::P && a.name != attr::width && a.name != "shape" && a.name != "cycle") gather = true;
+    }
+    std::vector<int64_t> src_point(gather ? dst.num_points() : 0);
+
+    parallel_for(int64_t(nc), 64, [&](int64_t b, int64_t e) {
+        std::vector<Cycle> cycles;
+        std::vector<float3> centre, grid, out;
+        std::vector<double> in_cum, s_of;
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = src.points_of(size_t(c));
+            const IndexRange d = dst.points_of(size_t(c));
+            const auto in = P.subspan(size_t(r.begin), size_t(r.size()));
+            in_cum = cumulative_lengths(in);
+            const double in_len = in_cum.empty() ? 0.0 : in_cum.back();
+            const uint64_t id = uint64_t(ids[size_t(c)]);
+
+            if (!(in_len > 0.0) || r.size() < 2) {
+                // Nothing to curl: the curve passes through unchanged.
+                for (int64_t i = 0; i < d.size(); ++i) {
+                    dP[size_t(d.begin + i)] = in[size_t(i)];
+                    dshape[size_t(d.begin + i)] = res.tiers.dominant;
+                    dcycle[size_t(d.begin + i)] = 0;
+                    if (!dwidth.empty()) dwidth[size_t(d.begin + i)] = src_width[size_t(r.begin + i)];
+                    if (gather) src_point[size_t(d.begin + i)] = r.begin + i;
+                }
+                step.advance(1);
+                continue;
+            }
+
+            const int64_t n = d.size();
+            // The centreline: a Catmull-Rom through the guide (smooth even for coarse guides),
+            // resampled to n points evenly spaced in arc length.
+            if (r.size() >= 4) {
+                const int per_segment = int(std::clamp<int64_t>((n + r.size() - 2) / (r.size() - 1), 1, 64));
+                centre = resample_by_count(evaluate_cubic(in, CubicBasis::CatmullRom, true, per_segment), int(n));
+            }
+            else {
+                centre = resample_by_count(in, int(n));
+            }
+            const std::vector<Frame> frames = rotation_minimising_frames(centre);
+            const double centre_len = polyline_length(centre);
+            const double ds = centre_len / double(n - 1);
+
+            // Per-curve and per-cycle draws.
+            Rng curve_rng(params.seed, id, kStreamCurve);
+            curve_rng.next_u64();  // the frequency draw (count pass)
+            const float frequency = setup[size_t(c)].frequency;
+            const float phase = curve_rng.uniform(params.phase.lo, params.phase.hi);
+            const float angle = 2.0f * std::numbers::pi_v<float> * phase;
+            const float cp = std::cos(angle), sp = std::sin(angle);
+            const double curl_len = std::max(0.0, centre_len - double(params.root_ease));
+            const int64_t ncycles = std::max<int64_t>(1, int64_t(std::floor(curl_len * double(frequency))) + 2);
+            cycles.resize(size_t(ncycles));
+            const Rng shape_rng(params.seed, id, kStreamShape), amp_rng(params.seed, id, kStreamAmp),
+                offset_rng(params.seed, id, kStreamOffset);
+            auto unit = [](uint64_t v) { return double(v >> 11) * (1.0 / 9007199254740992.0); };
+            for (int64_t k = 0; k < ncycles; ++k) {
+                Cycle& cy = cycles[size_t(k)];
+                cy.shape = pick_curl_shape(res.tiers, unit(shape_rng.at(uint64_t(k))));
+                cy.amplitude = res.amplitude.lo + (res.amplitude.hi - res.amplitude.lo) * float(unit(amp_rng.at(uint64_t(k))));
+                const float orad = params.offset.lo + (params.offset.hi - params.offset.lo) * float(unit(offset_rng.at(2 * uint64_t(k))));
+                const float oang = 2.0f * std::numbers::pi_v<float> * float(unit(offset_rng.at(2 * uint64_t(k) + 1)));
+                cy.ox = orad * std::cos(oang);
+                cy.oy = orad * std::sin(oang);
+            }
+
+            auto cycle_u = [&](double s) { return double(frequency) * (s - double(params.root_ease)); };
+            auto curled = [&](const float3& cpos, const float3& nn, const float3& bb, double s) {
+                const double u = cycle_u(s);
+                const float env = root_envelope(u, params.root_ramp);
+                if (env == 0.0f) return cpos;
+                const ShapePoint q = curl_offset(cycles, params.shape, cp, sp, params.blend, u);
+                return cpos + nn * (env * q.x) + bb * (env * q.y);
+            };
+
+            // Pass 1: curl the whole centreline on its own grid.
+            grid.resize(size_t(n));
+            for (int64_t j = 0; j < n; ++j) grid[size_t(j)] = curled(centre[size_t(j)], frames[size_t(j)].n, frames[size_t(j)].b, double(j) * ds);
+            double s_end = centre_len;
+            if (params.preserve_length) {
+                // Sec. 3.1 says nothing of length; real curls shrink (the curl index): keep the hair's
+                // length and let it cover less of its centreline. Cut where the curled length reaches
+                // the input's, then re-sample that part of the centreline with all n points.
+                double acc = 0.0;
+                for (int64_t j = 1; j < n; ++j) {
+                    const double seg = distance(grid[size_t(j - 1)], grid[size_t(j)]);
+                    if (acc + seg >= in_len) {
+                        s_end = (double(j - 1) + (seg > 0.0 ? (in_len - acc) / seg : 0.0)) * ds;
+                        break;
+                    }
+                    acc += seg;
+                }
+            }
+            out.resize(size_t(n));
+            s_of.resize(size_t(n));
+            if (s_end < centre_len) {
+                const double ds2 = s_end / double(n - 1);
+                for (int64_t j = 0; j < n; ++j) {
+                    const double s = double(j) * ds2;
+                    float3 cpos, nn, bb;
+                    centre_at(centre, frames, ds, s, cpos, nn, bb);
+                    out[size_t(j)] = curled(cpos, nn, bb, s);
+                    s_of[size_t(j)] = s;
+                }
+            }
+            else {
+                out = grid;
+                for (int64_t j = 0; j < n; ++j) s_of[size_t(j)] = double(j) * ds;
+            }
+
+            if (scalp) {
+                // No curled point inside the scalp: pull it back towards the centreline while that is
+                // outside (bisection keeps the curl's direction), else push it out along the normal.
+                const float eps = 1e-3f * std::max(res.amplitude_mid, 1e-6f);
+                for (int64_t j = 0; j < n; ++j) {
+                    float3& p = out[size_t(j)];
+                    if (!scalp->inside(p)) continue;
+                    float3 cpos, nn, bb;
+                    centre_at(centre, frames, ds, s_of[size_t(j)], cpos, nn, bb);
+                    if (!scalp->inside(cpos)) {
+                        float lo = 0.0f, hi = 1.0f;
+                        const float3 off = p - cpos;
+                        for (int it = 0; it < 24; ++it) {
+                            const float mid = 0.5f * (lo + hi);
+                            (scalp->inside(cpos + off * mid) ? hi : lo) = mid;
+                        }
+                        p = cpos + off * lo;
+                    }
+                    for (int it = 0; it < 4 && scalp->inside(p); ++it) {
+                        p = scalp->closest_point(p) + scalp->normal(p) * eps * float(1 << it);
+                    }
+                }
+            }
+
+            const double to_input = centre_len > 0.0 ? in_len / centre_len : 0.0;
+            for (int64_t j = 0; j < n; ++j) {
+                const size_t o = size_t(d.begin + j);
+                dP[o] = out[size_t(j)];
+                const double u = cycle_u(s_of[size_t(j)]);
+                const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, ncycles - 1);
+                dcycle[o] = int32_t(k);
+                dshape[o] = cycles[size_t(k)].shape;
+                if (!dwidth.empty() || gather) {
+                    // Where this point's centreline position falls on the input curve, by arc length.
+                    const double s_in = std::clamp(s_of[size_t(j)] * to_input, 0.0, in_len);
+                    const size_t hi = std::min<size_t>(size_t(std::upper_bound(in_cum.begin(), in_cum.end(), s_in) - in_cum.begin()),
+                                                       in_cum.size() - 1);
+                    const size_t lo = hi > 0 ? hi - 1 : 0;
+                    const double span = in_cum[hi] - in_cum[lo];
+                    const double f = span > 0.0 ? (s_in - in_cum[lo]) / span : 0.0;
+                    if (!dwidth.empty()) {
+                        dwidth[o] = float((1.0 - f) * src_width[size_t(r.begin) + lo] + f * src_width[size_t(r.begin) + hi]);
+                    }
+                    if (gather) src_point[o] = r.begin + int64_t(f < 0.5 ? lo : hi);
+                }
+            }
+            step.advance(1);
+        }
+    });
+
+    dst.set_detail_string("hair_type", res.preset->name);
+    std::vector<int64_t> identity(nc);
+    for (size_t c = 0; c < nc; ++c) identity[c] = int64_t(c);
+    carry_curve_attributes(src, dst, identity);
+    if (gather) carry_point_attributes(src, dst, src_point, {attr::P, attr::width, "shape", "cycle"});
+    return dst;
+}
+
+}  // namespace groom

@@ -1,0 +1,38 @@
+// `groom curl`: curl each input curve around its own centreline (talk, Sec. 3.1).
+#include "cli/command.h"
+#include "cli/curl_options.h"
+#include "kernel/io/curve_io.h"
+#include "ops/curl.h"
+
+namespace groom::cli {
+namespace {
+
+struct Args {
+    std::string input, output;
+    CurlOptions curl;
+};
+
+void setup(CommandContext& ctx)
+{
+    auto args = std::make_shared<Args>();
+    CLI::App* app = ctx.app;
+    app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = stdin)")->required();
+    app->add_option("-o,--output", args->output, "Output curves")->required();
+    add_curl_options(app, args->curl);
+    const CommonOptions& common = *ctx.common;
+    ctx.run = [args, &common] {
+        check_output(args->output, {args->input}, common);
+        const CurlParams params = curl_params_from(args->curl);
+        const CurveSet in = read_curves(args->input);
+        const auto progress = make_progress(common);
+        const CurveSet out = curl(in, params, nullptr, progress.get());
+        write_curves(out, args->output);
+        note(common, "curl: " + std::to_string(out.num_curves()) + " curves, " + std::to_string(out.num_points()) + " points (type " +
+                         params.hair_type + ") -> " + args->output);
+    };
+}
+
+const Registrar reg({"curl", "Curl curves cycle by cycle with random cross-section shapes (talk 3.1)", 300, setup});
+
+}  // namespace
+}  // namespace groom::cli

@@ -1,0 +1,76 @@
+#include "cli/curl_options.h"
+
+#include "cli/command.h"
+#include "kernel/error.h"
+#include "ops/hair_types.h"
+
+namespace groom::cli {
+
+namespace {
+
+/// "lo,hi" or a single value (lo = hi).
+FloatRange parse_range(const std::string& option, const std::string& text, FloatRange fallback)
+{
+    if (text.empty()) return fallback;
+    const std::vector<float> v = parse_floats(option, text, 1, 2);
+    return {v[0], v.size() > 1 ? v[1] : v[0]};
+}
+
+int parse_shape(const std::string& option, const std::string& text)
+{
+    const int s = curl_shape_from_string(text);
+    if (s < 0) throw InvalidParam(option + ": unknown shape '" + text + "' (expected a name or number: " + curl_shape_list() + ")");
+    return s;
+}
+
+}  // namespace
+
+void add_curl_options(CLI::App* app, CurlOptions& o)
+{
+    const CurlParams d;
+    app->add_option("--type", o.type, "Hair type " + hair_type_list() + ": sets the frequency:amplitude ratio, default radius and shapes (default " + d.hair_type + ")");
+    app->add_option("--dominant", o.dominant, "Tier A shape, name or number (" + curl_shape_list() + "); default: the type's");
+    app->add_option("--uniformity", o.params.uniformity, "Probability a cycle takes the dominant shape, 0..1")->capture_default_str();
+    app->add_option("--shapes", o.shapes, "Allowed shapes, comma list of names or numbers (default all)");
+    app->add_option("--amplitude", o.amplitude, "Curl radius range lo,hi, scene units, per cycle (default: the type's radius, +-20%)");
+    app->add_option("--frequency", o.frequency, "Cycles per scene unit of guide, lo,hi, per curve (default: type ratio / amplitude)");
+    app->add_option("--phase", o.phase, "Rotation of the cross-section, turns, lo,hi, per curve (default 0,1)");
+    app->add_option("--offset", o.offset, "Cycle centre offset from the guide, scene units, lo,hi, per cycle (default 0)");
+    app->add_option("--units-per-cm", o.params.units_per_cm, "Scene units per centimetre, for the type's default radius")->capture_default_str();
+    app->add_option("--root-ease", o.params.root_ease, "Straight length at the root, scene units")->capture_default_str();
+    app->add_option("--root-ramp", o.params.root_ramp, "Cycles over which the curl grows in after the straight root")->capture_default_str();
+    app->add_option("--samples", o.params.samples, "Output points per curl cycle, 4..256")->capture_default_str();
+    app->add_option("--blend", o.params.blend, "Half-width of the shape blend at cycle joins, cycles, [0, 0.5)")->capture_default_str();
+    app->add_flag("--keep-extent", o.keep_extent, "Curl the whole guide (the hair gets longer) instead of keeping the hair's length");
+    app->add_option("--lame-exponent", o.params.shape.lame_exponent, "Lame curve exponent n, > 0")->capture_default_str();
+    app->add_option("--polygon-sides", o.params.shape.polygon_sides, "Polygon sides, 3..64")->capture_default_str();
+    app->add_option("--ellipse-aspect", o.params.shape.ellipse_aspect, "Ellipse minor/major axis, (0, 1]")->capture_default_str();
+    app->add_option("--rose-petals", o.params.shape.rose_petals, "Polar rose k in r = cos(k theta), 1..32")->capture_default_str();
+    app->add_option("--seed", o.params.seed, "Random seed")->capture_default_str();
+}
+
+CurlParams curl_params_from(const CurlOptions& o)
+{
+    CurlParams p = o.params;
+    if (!o.type.empty()) p.hair_type = o.type;
+    if (!o.dominant.empty()) p.dominant = parse_shape("--dominant", o.dominant);
+    p.shapes.clear();
+    if (!o.shapes.empty()) {
+        size_t start = 0;
+        while (start <= o.shapes.size()) {
+            size_t end = o.shapes.find(',', start);
+            if (end == std::string::npos) end = o.shapes.size();
+            p.shapes.push_back(parse_shape("--shapes", o.shapes.substr(start, end - start)));
+            start = end + 1;
+        }
+    }
+    p.amplitude = parse_range("--amplitude", o.amplitude, p.amplitude);
+    p.frequency = parse_range("--frequency", o.frequency, p.frequency);
+    p.phase = parse_range("--phase", o.phase, p.phase);
+    p.offset = parse_range("--offset", o.offset, p.offset);
+    p.preserve_length = !o.keep_extent;
+    p.validate();
+    return p;
+}
+
+}  // namespace groom::cli

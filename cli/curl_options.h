@@ -1,0 +1,29 @@
+// The curl op's command-line options, shared by `groom curl` and any command that curls what it
+// generates (e.g. `groom puff`), so every curl option is spelled, documented and checked once.
+#pragma once
+
+#include "ops/curl.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace groom::cli {
+
+/// Option text as typed (lists and ranges are parsed after CLI11 has run) plus the params that
+/// CLI11 fills directly.
+struct CurlOptions {
+    std::string type, dominant, shapes, amplitude, frequency, phase, offset;
+    bool keep_extent = false;
+    CurlParams params;
+};
+
+/// Adds --type --dominant --uniformity --shapes --amplitude --frequency --phase --offset
+/// --units-per-cm --root-ease --root-ramp --samples --blend --keep-extent --lame-exponent
+/// --polygon-sides --ellipse-aspect --rose-petals --seed to `app`, writing into `o`.
+void add_curl_options(CLI::App* app, CurlOptions& o);
+
+/// The validated CurlParams the options describe. Throws InvalidParam naming the option.
+CurlParams curl_params_from(const CurlOptions& o);
+
+}  // namespace groom::cli

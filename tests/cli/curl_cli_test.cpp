@@ -1,0 +1,113 @@
+// `groom curl` end to end: files in, files out, exit codes and messages.
+#include "test_support.h"
+
+#include "kernel/io/curve_io.h"
+#include "kernel/math/polyline.h"
+
+#include <filesystem>
+
+using namespace groom;
+using groom::test::run_groom;
+using groom::test::TempDir;
+
+namespace {
+
+/// Two straight 15-unit guides and one bent one, as OBJ polylines.
+std::string guides_obj(const TempDir& dir)
+{
+    const std::string path = dir.file("guides.obj");
+    groom::test::write_text(path,
+                            "v 0 0 0\nv 0 5 0\nv 0 10 0\nv 0 15 0\n"
+                            "v 3 0 0\nv 3 5 0\nv 3 10 0\nv 3 15 0\n"
+                            "v 6 0 0\nv 6 5 1\nv 7 10 2\nv 9 14 3\n"
+                            "l 1 2 3 4\nl 5 6 7 8\nl 9 10 11 12\n");
+    return path;
+}
+
+}  // namespace
+
+TEST(CurlCli, CurlsGuidesAndWritesShapeCycleAndHairType)
+{
+    TempDir dir;
+    const std::string in = guides_obj(dir), out = dir.file("curled.usda");
+    const auto r = run_groom({"curl", in, "-o", out, "--type", "4a", "--uniformity", "0.5", "--seed", "11"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const CurveSet src = read_curves(in), cs = read_curves(out);
+    ASSERT_EQ(cs.num_curves(), 3u);
+    EXPECT_EQ(cs.detail_string("hair_type"), "4a");
+    const auto shape = cs.find<int32_t>(Domain::Point, "shape");
+    const auto cycle = cs.find<int32_t>(Domain::Point, "cycle");
+    ASSERT_EQ(shape.size(), cs.num_points());
+    ASSERT_EQ(cycle.size(), cs.num_points());
+    int shapes_seen = 0;
+    for (int s = 0; s < 5; ++s) shapes_seen += std::count(shape.begin(), shape.end(), s) > 0;
+    EXPECT_GE(shapes_seen, 3) << "uniformity 0.5 over dozens of cycles should mix shapes";
+    for (size_t c = 0; c < 3; ++c) {
+        const IndexRange a = src.points_of(c), b = cs.points_of(c);
+        const float la = polyline_length(src.positions().subspan(size_t(a.begin), size_t(a.size())));
+        const float lb = polyline_length(cs.positions().subspan(size_t(b.begin), size_t(b.size())));
+        EXPECT_NEAR(lb, la, 0.01f * la) << "curve " << c;
+        EXPECT_GT(b.size(), 100);
+        EXPECT_EQ(cycle[size_t(b.begin)], 0);
+        EXPECT_GT(cycle[size_t(b.end - 1)], 5);
+    }
+}
+
+TEST(CurlCli, SameBytesForAnyThreadCount)
+{
+    TempDir dir;
+    const std::string in = guides_obj(dir), a = dir.file("a.usda"), b = dir.file("b.usda");
+    ASSERT_EQ(run_groom({"curl", in, "-o", a, "--threads", "1", "--type", "3b", "--offset", "0,0.1"}).exit_code, 0);
+    ASSERT_EQ(run_groom({"curl", in, "-o", b, "--threads", "2", "--type", "3b", "--offset", "0,0.1"}).exit_code, 0);
+    EXPECT_EQ(groom::test::read_bytes(a), groom::test::read_bytes(b));
+    EXPECT_FALSE(groom::test::read_bytes(a).empty());
+}
+
+TEST(CurlCli, RejectsInvalidOptionsClearlyAndWritesNothing)
+{
+    TempDir dir;
+    const std::string in = guides_obj(dir), out = dir.file("never.usda");
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"--type", "5a"}, "--type"},
+        {{"--uniformity", "2"}, "--uniformity"},
+        {{"--dominant", "hexagon"}, "--dominant"},
+        {{"--shapes", "circle,blob"}, "--shapes"},
+        {{"--shapes", "ellipse,rose"}, "--dominant"},
+        {{"--shapes", "circle", "--uniformity", "0.5"}, "--uniformity"},
+        {{"--amplitude", "0.5,0.1"}, "--amplitude"},
+        {{"--amplitude", "a,b"}, "--amplitude"},
+        {{"--frequency", "1,2,3"}, "--frequency"},
+        {{"--phase", "1,0"}, "--phase"},
+        {{"--offset=-1,0"}, "--offset"},
+        {{"--samples", "2"}, "--samples"},
+        {{"--blend", "0.7"}, "--blend"},
+        {{"--root-ease=-1"}, "--root-ease"},
+        {{"--units-per-cm", "0"}, "--units-per-cm"},
+        {{"--lame-exponent", "0"}, "--lame-exponent"},
+        {{"--polygon-sides", "2"}, "--polygon-sides"},
+        {{"--ellipse-aspect", "2"}, "--ellipse-aspect"},
+        {{"--rose-petals", "0"}, "--rose-petals"},
+    };
+    for (const auto& [extra, option] : cases) {
+        std::vector<std::string> args = {"curl", in, "-o", out};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto r = run_groom(args);
+        EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
+        EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << option;
+    }
+}
+
+TEST(CurlCli, RefusesToOverwriteItsInputAndReportsMissingFiles)
+{
+    TempDir dir;
+    const std::string in = guides_obj(dir);
+    const std::string before = groom::test::read_bytes(in);
+    auto r = run_groom({"curl", in, "-o", in});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
+    EXPECT_EQ(groom::test::read_bytes(in), before);
+    r = run_groom({"curl", dir.file("missing.obj"), "-o", dir.file("x.usda")});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
+}

@@ -1,0 +1,240 @@
+#include "ops/partition.h"
+
+#include "fields/surface.h"
+#include "kernel/error.h"
+#include "kernel/math/polyline.h"
+#include "kernel/parallel.h"
+#include "kernel/rng.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+namespace groom {
+
+namespace {
+
+std::string num(float v)
+{
+    std::string s = std::to_string(v);
+    // to_string prints 6 decimals; trim the trailing zeros so messages read "1.5", not "1.500000".
+    if (s.find('.') != std::string::npos) {
+        s.erase(s.find_last_not_of('0') + 1);
+        if (s.back() == '.') s.pop_back();
+    }
+    return s;
+}
+
+void require(bool ok, const std::string& message)
+{
+    if (!ok) throw InvalidParam("partition: " + message);
+}
+
+/// One segment planned in the first pass: everything but its sampled interior.
+struct Plan {
+    int32_t side = 0, group = 0, station = 0;
+    float3 root, end;
+};
+
+constexpr uint64_t kJitterStream = 0x9a27;  // Rng stream for station jitter (per side: + side)
+
+}  // namespace
+
+void PartitionParams::validate() const
+{
+    require(std::isfinite(mediate) && mediate >= 0.0f && mediate <= 1.0f,
+            "--mediate must be in [0, 1] (got " + num(mediate) + ")");
+    require(!(count != 0 && spacing != 0.0f), "--count and --spacing are exclusive (got both)");
+    if (count != 0) require(count >= 1, "--count must be >= 1 (got " + std::to_string(count) + ")");
+    else require(std::isfinite(spacing) && spacing > 0.0f, "--spacing must be > 0 scene units (got " + num(spacing) + ")");
+    require(samples >= 2, "--samples must be >= 2 (got " + std::to_string(samples) + ")");
+    require(std::isfinite(width) && width > 0.0f, "--width must be > 0 scene units (got " + num(width) + ")");
+    require(std::isfinite(jitter) && jitter >= 0.0f && jitter <= 1.0f, "--jitter must be in [0, 1] (got " + num(jitter) + ")");
+    require(std::isfinite(max_gap) && max_gap >= 0.0f, "--max-gap must be >= 0 scene units, 0 = no limit (got " + num(max_gap) + ")");
+    require(std::isfinite(max_height) && max_height >= 0.0f,
+            "--max-height must be >= 0 scene units, 0 = no limit (got " + num(max_height) + ")");
+    if (centroids == CentroidMode::Every) {
+        require(every >= 1, "--centroids every:K needs K >= 1 (got " + std::to_string(every) + ")");
+    }
+    if (centroids == CentroidMode::Points) {
+        for (const CentroidPoint& c : centroid_points) {
+            require(std::isfinite(c.u) && c.u >= 0.0f && c.u <= 1.0f,
+                    "--centroids: arc-length fraction must be in [0, 1] (got " + num(c.u) + " for guide " + std::to_string(c.guide) + ")");
+        }
+    }
+}
+
+CurveSet partition(const CurveSet& guides, const Surface& scalp, const PartitionParams& params, Progress* progress)
+{
+    params.validate();
+    const size_t nc = guides.num_curves();
+    const auto P = guides.positions();
+    const std::string guide_range = "(" + std::to_string(nc) + " guides: 0 to " + std::to_string(int64_t(nc) - 1) + ")";
+
+    // Neighbours: the user's, checked against the guide count, or found.
+    std::vector<AdjacentGuides> adjacent(nc);
+    std::vector<bool> listed(nc, params.adjacent.empty());
+    if (params.adjacent.empty()) {
+        adjacent = find_adjacent_guides(guides, scalp, params.max_gap, progress);
+    }
+    else {
+        for (size_t c = 0; c < nc; ++c) adjacent[c].source = int32_t(c);
+        for (const AdjacentGuides& a : params.adjacent) {
+            auto in_range = [&](int32_t g) { return g >= 0 && size_t(g) < nc; };
+            require(in_range(a.source), "--adjacent: source guide " + std::to_string(a.source) + " out of range " + guide_range);
+            require(a.left == -1 || in_range(a.left), "--adjacent: left guide " + std::to_string(a.left) + " of source " +
+                                                          std::to_string(a.source) + " out of range " + guide_range + " or -1");
+            require(a.right == -1 || in_range(a.right), "--adjacent: right guide " + std::to_string(a.right) + " of source " +
+                                                            std::to_string(a.source) + " out of range " + guide_range + " or -1");
+            require(a.left != a.source && a.right != a.source,
+                    "--adjacent: guide " + std::to_string(a.source) + " cannot be its own neighbour");
+            require(!listed[a.source], "--adjacent: source guide " + std::to_string(a.source) + " is listed twice");
+            listed[a.source] = true;
+            adjacent[a.source] = a;
+        }
+    }
+
+    // Centroids per guide, as sorted arc-length fractions.
+    std::vector<std::vector<float>> centroid_u(nc);
+    if (params.centroids == CentroidMode::Points) {
+        for (const CentroidPoint& c : params.centroid_points) {
+            require(c.guide >= 0 && size_t(c.guide) < nc, "--centroids: guide " + std::to_string(c.guide) + " out of range " + guide_range);
+            centroid_u[c.guide].push_back(c.u);
+        }
+        for (auto& u : centroid_u) std::sort(u.begin(), u.end());
+    }
+
+    // Closest-point indexes for the guides that are someone's neighbour.
+    std::vector<bool> needed(nc, false);
+    for (size_t c = 0; c < nc; ++c) {
+        if (!listed[c]) continue;
+        if (adjacent[c].left >= 0) needed[adjacent[c].left] = true;
+        if (adjacent[c].right >= 0) needed[adjacent[c].right] = true;
+    }
+    std::vector<std::optional<PolylineNearest>> nearest(nc);
+    parallel_for(int64_t(nc), 16, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = guides.points_of(c);
+            if (needed[c]) nearest[c].emplace(P.subspan(r.begin, r.size()));
+        }
+    });
+
+    const std::vector<int64_t> ids = guides.curve_ids();
+    std::vector<std::vector<Plan>> plans(nc);
+    {
+        ProgressStep step(progress, "partition: segments", int64_t(nc));
+        parallel_for(int64_t(nc), 1, [&](int64_t b, int64_t e) {
+            for (int64_t c = b; c < e; ++c) {
+                step.advance(1);
+                const IndexRange r = guides.points_of(c);
+                if (!listed[c] || r.size() < 2) continue;
+                const auto src = P.subspan(r.begin, r.size());
+                const std::vector<double> cum = cumulative_lengths(src);
+                const double length = cum.back();
+                if (!(length > 0.0)) continue;
+                // Stations: n of them `step` apart, centred on the source.
+                const int n = params.count > 0 ? params.count : std::max(1, int(std::floor(length / params.spacing)));
+                const double spacing = params.count > 0 ? length / n : double(params.spacing);
+                const double start = 0.5 * (length - (n - 1) * spacing);
+                const int32_t sides[2] = {adjacent[c].left, adjacent[c].right};
+                for (int side = 0; side < 2; ++side) {
+                    if (sides[side] < 0) continue;
+                    const PolylineNearest& other = *nearest[sides[side]];
+                    const Rng rng(params.seed, uint64_t(ids[c]), kJitterStream + side);
+                    for (int i = 0; i < n; ++i) {
+                        const double jitter = params.jitter > 0.0f
+                                                  ? (double(rng.at(uint64_t(i)) >> 11) * 0x1.0p-53 - 0.5) * params.jitter * spacing
+                                                  : 0.0;
+                        const double s = std::clamp(start + i * spacing + jitter, 0.0, length);
+                        const float3 p = point_at_length(src, cum, s);
+                        if (params.max_height > 0.0f && scalp.distance(p) > params.max_height) continue;
+                        const PolylineNearest::Hit hit = other.closest(p);
+                        if (hit.segment < 0) continue;
+                        if (params.max_gap > 0.0f && hit.distance > params.max_gap) continue;
+                        Plan plan;
+                        plan.side = side;
+                        plan.station = i;
+                        // Sec. 2.2: rooted at the midpoint (or the mediated fraction) between the source
+                        // point and the nearest adjacent point, on the scalp.
+                        plan.root = scalp.closest_point(lerp(p, hit.point, params.mediate));
+                        double end_s = s;
+                        plan.group = i;
+                        if (params.centroids == CentroidMode::Every) {
+                            const int g = i / params.every;
+                            const int members = std::min(params.every, n - g * params.every);
+                            plan.group = g;
+                            end_s = start + spacing * (g * params.every + 0.5 * (members - 1));
+                        }
+                        else if (params.centroids == CentroidMode::Points && !centroid_u[c].empty()) {
+                            // The nearest centroid by arc length; ties to the earlier one.
+                            const auto& us = centroid_u[c];
+                            int best = 0;
+                            for (int k = 1; k < int(us.size()); ++k) {
+                                if (std::fabs(us[k] * length - s) < std::fabs(us[best] * length - s)) best = k;
+                            }
+                            plan.group = best;
+                            end_s = us[best] * length;
+                        }
+                        plan.end = end_s == s ? p : point_at_length(src, cum, end_s);
+                        plans[c].push_back(plan);
+                    }
+                }
+            }
+        });
+    }
+
+    // Count -> scan -> fill.
+    std::vector<int64_t> first_curve(nc + 1, 0);
+    for (size_t c = 0; c < nc; ++c) first_curve[c + 1] = first_curve[c] + int64_t(plans[c].size());
+    const int64_t total = first_curve[nc];
+    std::vector<int64_t> counts(size_t(total), params.samples);
+    CurveSet dst = CurveSet::from_counts(counts);
+    auto out_P = dst.positions();
+    auto out_guide = dst.add<int32_t>(Domain::Curve, "guide");
+    auto out_side = dst.add<int32_t>(Domain::Curve, "side");
+    auto out_group = dst.add<int32_t>(Domain::Curve, "group");
+    auto out_id = dst.add<int64_t>(Domain::Curve, attr::id);
+    auto out_width = dst.add<float>(Domain::Point, attr::width);
+    std::vector<int64_t> src_curve(static_cast<size_t>(total), 0);
+    const int samples = params.samples;
+    parallel_for(int64_t(nc), 1, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            for (size_t k = 0; k < plans[c].size(); ++k) {
+                const Plan& plan = plans[c][k];
+                const int64_t curve = first_curve[c] + int64_t(k);
+                src_curve[curve] = c;
+                out_guide[curve] = int32_t(c);
+                out_side[curve] = plan.side;
+                out_group[curve] = plan.group;
+                const uint64_t key = (uint64_t(plan.side) << 32) | uint64_t(uint32_t(plan.station));
+                out_id[curve] = int64_t(mix64(mix64(uint64_t(ids[c])) ^ key) >> 1);
+                const int64_t first = dst.points_of(curve).begin;
+                // Follow the scalp: the height above it rises linearly from the root (0) to the end.
+                const float end_height = std::max(0.0f, scalp.distance(plan.end));
+                for (int j = 0; j < samples; ++j) {
+                    const float u = float(j) / float(samples - 1);
+                    float3 x = lerp(plan.root, plan.end, u);
+                    if (j == 0) x = plan.root;
+                    else if (j == samples - 1) x = plan.end;
+                    else {
+                        const float target = u * end_height;
+                        // Two steps along the normal: exact for analytic surfaces, and a level set's
+                        // distance is accurate enough near the surface that a second step settles it.
+                        for (int iter = 0; iter < 2; ++iter) {
+                            const float d = scalp.distance(x);
+                            if (!(d < target)) break;
+                            x += scalp.normal(x) * (target - d);
+                        }
+                    }
+                    out_P[first + j] = x;
+                    out_width[first + j] = params.width;
+                }
+            }
+        }
+    });
+    carry_curve_attributes(guides, dst, src_curve);
+    return dst;
+}
+
+}  // namespace groom

@@ -1,0 +1,87 @@
+// partition: the edge hairs between braids (talk, Sec. 2.2, "Creating Partitions between Braids").
+// From the same guide curves the braids follow, every guide (the source) gets short segments on
+// each side, rooted on the scalp part-way to the adjacent guide and ending on the source, so the hair
+// between two braids reads as parted down the middle and pulled into each braid.
+#pragma once
+
+#include "kernel/curve_set.h"
+#include "kernel/progress.h"
+#include "ops/adjacency.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace groom {
+
+class Surface;
+
+/// Where the segments of one side of a source converge.
+enum class CentroidMode {
+    Stations,  ///< no grouping: each segment ends at its own station on the source (the default)
+    Every,     ///< every `every` consecutive stations form a group ending at the group's middle station
+    Points,    ///< centroids given per guide (`centroid_points`); each segment joins the nearest one
+};
+
+/// A centroid given by the user: a point of guide `guide` at normalised arc length `u` (0 root, 1 tip).
+struct CentroidPoint {
+    int32_t guide = -1;
+    float u = 0.0f;
+};
+
+struct PartitionParams {
+    /// Where roots sit between the source (0) and the nearest point of the adjacent guide (1); [0, 1].
+    /// 0.5 = the midpoint (Sec. 2.2's default): the parting line between two braids.
+    float mediate = 0.5f;
+    /// Segments per side of each source, spread evenly in arc length (>= 1). Exclusive with spacing.
+    int count = 24;
+    /// Arc length between segments along the source, scene units (> 0) when count is 0.
+    float spacing = 0.0f;
+    /// Points per segment (>= 2): the root, points that follow the scalp, the end on the source.
+    int samples = 8;
+    /// Fibre diameter written to point `width`, scene units (> 0).
+    float width = 0.01f;
+    /// Random shift of each station along the source, as a fraction of the spacing; [0, 1].
+    float jitter = 0.0f;
+    uint64_t seed = 0;
+    /// Neighbours farther than this are ignored (scene units); 0 = no limit. Also drops a station
+    /// whose closest adjacent point is farther than this.
+    float max_gap = 0.0f;
+    /// Stations where the source is more than this above the scalp get no segment (e.g. a braid
+    /// hanging free past the nape), scene units; 0 = no limit.
+    float max_height = 0.0f;
+
+    CentroidMode centroids = CentroidMode::Stations;
+    int every = 0;                               ///< stations per group for CentroidMode::Every (>= 1)
+    std::vector<CentroidPoint> centroid_points;  ///< for CentroidMode::Points; guides absent get Stations
+
+    /// Neighbours chosen by the user; empty = found by find_adjacent_guides(). When given, only the
+    /// sources listed get segments.
+    std::vector<AdjacentGuides> adjacent;
+
+    /// Throws InvalidParam naming the option, the value and the valid range. Guide indices (in
+    /// `adjacent`, `centroid_points`) are checked by partition(), which knows the guide count.
+    void validate() const;
+};
+
+/// @brief Edge hairs between braids (talk, Sec. 2.2).
+/// For each source guide and each side with an adjacent guide, stations are spread along the source
+/// (count, or spacing centred on the source; shifted by jitter). At a station p with closest point q
+/// on the adjacent guide (exact polyline closest point, PolylineNearest), the segment's root is
+/// scalp.closest_point(lerp(p, q, mediate)) and its end is p, or the group's centroid on the source
+/// with CentroidMode::Every/Points. Between them the segment follows the scalp: each sample of the
+/// straight root-to-end line that is lower than a height rising linearly from 0 at the root to the
+/// end's height is pushed out along the scalp normal to that height, so no point but possibly the end
+/// (when the source itself dips inside) lies inside the scalp.
+///
+/// Reads guide point P and every curve attribute. Writes one curve per segment with curve attributes
+/// `guide` (int32 source index), `side` (int32, 0 left = normal x tangent side, 1 right), `group`
+/// (int32 centroid index along the source; the station index with CentroidMode::Stations), `id`
+/// (int64, a hash of the guide's id, side and station, stable when other guides are removed), point
+/// `width`; the source's curve attributes carry through (its `id` is replaced). Curves are ordered by
+/// guide, then side, then station.
+/// Deterministic for any thread count.
+/// @throws InvalidParam from params.validate(), or for a guide index out of range in
+///         params.adjacent / params.centroid_points.
+CurveSet partition(const CurveSet& guides, const Surface& scalp, const PartitionParams& params, Progress* progress = nullptr);
+
+}  // namespace groom

@@ -1,0 +1,551 @@
+// Tests for ops/partition (edge hairs between braids, talk Sec. 2.2) and ops/adjacency (the CGAL
+// neighbour searches it uses), against closed forms on an exact sphere and plane, and against
+// brute-force searches on random inputs.
+#include "ops/partition.h"
+
+#include "fields/surface.h"
+#include "kernel/error.h"
+#include "kernel/math/polyline.h"
+#include "kernel/parallel.h"
+#include "kernel/rng.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <string>
+
+using namespace groom;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+/// Point at latitude `lat` and longitude `lon` (radians) on the sphere of radius r about the origin,
+/// +Y up. Seen from outside, going north along a meridian, longitude grows to the left.
+float3 on_sphere(float lat, float lon, float r = 1.0f)
+{
+    return {r * std::cos(lat) * std::cos(lon), r * std::sin(lat), r * std::cos(lat) * std::sin(lon)};
+}
+
+struct Arc {
+    float lon, lat0, lat1;  ///< a meridian arc running north from lat0 to lat1
+};
+
+/// Guides sampled along meridian arcs of the unit sphere, 201 points each.
+CurveSet meridian_guides(const std::vector<Arc>& arcs, int points = 201)
+{
+    std::vector<int64_t> counts(arcs.size(), points);
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions();
+    for (size_t c = 0; c < arcs.size(); ++c) {
+        for (int i = 0; i < points; ++i) {
+            const float lat = arcs[c].lat0 + (arcs[c].lat1 - arcs[c].lat0) * float(i) / float(points - 1);
+            P[cs.points_of(c).begin + i] = on_sphere(lat, arcs[c].lon);
+        }
+    }
+    return cs;
+}
+
+/// Closed form: the point of meridian arc `a` nearest to p. The distance to a point running along a
+/// great circle is unimodal, so the nearest point of the arc is the projection onto the meridian's
+/// plane, its latitude clamped to the arc.
+float3 nearest_on_arc(const float3& p, const Arc& a)
+{
+    const float3 e(std::cos(a.lon), 0.0f, std::sin(a.lon));
+    const float lat = std::clamp(std::atan2(p.y, dot(p, e)), a.lat0, a.lat1);
+    return on_sphere(lat, a.lon);
+}
+
+/// Straight guides along +Z at the given x, at height h above the plane y = 0, from z = 0 to z = len.
+/// Only 5 points each: the closest point must be exact on segments, not just at vertices.
+CurveSet straight_guides(const std::vector<float>& xs, float h = 0.2f, float len = 4.0f)
+{
+    std::vector<int64_t> counts(xs.size(), 5);
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions();
+    for (size_t c = 0; c < xs.size(); ++c)
+        for (int i = 0; i < 5; ++i) P[cs.points_of(c).begin + i] = float3(xs[c], h, len * float(i) / 4.0f);
+    return cs;
+}
+
+float3 first_point(const CurveSet& cs, size_t c) { return cs.positions()[cs.points_of(c).begin]; }
+float3 last_point(const CurveSet& cs, size_t c) { return cs.positions()[cs.points_of(c).end - 1]; }
+
+#define EXPECT_NEAR3(a, b, tol)                                                                            \
+    do {                                                                                                   \
+        const float3 a_ = (a), b_ = (b);                                                                   \
+        EXPECT_LE(distance(a_, b_), (tol)) << "(" << a_.x << "," << a_.y << "," << a_.z << ") vs (" << b_.x \
+                                           << "," << b_.y << "," << b_.z << ")";                           \
+    } while (0)
+
+/// The segments of one guide and side, in output order.
+std::vector<size_t> curves_of(const CurveSet& out, int guide, int side)
+{
+    const auto g = out.find<int32_t>(Domain::Curve, "guide");
+    const auto s = out.find<int32_t>(Domain::Curve, "side");
+    std::vector<size_t> r;
+    for (size_t c = 0; c < out.num_curves(); ++c)
+        if (g[c] == guide && s[c] == side) r.push_back(c);
+    return r;
+}
+
+/// Checks every segment of a meridian layout against the closed forms: the end is the station on
+/// the source, the root is the mediated point between it and the nearest adjacent point, projected
+/// onto the sphere; no point is inside the sphere.
+void check_meridian_segments(const CurveSet& out, const std::vector<Arc>& arcs, const std::vector<AdjacentGuides>& adj,
+                             int count, float mediate)
+{
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    for (size_t g = 0; g < arcs.size(); ++g) {
+        const int32_t nb[2] = {adj[g].left, adj[g].right};
+        for (int side = 0; side < 2; ++side) {
+            const auto curves = curves_of(out, int(g), side);
+            if (nb[side] < 0) {
+                EXPECT_TRUE(curves.empty()) << "guide " << g << " side " << side;
+                continue;
+            }
+            ASSERT_EQ(curves.size(), size_t(count)) << "guide " << g << " side " << side;
+            for (int i = 0; i < count; ++i) {
+                const size_t c = curves[i];
+                // Uniformly sampled arc: arc length along the polyline is linear in latitude.
+                const float lat = arcs[g].lat0 + (arcs[g].lat1 - arcs[g].lat0) * (i + 0.5f) / count;
+                const float3 station = on_sphere(lat, arcs[g].lon);
+                // Chord sagitta of 201 samples over <= 1.6 rad is < 1e-5.
+                EXPECT_NEAR3(last_point(out, c), station, 2e-5f);
+                const float3 q = nearest_on_arc(station, arcs[nb[side]]);
+                const float3 root = sphere.closest_point(lerp(station, q, mediate));
+                // The closest point on the 200-segment polyline slides along the arc from the true
+                // foot by up to about half a segment (chords tilt by half a segment's angle and the
+                // distance is flat at its minimum): 1e-3 covers it. The closest point itself is
+                // checked exactly on straight guides and against brute force.
+                EXPECT_NEAR3(first_point(out, c), root, 1e-3f);
+                EXPECT_NEAR(length(first_point(out, c)), 1.0f, 1e-5f);  // root on the surface
+                for (int64_t p = out.points_of(c).begin; p < out.points_of(c).end; ++p) {
+                    EXPECT_GE(sphere.distance(out.positions()[p]), -1e-5f) << "point inside the sphere";
+                }
+            }
+        }
+    }
+}
+
+}  // namespace
+
+// --- adjacency --------------------------------------------------------------------------------------
+
+TEST(Adjacency, ThreeMeridianArcsHaveTheirNeighboursOnTheRightSides)
+{
+    const std::vector<Arc> arcs = {{-0.3f, -0.5f, 0.5f}, {0.0f, -0.5f, 0.5f}, {0.3f, -0.5f, 0.5f}};
+    const auto adj = find_adjacent_guides(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f));
+    ASSERT_EQ(adj.size(), 3u);
+    // Longitude grows to the left (normal x tangent = +Z at lat 0, lon 0).
+    EXPECT_EQ(adj[0].left, 1);
+    EXPECT_EQ(adj[0].right, -1);
+    EXPECT_EQ(adj[1].left, 2);
+    EXPECT_EQ(adj[1].right, 0);
+    EXPECT_EQ(adj[2].left, -1);
+    EXPECT_EQ(adj[2].right, 1);
+}
+
+TEST(Adjacency, MeridiansAllRoundTheSphereNeverPickTheFarSide)
+{
+    // 12 meridians 30 degrees apart, given out of order: each has both neighbours, never a guide
+    // across the head (which is nearer in 3-D than some neighbours' far ends but points inwards).
+    std::vector<Arc> arcs;
+    const int order[12] = {5, 0, 7, 2, 9, 11, 1, 3, 6, 8, 10, 4};
+    for (int k : order) arcs.push_back({2 * kPi * k / 12, -0.7f, 0.7f});
+    const auto adj = find_adjacent_guides(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f));
+    auto index_of = [&](int k) { return int(std::find(order, order + 12, (k + 12) % 12) - order); };
+    for (int c = 0; c < 12; ++c) {
+        EXPECT_EQ(adj[c].left, index_of(order[c] + 1)) << "guide " << c;
+        EXPECT_EQ(adj[c].right, index_of(order[c] - 1)) << "guide " << c;
+    }
+}
+
+TEST(Adjacency, MaxGapLeavesDistantGuidesOut)
+{
+    const CurveSet guides = straight_guides({0.0f, 1.0f, 3.0f});
+    const AnalyticPlane plane({0, 0, 0}, {0, 1, 0});
+    auto adj = find_adjacent_guides(guides, plane);
+    EXPECT_EQ(adj[1].left, 2);
+    EXPECT_EQ(adj[1].right, 0);
+    adj = find_adjacent_guides(guides, plane, 1.5f);  // guide 2 is 2 units from guide 1
+    EXPECT_EQ(adj[1].left, -1);
+    EXPECT_EQ(adj[1].right, 0);
+    EXPECT_EQ(adj[2].right, -1);
+}
+
+TEST(Adjacency, ClassifySideUsesTheTangentPlane)
+{
+    const float3 n(0, 1, 0), left(1, 0, 0);
+    EXPECT_EQ(classify_side({1, 0, 0}, n, left), 0);
+    EXPECT_EQ(classify_side({-1, 0.2f, 0.3f}, n, left), 1);
+    EXPECT_EQ(classify_side({0.1f, 0, 1}, n, left), -1);    // ahead along the guide
+    EXPECT_EQ(classify_side({0.3f, -1, 0}, n, left), -1);   // through the head
+    EXPECT_EQ(classify_side({0, 0, 0}, n, left), -1);
+}
+
+TEST(Adjacency, PolylineClosestPointEqualsBruteForceOnRandomInputs)
+{
+    for (int trial = 0; trial < 40; ++trial) {
+        Rng rng(7, uint64_t(trial));
+        const int n = 1 + int(rng.below(60));
+        std::vector<float3> pts(n);
+        float3 p(0, 0, 0);
+        for (int i = 0; i < n; ++i) {
+            // Random walk with occasional repeated points (zero-length segments) and long jumps.
+            if (i > 0 && rng.below(10) == 0) { pts[i] = pts[i - 1]; continue; }
+            const float step = rng.below(8) == 0 ? 3.0f : 0.3f;
+            p += float3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)) * step;
+            pts[i] = p;
+        }
+        const PolylineNearest index(pts);
+        for (int k = 0; k < 200; ++k) {
+            const float3 q(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(-6, 6));
+            double best = INFINITY;
+            for (int s = 0; s + 1 < std::max(n, 2); ++s) {
+                const float3 a = pts[s], b = pts[std::min(s + 1, n - 1)];
+                const float3 ab = b - a;
+                const float len2 = length_squared(ab);
+                const float t = len2 > 0 ? std::clamp(dot(q - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+                const float3 x = lerp(a, b, t);
+                const double d = distance(q, x);
+                best = std::min(best, d);
+            }
+            const PolylineNearest::Hit hit = index.closest(q);
+            ASSERT_NEAR(hit.distance, best, 1e-5 * (1 + best)) << "trial " << trial << " query " << k;
+            // Near-ties between segments make the point itself ill-posed; the distance is not. So the
+            // point must lie on the polyline at the reported distance from q.
+            EXPECT_NEAR(distance(hit.point, q), hit.distance, 1e-5f * (1 + hit.distance));
+            const float3 a = pts[hit.segment], b = pts[std::min<int64_t>(hit.segment + 1, n - 1)];
+            EXPECT_NEAR3(hit.point, lerp(a, b, hit.t), 1e-5f);
+            EXPECT_GE(hit.t, 0.0f);
+            EXPECT_LE(hit.t, 1.0f);
+        }
+    }
+}
+
+TEST(Adjacency, NearestOnSidesEqualsBruteForceOnRandomInputs)
+{
+    Rng rng(11, 0);
+    std::vector<int64_t> counts(20);
+    for (auto& c : counts) c = 1 + rng.below(30);
+    CurveSet guides = CurveSet::from_counts(counts);
+    for (float3& p : guides.positions()) p = float3(rng.uniform(-5, 5), rng.uniform(-1, 1), rng.uniform(-5, 5));
+    const GuidePointIndex index(guides);
+    const auto P = guides.positions();
+    int found = 0;
+    for (int k = 0; k < 500; ++k) {
+        const float3 q(rng.uniform(-5, 5), rng.uniform(-1, 1), rng.uniform(-5, 5));
+        const float3 n = normalize(float3(rng.uniform(-0.3f, 0.3f), 1, rng.uniform(-0.3f, 0.3f)));
+        const float3 left = left_direction(n, normalize(float3(rng.uniform(-1, 1), 0, rng.uniform(-1, 1)), {0, 0, 1}));
+        const int32_t exclude = int32_t(rng.below(20));
+        const float max_gap = k % 2 ? 0.0f : rng.uniform(0.5f, 3.0f);
+        GuidePointIndex::SideHit brute[2];
+        for (size_t c = 0; c < guides.num_curves(); ++c) {
+            if (int32_t(c) == exclude) continue;
+            for (int64_t i = guides.points_of(c).begin; i < guides.points_of(c).end; ++i) {
+                const int side = classify_side(P[i] - q, n, left);
+                const float d = distance(P[i], q);
+                if (side < 0 || (max_gap > 0 && d > max_gap)) continue;
+                if (d < brute[side].distance) brute[side] = {int32_t(c), i, d};
+            }
+        }
+        const auto hits = index.nearest_on_sides(q, n, left, exclude, max_gap);
+        for (int side = 0; side < 2; ++side) {
+            ASSERT_EQ(hits[side].point, brute[side].point) << "query " << k << " side " << side;
+            EXPECT_EQ(hits[side].guide, brute[side].guide);
+            if (brute[side].guide >= 0) {
+                EXPECT_NEAR(hits[side].distance, brute[side].distance, 1e-5f);
+                ++found;
+            }
+        }
+    }
+    EXPECT_GT(found, 500);  // the comparison is not vacuous
+}
+
+// --- partition: analytic cases ------------------------------------------------------------------------
+
+TEST(Partition, ThreeMeridianArcsRootAtTheMidpointOnTheSphere)
+{
+    const std::vector<Arc> arcs = {{-0.3f, -0.5f, 0.5f}, {0.0f, -0.5f, 0.5f}, {0.3f, -0.5f, 0.5f}};
+    PartitionParams params;
+    params.count = 10;
+    params.samples = 9;
+    const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
+    out.validate();
+    EXPECT_EQ(out.num_curves(), 40u);  // 10 per side: guide 1 has two sides, the edges one each
+    const std::vector<AdjacentGuides> adj = {{0, 1, -1}, {1, 2, 0}, {2, -1, 1}};
+    check_meridian_segments(out, arcs, adj, 10, 0.5f);
+    // The midpoint between neighbours at the equator is half way in longitude.
+    const size_t c = curves_of(out, 1, 0)[0];
+    EXPECT_GT(first_point(out, c).z, 0.0f);  // side 0 = left = towards +longitude
+    for (int64_t p = out.points_of(0).begin; p < out.points_of(0).end; ++p) EXPECT_EQ(out.find<float>(Domain::Point, "width")[p], 0.01f);
+}
+
+TEST(Partition, ArcsOfDifferentLengthsUseTheNearestEndAndTheMediatedFraction)
+{
+    // The middle arc runs past its neighbours: past their ends the nearest adjacent point is the end.
+    const std::vector<Arc> arcs = {{-0.25f, -0.3f, 0.3f}, {0.0f, -0.8f, 0.8f}, {0.35f, -0.2f, 0.4f}};
+    PartitionParams params;
+    params.count = 16;
+    params.mediate = 0.8f;
+    params.adjacent = {{0, 1, -1}, {1, 2, 0}, {2, -1, 1}};
+    const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
+    check_meridian_segments(out, arcs, params.adjacent, 16, 0.8f);
+    // And the automatic search finds the same neighbours.
+    params.adjacent.clear();
+    const CurveSet automatic = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
+    ASSERT_EQ(automatic.num_curves(), out.num_curves());
+    EXPECT_EQ(0, std::memcmp(automatic.positions().data(), out.positions().data(), out.num_points() * sizeof(float3)));
+}
+
+TEST(Partition, SingleNeighbourGivesOneSide)
+{
+    const std::vector<Arc> arcs = {{0.0f, -0.4f, 0.6f}, {0.4f, -0.4f, 0.6f}};
+    PartitionParams params;
+    params.count = 7;
+    params.mediate = 0.0f;  // roots at the source's own foot
+    const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
+    EXPECT_EQ(out.num_curves(), 14u);
+    EXPECT_EQ(curves_of(out, 0, 0).size(), 7u);
+    EXPECT_EQ(curves_of(out, 1, 1).size(), 7u);
+    check_meridian_segments(out, arcs, {{0, 1, -1}, {1, -1, 0}}, 7, 0.0f);
+}
+
+TEST(Partition, PlaneRootsAtTheMediatedFractionAndSegmentsAreStraight)
+{
+    const CurveSet guides = straight_guides({-1.0f, 0.0f, 1.5f});
+    const AnalyticPlane plane({0, 0, 0}, {0, 1, 0});
+    PartitionParams params;
+    params.count = 8;
+    params.samples = 6;
+    params.mediate = 0.25f;
+    const CurveSet out = partition(guides, plane, params);
+    const float xs[3] = {-1.0f, 0.0f, 1.5f};
+    const int nb[3][2] = {{1, -1}, {2, 0}, {-1, 1}};
+    const auto P = out.positions();
+    for (int g = 0; g < 3; ++g) {
+        for (int side = 0; side < 2; ++side) {
+            const auto curves = curves_of(out, g, side);
+            ASSERT_EQ(curves.size(), nb[g][side] < 0 ? 0u : 8u);
+            for (int i = 0; i < int(curves.size()); ++i) {
+                const float z = 4.0f * (i + 0.5f) / 8.0f;
+                const float3 root(xs[g] + 0.25f * (xs[nb[g][side]] - xs[g]), 0.0f, z), tip(xs[g], 0.2f, z);
+                EXPECT_NEAR3(first_point(out, curves[i]), root, 1e-5f);
+                EXPECT_NEAR3(last_point(out, curves[i]), tip, 1e-5f);
+                // Left roots lie at larger x (normal +Y x tangent +Z = +X).
+                EXPECT_EQ(root.x > xs[g], side == 0);
+                // Above the plane the straight line already follows the rising height: no push.
+                const IndexRange r = out.points_of(curves[i]);
+                for (int64_t p = r.begin; p < r.end; ++p) {
+                    const float u = float(p - r.begin) / float(r.size() - 1);
+                    EXPECT_NEAR3(P[p], lerp(root, tip, u), 1e-5f);
+                }
+            }
+        }
+    }
+}
+
+TEST(Partition, SegmentsFollowTheScalpInsteadOfCuttingThroughIt)
+{
+    // Guides lying on the sphere 0.6 rad apart: chords between them dip 4.5% of the radius inside.
+    const std::vector<Arc> arcs = {{0.0f, -0.5f, 0.5f}, {0.6f, -0.5f, 0.5f}};
+    PartitionParams params;
+    params.count = 5;
+    params.samples = 12;
+    params.mediate = 1.0f;
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    const CurveSet out = partition(meridian_guides(arcs), sphere, params);
+    float lowest = INFINITY;
+    for (const float3& p : out.positions()) lowest = std::min(lowest, sphere.distance(p));
+    EXPECT_GE(lowest, -1e-5f);
+    EXPECT_LE(lowest, 1e-5f);  // and they lie on it, since the source is on it too
+}
+
+TEST(Partition, EveryKGroupsConvergeOnTheirCentroid)
+{
+    const CurveSet guides = straight_guides({0.0f, 1.0f});
+    PartitionParams params;
+    params.count = 12;
+    params.centroids = CentroidMode::Every;
+    params.every = 5;
+    const CurveSet out = partition(guides, AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
+    const auto group = out.find<int32_t>(Domain::Curve, "group");
+    const auto curves = curves_of(out, 0, 0);
+    ASSERT_EQ(curves.size(), 12u);
+    for (int i = 0; i < 12; ++i) {
+        const int g = i / 5;
+        EXPECT_EQ(group[curves[i]], g);
+        // Stations 1/3 apart from 1/6; a group's centroid is its middle station (the last has 2).
+        const int members = std::min(5, 12 - 5 * g);
+        const float z = 1.0f / 6.0f + (5 * g + 0.5f * (members - 1)) / 3.0f;
+        EXPECT_NEAR3(last_point(out, curves[i]), float3(0, 0.2f, z), 1e-5f);
+        EXPECT_NEAR3(first_point(out, curves[i]), float3(0.5f, 0, 1.0f / 6.0f + i / 3.0f), 1e-5f);
+    }
+}
+
+TEST(Partition, GivenCentroidsGatherTheNearestSegments)
+{
+    const std::vector<Arc> arcs = {{0.0f, -0.5f, 0.5f}, {0.3f, -0.5f, 0.5f}};
+    PartitionParams params;
+    params.count = 10;
+    params.centroids = CentroidMode::Points;
+    params.centroid_points = {{0, 0.75f}, {0, 0.25f}};  // any order; guide 1 has none
+    const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
+    const auto group = out.find<int32_t>(Domain::Curve, "group");
+    const auto mine = curves_of(out, 0, 0);
+    ASSERT_EQ(mine.size(), 10u);
+    for (int i = 0; i < 10; ++i) {
+        const int g = i < 5 ? 0 : 1;
+        EXPECT_EQ(group[mine[i]], g);
+        EXPECT_NEAR3(last_point(out, mine[i]), on_sphere(g == 0 ? -0.25f : 0.25f, 0.0f), 2e-5f);
+    }
+    // Guide 1 has no centroids: each segment ends at its own station, group = station.
+    const auto theirs = curves_of(out, 1, 1);
+    for (int i = 0; i < 10; ++i) {
+        EXPECT_EQ(group[theirs[i]], i);
+        EXPECT_NEAR3(last_point(out, theirs[i]), on_sphere(-0.5f + (i + 0.5f) / 10.0f, 0.3f), 2e-5f);
+    }
+}
+
+TEST(Partition, SpacingPutsStationsThatFarApartCentredOnTheSource)
+{
+    PartitionParams params;
+    params.count = 0;
+    params.spacing = 0.7f;  // 4 units: 5 stations, 0.7 apart, centred: 0.6, 1.3, ..., 3.4
+    const CurveSet out = partition(straight_guides({0.0f, 1.0f}), AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
+    const auto curves = curves_of(out, 0, 0);
+    ASSERT_EQ(curves.size(), 5u);
+    for (int i = 0; i < 5; ++i) EXPECT_NEAR(last_point(out, curves[i]).z, 0.6f + 0.7f * i, 1e-5f);
+}
+
+TEST(Partition, GivenAdjacencyOnlyPartitionsTheListedSources)
+{
+    PartitionParams params;
+    params.count = 3;
+    params.adjacent = {{1, -1, 2}};  // guide 2 declared on guide 1's right, whatever the geometry says
+    const CurveSet out = partition(straight_guides({0.0f, 1.0f, 2.0f}), AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
+    ASSERT_EQ(out.num_curves(), 3u);
+    EXPECT_EQ(curves_of(out, 1, 1).size(), 3u);
+    EXPECT_NEAR3(first_point(out, 0), float3(1.5f, 0, 4.0f / 6.0f), 1e-5f);
+}
+
+TEST(Partition, MaxHeightDropsStationsHighAboveTheScalp)
+{
+    CurveSet guides = straight_guides({0.0f, 1.0f});
+    // Tilt the guides up: height 0.2 at z = 0 rising to 2.2 at z = 4.
+    for (float3& p : guides.positions()) p.y += 0.5f * p.z;
+    PartitionParams params;
+    params.count = 8;
+    params.max_height = 1.0f;  // stations at z <= 1.6
+    const CurveSet out = partition(guides, AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
+    const auto curves = curves_of(out, 0, 0);
+    ASSERT_EQ(curves.size(), 3u);  // z = 0.25, 0.75, 1.25
+    for (size_t c : curves) EXPECT_LE(last_point(out, c).y, 1.0f);
+}
+
+TEST(Partition, CarriesGuideAttributesAndGivesStableIds)
+{
+    CurveSet guides = straight_guides({0.0f, 1.0f, 2.0f});
+    auto tag = guides.add<float>(Domain::Curve, "braid_width");
+    auto id = guides.add<int64_t>(Domain::Curve, "id");
+    for (int c = 0; c < 3; ++c) { tag[c] = 10.0f + c; id[c] = 100 + c; }
+    PartitionParams params;
+    params.count = 4;
+    const AnalyticPlane plane({0, 0, 0}, {0, 1, 0});
+    const CurveSet out = partition(guides, plane, params);
+    const auto out_tag = out.find<float>(Domain::Curve, "braid_width");
+    const auto out_guide = out.find<int32_t>(Domain::Curve, "guide");
+    const auto out_id = out.find<int64_t>(Domain::Curve, "id");
+    ASSERT_EQ(out_tag.size(), out.num_curves());
+    ASSERT_EQ(out_id.size(), out.num_curves());
+    for (size_t c = 0; c < out.num_curves(); ++c) EXPECT_EQ(out_tag[c], 10.0f + out_guide[c]);
+    std::vector<int64_t> sorted(out_id.begin(), out_id.end());
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "segment ids must be unique";
+    // Removing guide 0 leaves guide 2's segment ids unchanged: ids hash the guide id, not its index.
+    const CurveSet two = [&] {
+        CurveSet g = straight_guides({1.0f, 2.0f});
+        auto i2 = g.add<int64_t>(Domain::Curve, "id");
+        i2[0] = 101;
+        i2[1] = 102;
+        return g;
+    }();
+    const CurveSet out2 = partition(two, plane, params);
+    const auto a = curves_of(out, 2, 1), b = curves_of(out2, 1, 1);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t k = 0; k < a.size(); ++k) EXPECT_EQ(out_id[a[k]], out2.find<int64_t>(Domain::Curve, "id")[b[k]]);
+}
+
+TEST(Partition, DeterministicAcrossThreadCountsWithJitter)
+{
+    std::vector<Arc> arcs;
+    for (int k = 0; k < 40; ++k) arcs.push_back({0.05f * k + 0.01f * float(k % 3), -0.6f + 0.01f * k, 0.6f});
+    const CurveSet guides = meridian_guides(arcs, 60);
+    PartitionParams params;
+    params.jitter = 0.8f;
+    params.seed = 5;
+    params.samples = 7;
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    auto run = [&](int threads) {
+        ThreadLimit limit(threads);
+        return partition(guides, sphere, params);
+    };
+    const CurveSet one = run(1), two = run(2);
+    ASSERT_EQ(one.num_points(), two.num_points());
+    ASSERT_GT(one.num_curves(), 40u * 24u);
+    EXPECT_EQ(0, std::memcmp(one.positions().data(), two.positions().data(), one.num_points() * sizeof(float3)));
+    for (const char* name : {"guide", "side", "group"}) {
+        const auto a = one.find<int32_t>(Domain::Curve, name), b = two.find<int32_t>(Domain::Curve, name);
+        EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << name;
+    }
+    // The jitter does move stations, within half a spacing either way.
+    params.jitter = 0.0f;
+    const CurveSet still = partition(guides, sphere, params);
+    ASSERT_EQ(still.num_points(), one.num_points());
+    EXPECT_NE(0, std::memcmp(still.positions().data(), one.positions().data(), one.num_points() * sizeof(float3)));
+}
+
+// --- rejection ----------------------------------------------------------------------------------------
+
+namespace {
+void expect_rejected(const std::function<void(PartitionParams&)>& edit, const std::string& needle)
+{
+    PartitionParams params;
+    edit(params);
+    try {
+        partition(straight_guides({0.0f, 1.0f}), AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
+        ADD_FAILURE() << "accepted; expected an error mentioning '" << needle << "'";
+    }
+    catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+}
+}  // namespace
+
+TEST(Partition, RejectsEachInvalidOption)
+{
+    expect_rejected([](auto& p) { p.mediate = -0.1f; }, "--mediate must be in [0, 1] (got -0.1)");
+    expect_rejected([](auto& p) { p.mediate = 1.5f; }, "--mediate must be in [0, 1] (got 1.5)");
+    expect_rejected([](auto& p) { p.mediate = NAN; }, "--mediate");
+    expect_rejected([](auto& p) { p.count = 0; }, "--spacing must be > 0");
+    expect_rejected([](auto& p) { p.count = -3; }, "--count must be >= 1 (got -3)");
+    expect_rejected([](auto& p) { p.spacing = 0.5f; }, "--count and --spacing are exclusive");
+    expect_rejected([](auto& p) { p.count = 0; p.spacing = -1; }, "--spacing must be > 0 scene units (got -1)");
+    expect_rejected([](auto& p) { p.samples = 1; }, "--samples must be >= 2 (got 1)");
+    expect_rejected([](auto& p) { p.width = 0; }, "--width must be > 0");
+    expect_rejected([](auto& p) { p.jitter = 2; }, "--jitter must be in [0, 1] (got 2)");
+    expect_rejected([](auto& p) { p.max_gap = -1; }, "--max-gap must be >= 0");
+    expect_rejected([](auto& p) { p.max_height = INFINITY; }, "--max-height");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Every; }, "every:K needs K >= 1 (got 0)");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Points; p.centroid_points = {{0, 1.2f}}; }, "in [0, 1] (got 1.2 for guide 0)");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Points; p.centroid_points = {{5, 0.5f}}; }, "--centroids: guide 5 out of range (2 guides");
+    expect_rejected([](auto& p) { p.adjacent = {{2, 0, -1}}; }, "--adjacent: source guide 2 out of range");
+    expect_rejected([](auto& p) { p.adjacent = {{0, 7, -1}}; }, "left guide 7 of source 0 out of range");
+    expect_rejected([](auto& p) { p.adjacent = {{0, -1, -2}}; }, "right guide -2 of source 0 out of range");
+    expect_rejected([](auto& p) { p.adjacent = {{0, 0, 1}}; }, "guide 0 cannot be its own neighbour");
+    expect_rejected([](auto& p) { p.adjacent = {{0, 1, -1}, {0, -1, 1}}; }, "source guide 0 is listed twice");
+}

@@ -1,0 +1,364 @@
+#include "ops/generate.h"
+
+#include "kernel/error.h"
+#include "kernel/math/polyline.h"
+#include "kernel/parallel.h"
+#include "kernel/rng.h"
+
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Search_traits_3.h>
+#include <CGAL/Search_traits_adapter.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/property_map.h>
+#include <boost/iterator/counting_iterator.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace groom {
+
+namespace {
+
+std::string str(float v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", double(v));
+    return buf;
+}
+
+// Guide roots in a CGAL kd-tree; queries are const and safe from many threads once built.
+class GuideIndex {
+public:
+    struct Hit {
+        int64_t guide;
+        double distance;
+    };
+
+    explicit GuideIndex(std::span<const float3> roots)
+    {
+        points_.reserve(roots.size());
+        for (const float3& r : roots) points_.emplace_back(r.x, r.y, r.z);
+        tree_ = std::make_unique<Tree>(boost::counting_iterator<std::size_t>(0),
+                                       boost::counting_iterator<std::size_t>(points_.size()), Tree::Splitter(),
+                                       Traits(CGAL::make_property_map(points_)));
+        // The tree builds lazily on the first query; build now so concurrent queries only read.
+        tree_->build();
+        distance_ = std::make_unique<Distance>(CGAL::make_property_map(points_));
+    }
+
+    /// Up to k nearest guides, nearest first; ties broken by guide index so the order is canonical.
+    void nearest(const float3& q, int k, std::vector<Hit>& out) const
+    {
+        out.clear();
+        Search search(*tree_, Point(q.x, q.y, q.z), static_cast<unsigned>(k), 0.0, true, *distance_);
+        for (auto it = search.begin(); it != search.end(); ++it) {
+            out.push_back({int64_t(it->first), std::sqrt(it->second)});
+        }
+        std::stable_sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) {
+            return a.distance < b.distance || (a.distance == b.distance && a.guide < b.guide);
+        });
+    }
+
+private:
+    using Kernel = CGAL::Simple_cartesian<double>;
+    using Point = Kernel::Point_3;
+    using Traits = CGAL::Search_traits_adapter<std::size_t, CGAL::Pointer_property_map<Point>::type,
+                                               CGAL::Search_traits_3<Kernel>>;
+    using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
+    using Tree = Search::Tree;
+    using Distance = Search::Distance;
+
+    std::vector<Point> points_;
+    std::unique_ptr<Tree> tree_;
+    std::unique_ptr<Distance> distance_;
+};
+
+std::vector<float3> guide_roots(const CurveSet& guides)
+{
+    const auto P = guides.positions();
+    std::vector<float3> roots(guides.num_curves());
+    for (size_t g = 0; g < guides.num_curves(); ++g) {
+        const IndexRange r = guides.points_of(g);
+        if (r.size() < 2) {
+            throw InvalidGeometry("generate: guide " + std::to_string(g) + " has " + std::to_string(r.size()) +
+                                  " point(s); guides need >= 2");
+        }
+        roots[g] = P[r.begin];
+    }
+    return roots;
+}
+
+/// Minimal rotation taking unit a onto unit b, applied to v (Rodrigues, in the form that needs no
+/// trigonometry). Opposite normals take a half turn about an axis perpendicular to a.
+float3 rotate_onto(const float3& a, const float3& b, const float3& v)
+{
+    const float c = dot(a, b);
+    if (c > 1.0f - 1e-7f) return v;
+    if (c < -1.0f + 1e-6f) {
+        const float3 k = any_perpendicular(a);
+        return k * (2.0f * dot(k, v)) - v;
+    }
+    const float3 w = cross(a, b);
+    return v * c + cross(w, v) + w * (dot(w, v) / (1.0f + c));
+}
+
+struct PreparedGuides {
+    int points = 0;                     // common point count
+    std::vector<float3> roots;          // #guides
+    std::vector<float3> normals;        // scalp normal at each root
+    std::vector<float3> offsets;        // #guides * points: point - root
+    std::vector<float3> positions;      // #guides * points: the resampled guide
+    std::vector<int64_t> source_point;  // #guides * points: nearest original point (attribute carry)
+};
+
+PreparedGuides prepare(const CurveSet& guides, const Surface& scalp, int points_param)
+{
+    PreparedGuides pg;
+    pg.roots = guide_roots(guides);
+    const size_t ng = guides.num_curves();
+    bool same = true;
+    int64_t most = 0;
+    for (size_t g = 0; g < ng; ++g) {
+        most = std::max(most, guides.points_in(g));
+        same = same && guides.points_in(g) == guides.points_in(0);
+    }
+    const bool keep = points_param == 0 && same;
+    pg.points = points_param > 0 ? points_param : int(most);
+    const int np = pg.points;
+    pg.normals.resize(ng);
+    pg.offsets.resize(ng * np);
+    pg.positions.resize(ng * np);
+    pg.source_point.resize(ng * np);
+    const auto P = guides.positions();
+    parallel_for(int64_t(ng), 64, [&](int64_t b, int64_t e) {
+        for (int64_t g = b; g < e; ++g) {
+            const IndexRange r = guides.points_of(g);
+            const auto in = P.subspan(r.begin, r.size());
+            const auto cum = cumulative_lengths(in);
+            if (!(cum.back() > 0.0)) {
+                throw InvalidGeometry("generate: guide " + std::to_string(g) + " has zero length");
+            }
+            float3* out = pg.positions.data() + g * np;
+            int64_t* src = pg.source_point.data() + g * np;
+            if (keep) {
+                std::copy(in.begin(), in.end(), out);
+                for (int i = 0; i < np; ++i) src[i] = r.begin + i;
+            }
+            else {
+                const auto res = resample_by_count(in, np);
+                std::copy(res.begin(), res.end(), out);
+                for (int i = 0; i < np; ++i) {
+                    const double s = cum.back() * double(i) / double(np - 1);
+                    const size_t k = std::lower_bound(cum.begin(), cum.end(), s) - cum.begin();
+                    size_t best = std::min(k, cum.size() - 1);
+                    if (k > 0 && (k == cum.size() || s - cum[k - 1] < cum[k] - s)) best = k - 1;
+                    src[i] = r.begin + int64_t(best);
+                }
+            }
+            pg.normals[g] = scalp.normal(pg.roots[g]);
+            for (int i = 0; i < np; ++i) pg.offsets[g * np + i] = out[i] - pg.roots[g];
+        }
+    });
+    return pg;
+}
+
+}  // namespace
+
+void GenerateParams::validate() const
+{
+    if (count < 1) throw InvalidParam("generate: --count must be >= 1 (got " + std::to_string(count) + ")");
+    if (neighbours < 1) {
+        throw InvalidParam("generate: --neighbours must be >= 1 (got " + std::to_string(neighbours) + ")");
+    }
+    if (!(power > 0.0f) || !std::isfinite(power)) {
+        throw InvalidParam("generate: --power must be a finite number > 0 (got " + str(power) + ")");
+    }
+    if (points != 0 && points < 2) {
+        throw InvalidParam("generate: --points must be >= 2, or 0 for the guides' own count (got " +
+                           std::to_string(points) + ")");
+    }
+    if (!(region_radius >= 0.0f) || !std::isfinite(region_radius) || !isfinite(region_center)) {
+        throw InvalidParam("generate: --region radius must be finite and > 0 (got " + str(region_radius) + ")");
+    }
+    if (!(footprint_scale > 0.0f) || !std::isfinite(footprint_scale)) {
+        throw InvalidParam("generate: --footprint-scale must be a finite number > 0 (got " + str(footprint_scale) + ")");
+    }
+    if (!(clearance >= 0.0f) || !std::isfinite(clearance)) {
+        throw InvalidParam("generate: --clearance must be finite and >= 0 (got " + str(clearance) + ")");
+    }
+    if (first_id < 0) throw InvalidParam("generate: --first-id must be >= 0 (got " + std::to_string(first_id) + ")");
+}
+
+std::vector<float3> scatter_roots(const CurveSet& guides, const RootSampler& sample, const GenerateParams& params)
+{
+    params.validate();
+    if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
+    const std::vector<float3> roots = guide_roots(guides);
+    const GuideIndex index(roots);
+
+    // The ball handed to the sampler, and the exact test each sample must pass.
+    float3 center = params.region_center;
+    float radius = params.region_radius;
+    double footprint = 0.0;
+    const bool use_footprint = !(params.region_radius > 0.0f);
+    if (use_footprint) {
+        if (roots.size() < 2) {
+            throw InvalidParam("generate: one guide has no footprint; give --region X,Y,Z,R for where roots go");
+        }
+        std::vector<GuideIndex::Hit> hits;
+        Bounds3 box;
+        for (const float3& r : roots) {
+            box.extend(r);
+            index.nearest(r, 2, hits);
+            footprint = std::max(footprint, hits.back().distance);
+        }
+        footprint *= params.footprint_scale;
+        if (!(footprint > 0.0)) throw InvalidParam("generate: every guide root is at the same point; give --region");
+        center = box.center();
+        radius = 0.5f * length(box.size()) + float(footprint);
+    }
+    auto accept = [&](const float3& p, std::vector<GuideIndex::Hit>& hits) {
+        if (!use_footprint) return double(distance(p, center)) <= double(radius);
+        index.nearest(p, 1, hits);
+        return hits.front().distance <= footprint;
+    };
+
+    // Rejection from an area-uniform superset stays area-uniform; batches use fresh seeds so the
+    // result depends only on params.seed.
+    std::vector<float3> out;
+    out.reserve(size_t(params.count));
+    std::vector<GuideIndex::Hit> hits;
+    double rate = 1.0;
+    for (uint64_t batch = 0; int64_t(out.size()) < params.count; ++batch) {
+        if (batch == 64) {
+            throw LimitExceeded("generate: found only " + std::to_string(out.size()) + " of " +
+                                std::to_string(params.count) + " roots on the scalp inside the " +
+                                (use_footprint ? std::string("guides' footprint") : std::string("--region ball")) +
+                                " after 64 rounds of sampling; is the region on the scalp?");
+        }
+        const int64_t want = params.count - int64_t(out.size());
+        const int64_t ask = std::min<int64_t>(int64_t(std::ceil(double(want) * 1.1 / std::max(rate, 0.02))) + 16,
+                                              std::max<int64_t>(4 * params.count, 1 << 16));
+        const std::vector<float3> got = sample(center, radius, ask, mix64(params.seed ^ mix64(batch + 0x5bd1e995ull)));
+        int64_t kept = 0;
+        for (const float3& p : got) {
+            if (int64_t(out.size()) == params.count) break;
+            if (accept(p, hits)) {
+                out.push_back(p);
+                ++kept;
+            }
+        }
+        rate = got.empty() ? 0.0 : double(kept) / double(got.size());
+    }
+    return out;
+}
+
+CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
+                           const GenerateParams& params, Progress* progress)
+{
+    params.validate();
+    if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
+    const PreparedGuides pg = prepare(guides, scalp, params.points);
+    const GuideIndex index(pg.roots);
+    const int np = pg.points;
+    const int64_t ng = int64_t(guides.num_curves());
+    const int64_t nc = int64_t(roots.size());
+    const int k = int(std::min<int64_t>(params.neighbours, ng));
+    const int query = int(std::min<int64_t>(int64_t(k) + 1, ng));
+
+    CurveSet dst = CurveSet::from_counts(std::vector<int64_t>(size_t(nc), np));
+    auto P = dst.positions();
+    auto ids = dst.add<int64_t>(Domain::Curve, attr::id);
+    auto nearest_guide = dst.add<int32_t>(Domain::Curve, "guide");
+    std::vector<int64_t> src_curve(static_cast<size_t>(nc));
+    std::vector<int64_t> src_point(dst.num_points());
+
+    ProgressStep step(progress, "generate", nc);
+    parallel_for(nc, 256, [&](int64_t b, int64_t e) {
+        std::vector<GuideIndex::Hit> hits;
+        std::vector<double> w;
+        for (int64_t c = b; c < e; ++c) {
+            const float3 x = roots[c];
+            float3* out = P.data() + c * np;
+            index.nearest(x, query, hits);
+            const int64_t g0 = hits.front().guide;
+            ids[c] = params.first_id + c;
+            nearest_guide[c] = int32_t(g0);
+            src_curve[c] = g0;
+            std::copy_n(pg.source_point.data() + g0 * np, np, src_point.data() + c * np);
+
+            if (hits.front().distance == 0.0) {
+                // A root on a guide's root is that guide: weight 1, copied exactly.
+                std::copy_n(pg.positions.data() + g0 * np, np, out);
+                continue;
+            }
+            // Franke-Little weights vanish at the (K+1)-th guide, so a guide entering or leaving the
+            // K nearest changes nothing abruptly; with no guide beyond the K, plain inverse distance.
+            w.assign(size_t(k), 0.0);
+            double total = 0.0;
+            if (int(hits.size()) > k) {
+                const double far = hits[k].distance;
+                for (int j = 0; j < k; ++j) {
+                    const double d = hits[j].distance;
+                    w[j] = std::pow(std::max(0.0, far - d) / (far * d), double(params.power));
+                    total += w[j];
+                }
+            }
+            if (!(total > 0.0)) {  // no guide beyond the K, or all K tie with the next one
+                total = 0.0;
+                for (int j = 0; j < k; ++j) total += (w[j] = std::pow(1.0 / hits[j].distance, double(params.power)));
+            }
+            const float3 n = scalp.normal(x);
+            for (int i = 0; i < np; ++i) out[i] = float3();
+            for (int j = 0; j < k; ++j) {
+                const int64_t g = hits[j].guide;
+                const float wj = float(w[j] / total);
+                if (wj == 0.0f) continue;
+                const float3& ng_ = pg.normals[g];
+                const float3* off = pg.offsets.data() + g * np;
+                // The guide's root frame carried to x by the minimal rotation between the normals.
+                for (int i = 1; i < np; ++i) out[i] += rotate_onto(ng_, n, off[i]) * wj;
+            }
+            out[0] = x;
+            for (int i = 1; i < np; ++i) out[i] += x;
+        }
+        step.advance(e - b);
+    });
+
+    carry_curve_attributes(guides, dst, src_curve);
+    carry_point_attributes(guides, dst, src_point, {attr::P});
+    push_out_of_scalp(dst, scalp, params.clearance);
+    return dst;
+}
+
+CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
+                  Progress* progress)
+{
+    const std::vector<float3> roots = scatter_roots(guides, sample, params);
+    return generate_at_roots(guides, scalp, roots, params, progress);
+}
+
+int64_t push_out_of_scalp(CurveSet& curves, const Surface& scalp, float clearance)
+{
+    auto P = curves.positions();
+    const int64_t nc = int64_t(curves.num_curves());
+    std::vector<int64_t> moved(static_cast<size_t>(nc), 0);
+    parallel_for(nc, 256, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = curves.points_of(c);
+            for (int64_t p = r.begin + 1; p < r.end; ++p) {
+                const float d = scalp.distance(P[p]);
+                if (d >= clearance) continue;
+                P[p] = scalp.closest_point(P[p]) + scalp.normal(P[p]) * clearance;
+                ++moved[c];
+            }
+        }
+    });
+    int64_t total = 0;
+    for (int64_t m : moved) total += m;
+    return total;
+}
+
+}  // namespace groom

@@ -1,0 +1,82 @@
+// generate: from a few guide curves to a full groom. Roots are scattered area-uniformly on the scalp,
+// each root takes a shape interpolated from its nearest guides, and the result is pushed out of the
+// scalp. The general step behind `groom generate` and behind the hairs of `groom puff` (talk, Sec. 3.2:
+// "curls randomly rooted within the radius on the scalp that follow the directionality of the sphere
+// curves").
+#pragma once
+
+#include "fields/surface.h"
+#include "kernel/curve_set.h"
+#include "kernel/progress.h"
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace groom {
+
+/// Draws `count` points area-uniformly on the scalp among the parts of it near the ball
+/// (center, radius), deterministically for `seed`. It may return points outside the ball (a face
+/// straddling the sphere, say) and fewer than asked for; generate() keeps only those inside the ball
+/// and asks again with fresh seeds until it has enough, so any superset sampler stays area-uniform.
+/// The CLI wraps ScalpField::sample_ball; tests wrap an exact spherical-cap sampler.
+using RootSampler = std::function<std::vector<float3>(const float3& center, float radius, int64_t count, uint64_t seed)>;
+
+struct GenerateParams {
+    int64_t count = 1000;     ///< roots to scatter, >= 1 (--count)
+    int neighbours = 4;       ///< guides blended per root, >= 1 (--neighbours)
+    float power = 2.0f;       ///< inverse-distance weight exponent, > 0 (--power)
+    int points = 0;           ///< points per generated curve, >= 2; 0 = keep the guides' count when they
+                              ///< all share one, else the largest guide count (--points)
+    /// Where roots go. A ball (--region X,Y,Z,R) when region_radius > 0; otherwise the guides' own
+    /// footprint: scalp within footprint_scale * D of some guide root, D being the largest distance
+    /// from a guide root to its nearest other guide root (the coarsest guide spacing).
+    float3 region_center{};
+    float region_radius = 0.0f;     ///< scene units; 0 = use the footprint
+    float footprint_scale = 1.0f;   ///< > 0 (--footprint-scale)
+    float clearance = 0.0f;   ///< points found inside the scalp are pushed out to this distance, scene units, >= 0
+    uint64_t seed = 0;        ///< root scattering (--seed)
+    int64_t first_id = 0;     ///< curve ids are first_id, first_id+1, ..., in root order (--first-id), >= 0
+
+    /// Throws InvalidParam naming the option, the value and the valid range.
+    void validate() const;
+};
+
+/// @brief Scatters params.count roots on the scalp inside the region (or footprint) and grows a curve
+/// from each, interpolated from the guides (see generate_at_roots).
+/// @param guides  root-to-tip curves with >= 2 points each; at least one guide, two for the footprint.
+/// @param scalp   the surface roots lie on; normals orient the blend, points inside are pushed out.
+/// @param sample  area-uniform scalp sampler (see RootSampler).
+/// Reads point P of the guides. Writes point P, curve int64 `id`, curve int32 `guide` (nearest guide);
+/// every other curve attribute of the nearest guide is carried, and point attributes from the nearest
+/// guide's point at the same fraction of arc length.
+/// Throws InvalidParam (bad params, too few guides), InvalidGeometry (a guide with < 2 points or no
+/// length), LimitExceeded (the region holds too little scalp to find the roots).
+CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
+                  Progress* progress = nullptr);
+
+/// The roots generate() would use: params.count points, area-uniform inside the region (or footprint),
+/// in a deterministic order for params.seed.
+std::vector<float3> scatter_roots(const CurveSet& guides, const RootSampler& sample, const GenerateParams& params);
+
+/// @brief One curve per root, shaped from the K = params.neighbours guides whose roots are nearest
+/// (CGAL kd-tree search).
+///
+/// Each guide is first resampled to the common point count (params.points). A guide's shape is its
+/// points relative to its root, expressed in its root frame (normal = scalp normal at the guide root);
+/// at a new root x with normal n that frame is carried over by the minimal rotation taking the guide's
+/// normal onto n, so shapes follow the curvature of the scalp. Shapes are blended with Franke-Little
+/// inverse-distance weights w_g = ((d_{K+1} - d_g) / (d_{K+1} d_g))^power (d_{K+1}: the next guide
+/// out, so a guide's weight falls to zero as it leaves the K nearest and shapes vary continuously).
+/// A root exactly on a guide's root (distance 0) takes that guide alone, copied bit for bit. Points
+/// (all but the root) found inside the scalp are pushed out to params.clearance.
+/// Uses params: neighbours, power, points, clearance, first_id. Attributes as for generate().
+CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
+                           const GenerateParams& params, Progress* progress = nullptr);
+
+/// Moves every point but each curve's root that lies inside `scalp` (distance < clearance) out to
+/// distance `clearance` along the surface normal. Returns the number of points moved.
+int64_t push_out_of_scalp(CurveSet& curves, const Surface& scalp, float clearance = 0.0f);
+
+}  // namespace groom

@@ -1,0 +1,261 @@
+#include "ops/puff.h"
+
+#include "kernel/error.h"
+#include "kernel/math/polyline.h"
+#include "kernel/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace groom {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string str(float v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", double(v));
+    return buf;
+}
+
+std::string str(const float3& v) { return str(v.x) + "," + str(v.y) + "," + str(v.z); }
+
+/// Shirley & Chiu's concentric map from [-1,1]^2 to the unit disc: equal-area, continuous, and it
+/// keeps a grid's neighbourhoods, so cells of a square grid become equal-area cells of the disc.
+void concentric_disc(double sx, double sy, double& dx, double& dy)
+{
+    if (sx == 0.0 && sy == 0.0) {
+        dx = dy = 0.0;
+        return;
+    }
+    double r, phi;
+    if (std::fabs(sx) > std::fabs(sy)) {
+        r = sx;
+        phi = (kPi / 4.0) * (sy / sx);
+    }
+    else {
+        r = sy;
+        phi = kPi / 2.0 - (kPi / 4.0) * (sx / sy);
+    }
+    dx = r * std::cos(phi);
+    dy = r * std::sin(phi);
+}
+
+float3 bezier(const float3& p0, const float3& p1, const float3& p2, const float3& p3, float t)
+{
+    const float s = 1.0f - t;
+    return p0 * (s * s * s) + p1 * (3.0f * s * s * t) + p2 * (3.0f * s * t * t) + p3 * (t * t * t);
+}
+
+/// Squared distance between segments [p1,q1] and [p2,q2] (Ericson, Real-Time Collision Detection 5.1.9),
+/// in double so near-touching guides are measured reliably.
+double segment_distance_sq(const float3& p1f, const float3& q1f, const float3& p2f, const float3& q2f)
+{
+    struct D3 {
+        double x, y, z;
+    };
+    auto sub = [](const D3& a, const D3& b) { return D3{a.x - b.x, a.y - b.y, a.z - b.z}; };
+    auto dt = [](const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+    const D3 p1{p1f.x, p1f.y, p1f.z}, q1{q1f.x, q1f.y, q1f.z}, p2{p2f.x, p2f.y, p2f.z}, q2{q2f.x, q2f.y, q2f.z};
+    const D3 d1 = sub(q1, p1), d2 = sub(q2, p2), r = sub(p1, p2);
+    const double a = dt(d1, d1), e = dt(d2, d2), f = dt(d2, r);
+    double s, t;
+    if (a <= 1e-30 && e <= 1e-30) {
+        s = t = 0.0;
+    }
+    else if (a <= 1e-30) {
+        s = 0.0;
+        t = std::clamp(f / e, 0.0, 1.0);
+    }
+    else {
+        const double c = dt(d1, r);
+        if (e <= 1e-30) {
+            t = 0.0;
+            s = std::clamp(-c / a, 0.0, 1.0);
+        }
+        else {
+            const double b = dt(d1, d2), denom = a * e - b * b;
+            s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+            t = (b * s + f) / e;
+            if (t < 0.0) {
+                t = 0.0;
+                s = std::clamp(-c / a, 0.0, 1.0);
+            }
+            else if (t > 1.0) {
+                t = 1.0;
+                s = std::clamp((b - c) / a, 0.0, 1.0);
+            }
+        }
+    }
+    const D3 c1{p1.x + d1.x * s, p1.y + d1.y * s, p1.z + d1.z * s};
+    const D3 c2{p2.x + d2.x * t, p2.y + d2.y * t, p2.z + d2.z * t};
+    const D3 d = sub(c1, c2);
+    return dt(d, d);
+}
+
+}  // namespace
+
+void PuffParams::validate() const
+{
+    if (!(radius > 0.0f) || !std::isfinite(radius)) {
+        throw InvalidParam("puff: --radius must be a finite number > 0 (got " + str(radius) + ")");
+    }
+    if (!(sphere_radius > 0.0f) || !std::isfinite(sphere_radius)) {
+        throw InvalidParam("puff: --sphere-radius must be a finite number > 0 (got " + str(sphere_radius) + ")");
+    }
+    if (!isfinite(center)) throw InvalidParam("puff: --center must be finite (got " + str(center) + ")");
+    if (!isfinite(sphere_center)) {
+        throw InvalidParam("puff: --sphere-center must be finite (got " + str(sphere_center) + ")");
+    }
+    if (rows < 1 || rows > 256) throw InvalidParam("puff: --rows must be in 1..256 (got " + std::to_string(rows) + ")");
+    if (cols < 1 || cols > 256) throw InvalidParam("puff: --cols must be in 1..256 (got " + std::to_string(cols) + ")");
+    if (!(cap_angle > 0.0f && cap_angle < 180.0f)) {
+        throw InvalidParam("puff: --cap-angle must be in (0, 180) degrees (got " + str(cap_angle) + ")");
+    }
+    if (guide_points < 4) {
+        throw InvalidParam("puff: --guide-points must be >= 4 (got " + std::to_string(guide_points) + ")");
+    }
+    if (!(bend > 0.0f && bend <= 1.0f)) throw InvalidParam("puff: --bend must be in (0, 1] (got " + str(bend) + ")");
+    if (first_id < 0) throw InvalidParam("puff: --first-id must be >= 0 (got " + std::to_string(first_id) + ")");
+}
+
+CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* progress)
+{
+    params.validate();
+    const int ng = params.rows * params.cols, np = params.guide_points;
+    ProgressStep step(progress, "puff guides", ng);
+
+    // The region: a disc in the tangent plane at c0; the cap: around the axis from c0 to the centre.
+    const float3 c0 = scalp.closest_point(params.center);
+    const float3 n0 = scalp.normal(c0);
+    const float3 u = any_perpendicular(n0), v = cross(n0, u);
+    if (!(dot(params.sphere_center - c0, n0) > 0.0f)) {
+        throw InvalidParam("puff: --sphere-center " + str(params.sphere_center) + " must lie above the region, on the outer side of the scalp at " +
+                           str(c0) + " (normal " + str(n0) + ")");
+    }
+    const float3 axis = normalize(params.sphere_center - c0, n0);
+    float3 ut = u - axis * dot(u, axis);
+    ut = length(ut) > 1e-3f ? normalize(ut) : any_perpendicular(axis);
+    const float3 vt = cross(axis, ut);
+    const double cos_cap = std::cos(double(params.cap_angle) * kPi / 180.0);
+
+    // Cell centres of the rows x cols grid, mapped to the disc.
+    std::vector<double> disc_x(ng), disc_y(ng);
+    for (int i = 0; i < params.rows; ++i) {
+        for (int j = 0; j < params.cols; ++j) {
+            const double sx = 2.0 * (i + 0.5) / params.rows - 1.0, sy = 2.0 * (j + 0.5) / params.cols - 1.0;
+            concentric_disc(sx, sy, disc_x[i * params.cols + j], disc_y[i * params.cols + j]);
+        }
+    }
+
+    // Roots: the disc projected onto the scalp. On a convex scalp projection only pulls points in;
+    // where the scalp is concave a root can land beyond the radius, so the disc shrinks until all fit.
+    std::vector<float3> roots(ng);
+    double shrink = 1.0;
+    for (int attempt = 0;; ++attempt) {
+        bool fits = true;
+        for (int g = 0; g < ng; ++g) {
+            const float3 q = c0 + (u * float(disc_x[g]) + v * float(disc_y[g])) * float(params.radius * shrink);
+            roots[g] = scalp.closest_point(q);
+            fits = fits && distance(roots[g], c0) <= params.radius;
+        }
+        if (fits) break;
+        if (attempt == 30) {
+            throw InvalidGeometry("puff: the scalp within --radius " + str(params.radius) + " of " + str(c0) +
+                                  " (the point of the scalp nearest --center) is too folded to root a grid of guides");
+        }
+        shrink *= 0.9;
+    }
+
+    CurveSet dst = CurveSet::from_counts(std::vector<int64_t>(size_t(ng), np));
+    auto P = dst.positions();
+    auto ids = dst.add<int64_t>(Domain::Curve, attr::id);
+    auto kind = dst.add<int32_t>(Domain::Curve, "kind");
+    auto guide = dst.add<int32_t>(Domain::Curve, "guide");
+    parallel_for(ng, 16, [&](int64_t b, int64_t e) {
+        for (int64_t g = b; g < e; ++g) {
+            // Equal-area map of the disc radius onto the cap's polar angle.
+            const double rho = std::hypot(disc_x[g], disc_y[g]);
+            const double cos_t = 1.0 - rho * rho * (1.0 - cos_cap);
+            const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+            const double ax = rho > 0.0 ? disc_x[g] / rho : 0.0, ay = rho > 0.0 ? disc_y[g] / rho : 0.0;
+            const float3 d = normalize(axis * float(cos_t) + (ut * float(ax) + vt * float(ay)) * float(sin_t));
+            const float3 tip = params.sphere_center + d * params.sphere_radius;
+            if (scalp.distance(tip) < 0.0f) {
+                throw InvalidParam("puff: guide tip " + str(tip) + " on the sphere lies inside the scalp; lower --cap-angle (got " +
+                                   str(params.cap_angle) + ") or move --sphere-center away from the head");
+            }
+            const float3 root = roots[g];
+            const float3 nr = scalp.normal(root);
+            const float handle = params.bend * distance(tip, root);
+            const float3 p1 = root + nr * handle, p2 = tip - d * handle;
+            // Dense samples, then even arc-length spacing; resampling keeps root and tip exactly.
+            std::vector<float3> dense(size_t(np) * 8);
+            for (size_t k = 0; k < dense.size(); ++k) dense[k] = bezier(root, p1, p2, tip, float(k) / float(dense.size() - 1));
+            dense.front() = root;
+            dense.back() = tip;
+            const std::vector<float3> pts = resample_by_count(dense, np);
+            std::copy(pts.begin(), pts.end(), P.begin() + g * np);
+            ids[g] = params.first_id + g;
+            kind[g] = 0;
+            guide[g] = int32_t(g);
+        }
+        step.advance(e - b);
+    });
+
+    // Interior points only: roots stay on the scalp and tips on the sphere.
+    for (int g = 0; g < ng; ++g) {
+        for (int k = 1; k + 1 < np; ++k) {
+            float3& p = P[size_t(g) * np + k];
+            if (scalp.distance(p) < 0.0f) p = scalp.closest_point(p);
+        }
+    }
+
+    const double sep = min_curve_separation(dst);
+    if (ng > 1 && !(sep > 1e-5 * params.sphere_radius)) {
+        throw InvalidGeometry("puff: two guides touch (closest " + std::to_string(sep) +
+                              " apart); the region and the sphere cap fold onto each other: lower --cap-angle or "
+                              "--bend, or move --sphere-center over the region");
+    }
+    return dst;
+}
+
+double min_curve_separation(const CurveSet& curves)
+{
+    const auto P = curves.positions();
+    const int64_t nc = int64_t(curves.num_curves());
+    std::vector<Bounds3> boxes(static_cast<size_t>(nc));
+    for (int64_t c = 0; c < nc; ++c) {
+        const IndexRange r = curves.points_of(c);
+        for (int64_t p = r.begin; p < r.end; ++p) boxes[c].extend(P[p]);
+    }
+    // Per first curve, the closest of all later curves; then the minimum over first curves.
+    std::vector<double> best(static_cast<size_t>(nc), std::numeric_limits<double>::infinity());
+    parallel_for(nc, 4, [&](int64_t b, int64_t e) {
+        for (int64_t a = b; a < e; ++a) {
+            const IndexRange ra = curves.points_of(a);
+            double m = std::numeric_limits<double>::infinity();
+            for (int64_t c = a + 1; c < nc; ++c) {
+                // Boxes apart by more than the best so far cannot improve it.
+                const float3 gap = max(max(boxes[a].lo - boxes[c].hi, boxes[c].lo - boxes[a].hi), float3());
+                if (double(length_squared(gap)) > m) continue;
+                const IndexRange rc = curves.points_of(c);
+                for (int64_t i = ra.begin; i + 1 < ra.end; ++i) {
+                    for (int64_t j = rc.begin; j + 1 < rc.end; ++j) {
+                        m = std::min(m, segment_distance_sq(P[i], P[i + 1], P[j], P[j + 1]));
+                    }
+                }
+            }
+            best[a] = m;
+        }
+    });
+    double m = std::numeric_limits<double>::infinity();
+    for (double d : best) m = std::min(m, d);
+    return std::sqrt(m);
+}
+
+}  // namespace groom

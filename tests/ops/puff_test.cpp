@@ -1,0 +1,268 @@
+#include "ops/puff.h"
+
+#include "kernel/error.h"
+#include "kernel/parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+using namespace groom;
+
+namespace {
+
+const float3 kHeadC(0, 0, 0);
+constexpr float kHeadR = 10.0f;
+
+/// A puff on top of the test head: region around the pole, sphere above it.
+PuffParams top_puff()
+{
+    PuffParams p;
+    p.center = float3(0, 12, 0);  // projects onto the pole (0, 10, 0)
+    p.radius = 3.0f;
+    p.sphere_center = float3(0, 15, 0);
+    p.sphere_radius = 6.0f;
+    p.rows = 6;
+    p.cols = 7;
+    return p;
+}
+
+/// The same puff tilted 50 degrees towards +X, so the grid sits on a slope of the head.
+PuffParams side_puff()
+{
+    PuffParams p = top_puff();
+    const float a = 50.0f * 3.14159265f / 180.0f;
+    const float3 dir(std::sin(a), std::cos(a), 0.0f);
+    p.center = dir * 12.0f;
+    p.sphere_center = dir * 15.0f + float3(0, 0, 1.0f);  // and a little off the region's axis
+    return p;
+}
+
+std::span<const float3> curve(const CurveSet& cs, size_t c)
+{
+    const IndexRange r = cs.points_of(c);
+    return cs.positions().subspan(r.begin, r.size());
+}
+
+}  // namespace
+
+class PuffGuides : public ::testing::TestWithParam<int> {
+protected:
+    PuffParams params() const { return GetParam() == 0 ? top_puff() : side_puff(); }
+};
+
+TEST_P(PuffGuides, TipsLieOnTheSphere)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    const PuffParams p = params();
+    const CurveSet g = puff_guides(head, p);
+    ASSERT_EQ(g.num_curves(), size_t(p.rows * p.cols));
+    for (size_t c = 0; c < g.num_curves(); ++c) {
+        const auto pts = curve(g, c);
+        ASSERT_EQ(pts.size(), size_t(p.guide_points));
+        EXPECT_LT(std::fabs(distance(pts.back(), p.sphere_center) - p.sphere_radius), 1e-4f * p.sphere_radius) << c;
+        // The guide arrives along the sphere's outward normal.
+        const float3 last = normalize(pts.back() - pts[pts.size() - 2]);
+        EXPECT_GT(dot(last, normalize(pts.back() - p.sphere_center)), 0.98f) << c;
+    }
+}
+
+TEST_P(PuffGuides, RootsOnTheScalpInsideTheRegionLeavingAlongTheNormal)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    const PuffParams p = params();
+    const CurveSet g = puff_guides(head, p);
+    const float3 c0 = normalize(p.center) * kHeadR;  // the centre's projection onto the head
+    float farthest = 0;
+    for (size_t c = 0; c < g.num_curves(); ++c) {
+        const auto pts = curve(g, c);
+        EXPECT_LT(std::fabs(head.distance(pts[0])), 1e-5f * kHeadR) << c;
+        EXPECT_LE(distance(pts[0], c0), p.radius) << c;
+        farthest = std::max(farthest, distance(pts[0], c0));
+        const float3 first = normalize(pts[1] - pts[0]);
+        EXPECT_GT(dot(first, normalize(pts[0])), 0.98f) << c;
+        for (const float3& q : pts) EXPECT_GE(head.distance(q), -1e-5f * kHeadR);
+    }
+    // The grid spreads over the region: its outer cells reach most of the way to the rim.
+    EXPECT_GT(farthest, 0.7f * p.radius);
+}
+
+TEST_P(PuffGuides, GuidesDoNotCross)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    const PuffParams p = params();
+    const CurveSet g = puff_guides(head, p);
+    // Adjacent roots are about 2 r / 7 apart; no two guides come within a small fraction of it.
+    EXPECT_GT(min_curve_separation(g), 0.02 * p.radius);
+}
+
+TEST_P(PuffGuides, TipsCoverTheCapEvenly)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    PuffParams p = params();
+    p.rows = p.cols = 8;
+    const CurveSet g = puff_guides(head, p);
+    const float3 c0 = normalize(p.center) * kHeadR;
+    const float3 axis = normalize(p.sphere_center - c0);
+    std::vector<float3> dirs;
+    for (size_t c = 0; c < g.num_curves(); ++c) dirs.push_back(normalize(curve(g, c).back() - p.sphere_center));
+    float widest = 0;
+    float3 mean;
+    for (const float3& d : dirs) {
+        const float angle = std::acos(std::clamp(dot(d, axis), -1.0f, 1.0f)) * 180.0f / 3.14159265f;
+        EXPECT_LE(angle, p.cap_angle);
+        widest = std::max(widest, angle);
+        mean += d;
+    }
+    // The outer ring of cells sits at 7/8 of the disc radius: cos(theta) = 1 - (7/8)^2 (1 - cos cap).
+    const float outer = std::acos(1.0f - 49.0f / 64.0f * (1.0f - std::cos(p.cap_angle * 3.14159265f / 180.0f)));
+    EXPECT_NEAR(widest * 3.14159265f / 180.0f, outer, 1e-3f);
+    // Symmetric about the axis.
+    EXPECT_GT(dot(normalize(mean), axis), 0.999f);
+    // Even: nearest-neighbour angular spacings within a factor of 3 of each other.
+    float lo = INFINITY, hi = 0;
+    for (size_t i = 0; i < dirs.size(); ++i) {
+        float nearest = INFINITY;
+        for (size_t j = 0; j < dirs.size(); ++j)
+            if (i != j) nearest = std::min(nearest, std::acos(std::clamp(dot(dirs[i], dirs[j]), -1.0f, 1.0f)));
+        lo = std::min(lo, nearest);
+        hi = std::max(hi, nearest);
+    }
+    EXPECT_LT(hi / lo, 3.0f) << lo << " " << hi;
+}
+
+INSTANTIATE_TEST_SUITE_P(TopAndSide, PuffGuides, ::testing::Values(0, 1));
+
+TEST(Puff, MinCurveSeparationClosedForm)
+{
+    // Two parallel unit segments 0.5 apart, then a third crossing the first.
+    CurveSet cs = CurveSet::from_counts(std::vector<int64_t>{3, 2});
+    auto P = cs.positions();
+    P[0] = float3(0, 0, 0), P[1] = float3(0.5f, 0, 0), P[2] = float3(1, 0, 0);
+    P[3] = float3(0, 0.5f, 0), P[4] = float3(1, 0.5f, 0);
+    EXPECT_NEAR(min_curve_separation(cs), 0.5, 1e-7);
+    P[3] = float3(0.7f, 0.5f, 0.3f), P[4] = float3(0.7f, -0.5f, 0.3f);  // skew: passes 0.3 over the first
+    EXPECT_NEAR(min_curve_separation(cs), 0.3, 1e-6);
+    P[3] = float3(0.7f, 0.5f, 0), P[4] = float3(0.7f, -0.5f, 0);  // crossing
+    EXPECT_NEAR(min_curve_separation(cs), 0.0, 1e-7);
+}
+
+TEST(Puff, SingleGuideGoesStraightToTheTop)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    PuffParams p = top_puff();
+    p.rows = p.cols = 1;
+    const CurveSet g = puff_guides(head, p);
+    ASSERT_EQ(g.num_curves(), 1u);
+    for (const float3& q : curve(g, 0)) {
+        EXPECT_NEAR(q.x, 0.0f, 1e-5f);
+        EXPECT_NEAR(q.z, 0.0f, 1e-5f);
+    }
+    EXPECT_NEAR(curve(g, 0)[0].y, 10.0f, 1e-5f);
+    EXPECT_NEAR(curve(g, 0).back().y, 21.0f, 1e-5f);
+}
+
+TEST(Puff, GuideAttributes)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    PuffParams p = top_puff();
+    p.first_id = 40;
+    const CurveSet g = puff_guides(head, p);
+    const auto id = g.find<int64_t>(Domain::Curve, attr::id);
+    const auto kind = g.find<int32_t>(Domain::Curve, "kind");
+    const auto guide = g.find<int32_t>(Domain::Curve, "guide");
+    ASSERT_EQ(id.size(), g.num_curves());
+    ASSERT_EQ(kind.size(), g.num_curves());
+    ASSERT_EQ(guide.size(), g.num_curves());
+    for (size_t c = 0; c < g.num_curves(); ++c) {
+        EXPECT_EQ(id[c], 40 + int64_t(c));
+        EXPECT_EQ(kind[c], 0);
+        EXPECT_EQ(guide[c], int32_t(c));
+    }
+    EXPECT_NO_THROW(g.validate());
+}
+
+TEST(Puff, GuidesDeterministicAcrossThreadCounts)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    auto run = [&](int threads) {
+        ThreadLimit limit(threads);
+        return puff_guides(head, side_puff());
+    };
+    const CurveSet a = run(1), b = run(2);
+    ASSERT_EQ(a.num_points(), b.num_points());
+    EXPECT_EQ(std::memcmp(a.positions().data(), b.positions().data(), a.positions().size_bytes()), 0);
+}
+
+TEST(Puff, TipInsideTheHeadIsRefused)
+{
+    // A sphere sunk into the head: tips near the cap's rim would be inside the scalp.
+    const AnalyticSphere head(kHeadC, kHeadR);
+    PuffParams p = top_puff();
+    p.sphere_center = float3(0, 10.5f, 0);
+    p.sphere_radius = 4.0f;
+    p.cap_angle = 150.0f;
+    try {
+        puff_guides(head, p);
+        FAIL() << "expected InvalidParam";
+    }
+    catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("--cap-angle"), std::string::npos) << e.what();
+    }
+    p.cap_angle = 60.0f;  // the top of the same sphere is clear of the head
+    EXPECT_NO_THROW(puff_guides(head, p));
+    // A sphere centred under the scalp has no outward cap.
+    p.sphere_center = float3(0, 9, 0);
+    try {
+        puff_guides(head, p);
+        FAIL() << "expected InvalidParam";
+    }
+    catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("--sphere-center"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Puff, RejectsInvalidParams)
+{
+    auto message = [](const PuffParams& p) {
+        try {
+            p.validate();
+        }
+        catch (const InvalidParam& e) {
+            return std::string(e.what());
+        }
+        return std::string("(accepted)");
+    };
+    EXPECT_EQ(message(top_puff()), "(accepted)");
+    PuffParams p = top_puff();
+    p.radius = 0;
+    EXPECT_NE(message(p).find("--radius must be a finite number > 0 (got 0)"), std::string::npos) << message(p);
+    p = top_puff();
+    p.sphere_radius = -1;
+    EXPECT_NE(message(p).find("--sphere-radius"), std::string::npos) << message(p);
+    p = top_puff();
+    p.sphere_center.x = NAN;
+    EXPECT_NE(message(p).find("--sphere-center"), std::string::npos) << message(p);
+    p = top_puff();
+    p.center.y = INFINITY;
+    EXPECT_NE(message(p).find("--center"), std::string::npos) << message(p);
+    p = top_puff();
+    p.rows = 0;
+    EXPECT_NE(message(p).find("--rows must be in 1..256 (got 0)"), std::string::npos) << message(p);
+    p = top_puff();
+    p.cols = 300;
+    EXPECT_NE(message(p).find("--cols must be in 1..256 (got 300)"), std::string::npos) << message(p);
+    p = top_puff();
+    p.cap_angle = 180;
+    EXPECT_NE(message(p).find("--cap-angle"), std::string::npos) << message(p);
+    p = top_puff();
+    p.guide_points = 3;
+    EXPECT_NE(message(p).find("--guide-points must be >= 4 (got 3)"), std::string::npos) << message(p);
+    p = top_puff();
+    p.bend = 0;
+    EXPECT_NE(message(p).find("--bend"), std::string::npos) << message(p);
+    p = top_puff();
+    p.first_id = -1;
+    EXPECT_NE(message(p).find("--first-id"), std::string::npos) << message(p);
+}

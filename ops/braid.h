@@ -1,0 +1,165 @@
+// braid: turn each hand-sculpted guide curve into an N-strand braid (or a cornrow lying on the scalp)
+// whose strands follow the Lissajous cross-section of the talk, Sec. 2.1, carried along the guide by
+// orthonormal frames. Also the knot placement that `groom partition --centroids knots` shares, so
+// --frequency / --knot-length / the alpha remap mean the same thing in both commands.
+//
+// The cross-section of strand i of N at guide parameter t (Sec. 2.1):
+//     x(t) = A s(t) sin(2 pi (F alpha(t) + delta_i))      lateral offset, along the frame binormal
+//     y(t) = B s(t) sin(2 pi (F beta(t)  - delta_i))      offset along the frame normal
+//     beta = alpha / 2,   delta_i = i / N,   i = 0..N-1
+// t in [0,1] is the arc-length fraction along the guide (0 = root), alpha(t) the knot-distribution
+// remap (identity by default), s(t) the amplitude scale (root/tip blend times the taper spline).
+//
+// Knots: a knot is one full x cycle of the cross-section, so F is the number of knots along the guide
+// (when alpha is the identity each knot is length / F long). With --knot-length L, F = length / L per
+// guide, so every braid's knots keep the same physical size whatever its guide's length. Knot k
+// (k = 0, 1, ...) is centred where F alpha(t) = k + 1/2; only knots whose centre lies on the guide
+// (alpha <= 1) count.
+#pragma once
+
+#include "fields/surface.h"
+#include "kernel/curve_set.h"
+#include "kernel/progress.h"
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace groom {
+
+/// How the cross-section is oriented along the guide.
+enum class BraidOrient {
+    Frame,  ///< rotation-minimising frames along the guide (no flips at inflections, unlike Frenet)
+    Scalp,  ///< cornrows: frame normal replaced by the scalp normal at the guide point's projection
+};
+
+struct BraidParams {
+    int strands = 3;                  ///< N, strands per braid; >= 2
+    /// F, knots (x cycles) over the whole guide; >= 0. Exclusive with knot_length. When neither is
+    /// set F = kDefaultFrequency.
+    std::optional<float> frequency;
+    /// L, arc length of one knot, scene units; > 0. F = guide length / L per guide.
+    std::optional<float> knot_length;
+    /// A, lateral amplitude, scene units; >= 0. Unset: a third of the guide's knot length.
+    std::optional<float> width;
+    /// B, amplitude along the normal, scene units; >= 0. Unset: half of A.
+    std::optional<float> height;
+    /// N_cv, points per strand; 0 = automatic (at least 16 per x cycle where knots are densest, at
+    /// least the guide's own point count, at least 8); otherwise >= 2.
+    int samples = 0;
+    float root_amplitude = 1.0f;      ///< a0, amplitude scale at the root (t = 0); >= 0
+    float tip_amplitude = 1.0f;       ///< a1, amplitude scale at the tip (t = 1); >= 0; blended linearly
+    /// Amplitude scale spline over t (values >= 0, uniformly spaced, see sample_uniform_spline);
+    /// multiplies the root/tip blend. Empty = 1.
+    std::vector<float> taper;
+    /// Knot-distribution remap of alpha: bias in (-1, 1); > 0 packs knots toward the tip, < 0 toward
+    /// the root (Schlick's bias curve, so knot length changes smoothly; at b = 0.5 tip knots are 9x
+    /// shorter than root knots).
+    float knot_bias = 0.0f;
+    /// Knot-distribution remap of alpha: relative knot density over t as a spline (values > 0,
+    /// uniformly spaced); alpha' is proportional to it. Applied before knot_bias. Empty = uniform.
+    std::vector<float> knot_density;
+    BraidOrient orient = BraidOrient::Frame;
+    /// Frame mode: the normal at the root (need not be unit or perpendicular to the guide). Zero =
+    /// automatic: the scalp normal at the root when there is a scalp, else world +Y (the up axis of
+    /// our files), or +Z when the guide starts within ~25 degrees of vertical.
+    float3 initial_normal{0, 0, 0};
+    /// With a scalp: the least distance, scene units, from any output point to the scalp; >= 0.
+    float clearance = 0.0f;
+    /// With a scalp: also lower cross-sections that float above the scalp until they rest on it at
+    /// `clearance` (cornrows lie on the head). Without it sections are only ever lifted.
+    bool rest = false;
+    /// Width written on strand points (no fibers), scene units; 0 = automatic 2 max(A, B) / N. Scaled
+    /// by s(t) along the strand.
+    float strand_width = 0.0f;
+    int fibers = 0;                   ///< M, hair fibers per strand (see ops/populate.h); 0 = centrelines
+    /// Radius of the disc the fibers fill around each strand centreline, scene units, scaled by s(t);
+    /// 0 = automatic (half the strand width).
+    float fiber_radius = 0.0f;
+    /// Fiber width, scene units; 0 = automatic (fibers together about cover their disc), see PopulateParams.
+    float fiber_width = 0.0f;
+    uint64_t seed = 0;                ///< seeds the fiber placement
+
+    static constexpr float kDefaultFrequency = 8.0f;
+
+    /// Throws InvalidParam naming the option, the value and the valid range, e.g.
+    /// "braid: --strands must be >= 2 (got 1)".
+    void validate() const;
+};
+
+/// The knot-distribution remap alpha(t): [0,1] -> [0,1], increasing, alpha(0) = 0, alpha(1) = 1.
+/// Identity unless knot_bias or knot_density is set. Built once per params; evaluation is cheap and
+/// thread-safe.
+class KnotRemap {
+public:
+    explicit KnotRemap(const BraidParams& params);
+    /// alpha at t (t clamped to [0,1]).
+    double alpha(double t) const;
+    /// The t with alpha(t) = a (a clamped to [0,1]).
+    double inverse(double a) const;
+    /// The largest slope d alpha / d t over [0,1] (1 for the identity): where knots are densest.
+    double max_slope() const { return max_slope_; }
+    bool identity() const { return density_.empty() && bias_k_ == 0.0; }
+
+private:
+    double density_alpha(double t) const;
+    double density_inverse(double a) const;
+    std::vector<double> density_;  // alpha before bias on a uniform table over t; empty = identity
+    double bias_k_ = 0.0;          // Schlick bias: alpha = x / (k (1 - x) + 1)
+    double max_slope_ = 1.0;
+};
+
+/// F for one guide of arc length `guide_length` (scene units): params.frequency, or
+/// guide_length / params.knot_length, or kDefaultFrequency.
+double braid_frequency(const BraidParams& params, double guide_length);
+
+/// Knot centres along a guide of arc length `guide_length`, as arc-length fractions t_k in [0,1]
+/// (multiply by the length for a distance from the root), increasing from root to tip: the t where
+/// F alpha(t) = k + 1/2, k = 0, 1, ... (see the file comment). Empty when F < 1/2. Throws
+/// InvalidParam when params are invalid.
+std::vector<float> braid_knot_parameters(const BraidParams& params, double guide_length);
+
+/// What braid() did, for the CLI to report.
+struct BraidReport {
+    int64_t guides = 0;            ///< guides braided
+    int64_t skipped_guides = 0;    ///< guides with fewer than 2 points or no length (no output)
+    int64_t strands = 0;           ///< strand centrelines made (guides x N)
+    int64_t curves = 0;            ///< output curves (strands, or strands x M with fibers)
+    int64_t points = 0;            ///< output points
+    int64_t lifted_sections = 0;   ///< cross-sections moved off the scalp (they cut into it, or lay closer than clearance)
+    int64_t lowered_sections = 0;  ///< cross-sections lowered onto the scalp (rest = true)
+    float max_lift = 0.0f;         ///< largest lift along the scalp normal, scene units
+    float max_lower = 0.0f;        ///< largest lowering, scene units
+    int64_t pushed_points = 0;     ///< points still too close after lifting, pushed out one by one
+};
+
+struct BraidResult {
+    CurveSet curves;
+    BraidReport report;
+};
+
+/// @brief Braid every guide: N strands per guide (times M fibers each with params.fibers > 0).
+///
+/// Reads guide point P (curves root to tip) and curve id (else the curve index). Writes curves in
+/// guide order, strands 0..N-1 per guide (fibers 0..M-1 per strand), each running root to tip with
+/// the strand's sample count:
+///   point P, point width (scene units);
+///   curve guide (int32, source curve index), strand (int32, 0..N-1), fiber (int32, 0..M-1, with
+///   fibers only), id (int64: guide id * N + strand, times M plus fiber with fibers; unique when
+///   guide ids are);
+///   every other curve and detail attribute of the guide; point attributes of the guide from its
+///   point nearest in arc length (P and width excepted).
+///
+/// @param scalp   required for orient = Scalp; with it no output point ends inside the scalp (whole
+///                cross-sections are lifted along the scalp normal by what is needed plus clearance,
+///                and any point still closer than clearance is pushed out alone).
+/// @throws InvalidParam (bad params, Scalp orientation without a scalp), LimitExceeded (output over
+///         kMaxBraidPoints points, or ids that would overflow).
+BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surface* scalp = nullptr,
+                  Progress* progress = nullptr);
+
+/// Largest output braid() makes before refusing (points; about 16 bytes each).
+inline constexpr int64_t kMaxBraidPoints = 400'000'000;
+
+}  // namespace groom

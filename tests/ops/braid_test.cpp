@@ -1,0 +1,653 @@
+// Tests for ops/braid: the Lissajous cross-section of the talk (Sec. 2.1) checked against its closed
+// form on straight guides, frames on S-curves and helices, cornrows on an exact sphere, knot placement,
+// rejection of every invalid option, determinism and attribute carry-through.
+#include "ops/braid.h"
+
+#include "kernel/error.h"
+#include "kernel/math/polyline.h"
+#include "kernel/math/spline.h"
+#include "kernel/parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+#include <set>
+
+using namespace groom;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+CurveSet make_curves(const std::vector<std::vector<float3>>& curves)
+{
+    std::vector<int64_t> counts;
+    for (const auto& c : curves) counts.push_back(int64_t(c.size()));
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions();
+    size_t q = 0;
+    for (const auto& c : curves)
+        for (const float3& p : c) P[q++] = p;
+    return cs;
+}
+
+/// The talk's cross-section (Sec. 2.1), written out independently of the op: lateral x, normal y.
+double lissajous_x(double A, double F, double alpha, int i, int N) { return A * std::sin(2.0 * kPi * (F * alpha + double(i) / N)); }
+double lissajous_y(double B, double F, double alpha, int i, int N)
+{
+    return B * std::sin(2.0 * kPi * (F * alpha / 2.0 - double(i) / N));
+}
+
+float3 point(const CurveSet& cs, int64_t curve, int64_t j) { return cs.positions()[cs.points_of(curve).begin + j]; }
+
+std::string message_of(const std::function<void()>& fn)
+{
+    try {
+        fn();
+    }
+    catch (const InvalidParam& e) {
+        return e.what();
+    }
+    return "(no InvalidParam thrown)";
+}
+
+/// Offsets of three strands at one section, minus strand 0, solved for the frame's b and n given the
+/// known cross-section values. Returns false where the 2x2 system is ill-conditioned.
+bool solve_frame(const float3 o[3], const double x[3], const double y[3], double min_det, float3& b, float3& n)
+{
+    const double a11 = x[1] - x[0], a12 = y[1] - y[0], a21 = x[2] - x[0], a22 = y[2] - y[0];
+    const double det = a11 * a22 - a12 * a21;
+    if (std::fabs(det) < min_det) return false;
+    const float3 d1 = o[1] - o[0], d2 = o[2] - o[0];
+    b = (d1 * float(a22) - d2 * float(a12)) / float(det);
+    n = (d2 * float(a11) - d1 * float(a21)) / float(det);
+    return true;
+}
+
+double angle_deg(const float3& a, const float3& b)
+{
+    const double c = std::clamp(double(dot(normalize(a), normalize(b))), -1.0, 1.0);
+    return std::acos(c) * 180.0 / kPi;
+}
+
+}  // namespace
+
+// On a straight guide the frames are exact, so every strand point must sit at guide(t) + x(t) b + y(t) n
+// with x, y the closed form, to float precision. The guide's points are unevenly spaced so arc-length
+// sampling is exercised too.
+TEST(Braid, StrandsFollowLissajousOnStraightGuide)
+{
+    const float3 root(1.5f, -2.0f, 0.25f);
+    const float3 dir = normalize(float3(1, 2, 3));
+    const double L = 7.0;
+    const CurveSet guides = make_curves({{root, root + dir * 0.5f, root + dir * 4.0f, root + dir * float(L)}});
+    for (const int N : {2, 3, 5}) {
+        BraidParams p;
+        p.strands = N;
+        p.frequency = 2.5f;
+        p.width = 0.7f;
+        p.height = 0.3f;
+        p.samples = 101;
+        p.initial_normal = {0, 0, 1};
+        const BraidResult res = braid(guides, p);
+        const CurveSet& out = res.curves;
+        ASSERT_EQ(out.num_curves(), size_t(N));
+        // The frame a rotation-minimising frame keeps on a line: the initial normal made perpendicular.
+        const float3 n = normalize(p.initial_normal - dir * dot(p.initial_normal, dir));
+        const float3 b = cross(dir, n);
+        const float tol = 4.0f * std::numeric_limits<float>::epsilon() * float(length(root) + L + 1.0);
+        for (int i = 0; i < N; ++i) {
+            ASSERT_EQ(out.points_in(i), 101);
+            for (int j = 0; j <= 100; ++j) {
+                const double t = j / 100.0;
+                const double x = lissajous_x(0.7, 2.5, t, i, N), y = lissajous_y(0.3, 2.5, t, i, N);
+                const float3 c = root + dir * float(L * t);
+                const float3 off = point(out, i, j) - c;
+                EXPECT_NEAR(dot(off, b), x, tol) << "N " << N << " strand " << i << " sample " << j;
+                EXPECT_NEAR(dot(off, n), y, tol) << "N " << N << " strand " << i << " sample " << j;
+                EXPECT_NEAR(dot(off, dir), 0.0, tol) << "N " << N << " strand " << i << " sample " << j;
+            }
+        }
+    }
+}
+
+// Strands run root to tip like their guide, and with a zero amplitude at both ends they start at the
+// guide's root and end at its tip exactly.
+TEST(Braid, StrandsRunRootToTip)
+{
+    const CurveSet guides = make_curves({{{0, 0, 0}, {0, -1, 0.2f}, {0.1f, -3, 0.5f}}});
+    BraidParams p;
+    p.root_amplitude = 0.0f;
+    p.tip_amplitude = 0.0f;
+    p.taper = {0.0f, 1.0f, 0.0f};
+    const CurveSet out = braid(guides, p).curves;
+    ASSERT_EQ(out.num_curves(), 3u);
+    for (size_t c = 0; c < 3; ++c) {
+        EXPECT_EQ(point(out, c, 0), float3(0, 0, 0));
+        EXPECT_EQ(point(out, c, out.points_in(c) - 1), float3(0.1f, -3, 0.5f));
+    }
+}
+
+// Amplitude scale s(t) = (a0 + (a1 - a0) t) * taper(t) multiplies both offsets.
+TEST(Braid, RootTipAmplitudeAndTaperScaleTheCrossSection)
+{
+    const CurveSet guides = make_curves({{{0, 0, 0}, {4, 0, 0}}});
+    BraidParams p;
+    p.frequency = 3.0f;
+    p.width = 1.0f;
+    p.height = 0.5f;
+    p.samples = 49;
+    p.root_amplitude = 1.0f;
+    p.tip_amplitude = 0.25f;
+    p.taper = {1.0f, 0.5f, 1.0f};
+    p.initial_normal = {0, 1, 0};
+    const CurveSet out = braid(guides, p).curves;
+    // Frame on +X with normal +Y: b = x cross y = +Z.
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 49; ++j) {
+            const double t = j / 48.0;
+            const double s = (1.0 + (0.25 - 1.0) * t) * sample_uniform_spline(p.taper, float(t));
+            const float3 q = point(out, i, j);
+            EXPECT_NEAR(q.z, s * lissajous_x(1.0, 3.0, t, i, 3), 2e-6) << i << " " << j;
+            EXPECT_NEAR(q.y, s * lissajous_y(0.5, 3.0, t, i, 3), 2e-6) << i << " " << j;
+        }
+    }
+    // The taper's middle value is reached at t = 1/2: s = (1 - 0.375) * 0.5.
+    EXPECT_NEAR(sample_uniform_spline(p.taper, 0.5f), 0.5f, 1e-6f);
+}
+
+// A planar S-curve has an inflection where a Frenet frame flips. With the normal started out of the
+// plane the braid's normal offsets must stay out of the plane all along, and its lateral offsets
+// stay in the plane on the side b = t x n: no strand changes side at the inflection.
+TEST(Braid, StrandsDoNotFlipOnSCurve)
+{
+    std::vector<float3> s_curve;
+    for (int k = 0; k <= 400; ++k) {
+        const float x = 4.0f * std::numbers::pi_v<float> * k / 400.0f;
+        s_curve.emplace_back(x, 2.0f * std::sin(x), 0.0f);
+    }
+    const CurveSet guides = make_curves({s_curve});
+    BraidParams p;
+    p.frequency = 6.0f;
+    p.width = 0.3f;
+    p.height = 0.15f;
+    p.samples = 301;
+    p.initial_normal = {0, 0, 1};
+    const CurveSet out = braid(guides, p).curves;
+    const std::vector<float3> C = resample_by_count(s_curve, 301);
+    const std::vector<float3> T = polyline_tangents(C);
+    const double len = polyline_length(s_curve);
+    (void)len;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 301; ++j) {
+            const double t = j / 300.0;
+            const float3 off = point(out, i, j) - C[j];
+            const float3 b = cross(T[j], float3(0, 0, 1));
+            EXPECT_NEAR(off.z, lissajous_y(0.15, 6.0, t, i, 3), 1e-5) << i << " " << j;
+            EXPECT_NEAR(dot(off, b), lissajous_x(0.3, 6.0, t, i, 3), 1e-5) << i << " " << j;
+        }
+    }
+}
+
+// On a helix the rotation-minimising frame turns against the Frenet frame at the torsion's rate: the
+// normal recovered from the strands (two strand differences solved for b and n) must be at angle
+// tau * s from the Frenet principal normal.
+TEST(Braid, HelixTwistMatchesTorsion)
+{
+    const double a = 1.0, bh = 0.35, c = std::sqrt(a * a + bh * bh), tau = bh / (c * c);
+    const double umax = 2.0 * kPi * 2.0;
+    std::vector<float3> helix;
+    for (int k = 0; k <= 4000; ++k) {
+        const double u = umax * k / 4000.0;
+        helix.emplace_back(float(a * std::cos(u)), float(a * std::sin(u)), float(bh * u));
+    }
+    const auto frenet_n = [](double u) { return float3(float(-std::cos(u)), float(-std::sin(u)), 0.0f); };
+    const auto frenet_b = [&](double u) { return float3(float(bh * std::sin(u) / c), float(-bh * std::cos(u) / c), float(a / c)); };
+    const CurveSet guides = make_curves({helix});
+    BraidParams p;
+    p.frequency = 5.0f;
+    p.width = 0.2f;
+    p.height = 0.1f;
+    p.samples = 1001;
+    p.initial_normal = frenet_n(0.0);
+    const CurveSet out = braid(guides, p).curves;
+    const std::vector<float3> C = resample_by_count(helix, 1001);
+    double prev = 0.0;
+    int checked = 0;
+    for (int j = 0; j < 1001; ++j) {
+        const double t = j / 1000.0, u = umax * t, s = c * u;
+        float3 o[3];
+        double x[3], y[3];
+        for (int i = 0; i < 3; ++i) {
+            o[i] = point(out, i, j) - C[j];
+            x[i] = lissajous_x(0.2, 5.0, t, i, 3);
+            y[i] = lissajous_y(0.1, 5.0, t, i, 3);
+        }
+        float3 b, n;
+        if (!solve_frame(o, x, y, 0.01, b, n)) continue;
+        EXPECT_NEAR(length(n), 1.0f, 1e-3f) << j;
+        EXPECT_NEAR(length(b), 1.0f, 1e-3f) << j;
+        double angle = std::atan2(dot(n, frenet_b(u)), dot(n, frenet_n(u)));
+        while (angle - prev > kPi) angle -= 2.0 * kPi;
+        while (angle - prev < -kPi) angle += 2.0 * kPi;
+        prev = angle;
+        EXPECT_NEAR(std::fabs(angle), tau * s, 5e-3) << "sample " << j;
+        ++checked;
+    }
+    EXPECT_GT(checked, 800);
+}
+
+// Cornrows on an exact sphere: y along the sphere normal, x in its tangent plane (under 1 degree), no
+// point inside, every section resting at the clearance, and the counts asked for.
+TEST(Braid, CornrowsOnSphereFollowScalp)
+{
+    const float R = 10.0f;
+    const AnalyticSphere sphere({0, 0, 0}, R);
+    // A great-circle arc and a wavy, non-planar path, both on the surface. (On a sphere every curve
+    // is a line of curvature, so a rotation-minimising frame started on the normal would stay on it
+    // too; the initial normal below is set off the normal, which scalp orientation must ignore.)
+    std::vector<float3> great, small;
+    for (int k = 0; k <= 200; ++k) {
+        const double th = (20.0 + 100.0 * k / 200.0) * kPi / 180.0;
+        great.emplace_back(float(R * std::cos(th)), float(R * std::sin(th)), 0.0f);
+        const double lat = (30.0 + 20.0 * std::sin(3.0 * kPi * k / 200.0)) * kPi / 180.0;
+        small.emplace_back(float(R * std::cos(lat) * std::cos(th)), float(R * std::sin(lat)), float(R * std::cos(lat) * std::sin(th)));
+    }
+    const CurveSet guides = make_curves({great, small});
+    BraidParams p;
+    p.orient = BraidOrient::Scalp;
+    p.frequency = 6.0f;
+    p.width = 0.5f;
+    p.height = 0.25f;
+    p.samples = 193;
+    p.clearance = 0.05f;
+    p.initial_normal = {0, 0, 1};
+    const BraidResult res = braid(guides, p, &sphere);
+    const CurveSet& out = res.curves;
+    ASSERT_EQ(out.num_curves(), 6u);
+    EXPECT_EQ(res.report.strands, 6);
+    EXPECT_EQ(res.report.lifted_sections, 2 * 193);  // every section has a strand below the guide
+    EXPECT_GT(res.report.max_lift, 0.0f);
+    const auto W = out.find<float>(Domain::Point, attr::width);
+    ASSERT_FALSE(W.empty());
+    const auto guide_col = out.find<int32_t>(Domain::Curve, "guide");
+    const auto strand_col = out.find<int32_t>(Domain::Curve, "strand");
+    for (int g = 0; g < 2; ++g) {
+        const std::vector<float3>& src = g == 0 ? great : small;
+        const std::vector<float3> C = resample_by_count(src, 193);
+        const std::vector<float3> T = polyline_tangents(C);
+        int crossings = 0, checked = 0;
+        float prev_x = 0.0f;
+        for (int j = 0; j < 193; ++j) {
+            const double t = j / 192.0;
+            float3 o[3];
+            double x[3], y[3];
+            double lowest = 1e30;
+            for (int i = 0; i < 3; ++i) {
+                const int64_t curve = 3 * g + i;
+                ASSERT_EQ(out.points_in(curve), 193);
+                EXPECT_EQ(guide_col[curve], g);
+                EXPECT_EQ(strand_col[curve], i);
+                const float3 q = point(out, curve, j);
+                o[i] = q - C[j];
+                x[i] = lissajous_x(0.5, 6.0, t, i, 3);
+                y[i] = lissajous_y(0.25, 6.0, t, i, 3);
+                const double d = sphere.distance(q) - 0.5 * W[out.points_of(curve).begin + j];
+                EXPECT_GE(d, 0.05 - 1e-5) << "inside the clearance: guide " << g << " strand " << i << " sample " << j;
+                EXPECT_GT(sphere.distance(q), 0.0f);
+                lowest = std::min(lowest, d);
+            }
+            // Lifted just enough: the lowest strand rests at the clearance.
+            EXPECT_NEAR(lowest, 0.05, 1e-4) << "guide " << g << " sample " << j;
+            float3 b, n;
+            const float3 ns = sphere.normal(C[j]);
+            if (solve_frame(o, x, y, 0.05 * 0.5 * 0.25, b, n)) {
+                EXPECT_LT(angle_deg(n, ns), 1.0) << "y not along the sphere normal at sample " << j;
+                EXPECT_LT(std::fabs(90.0 - angle_deg(b, ns)), 1.0) << "x not in the tangent plane at sample " << j;
+                ++checked;
+            }
+            // x of strand 1 (never zero at a sample for these numbers) counts the x cycles.
+            const float xs = dot(o[1], normalize(cross(T[j], ns)));
+            if (j > 0 && (xs > 0) != (prev_x > 0)) ++crossings;
+            prev_x = xs;
+        }
+        EXPECT_GT(checked, 150);
+        EXPECT_EQ(crossings, 2 * 6) << "x cycles on guide " << g;
+    }
+}
+
+// rest: a cornrow sculpted floating above the scalp is lowered until it rests at the clearance;
+// without rest it is left where it is.
+TEST(Braid, RestLowersFloatingCornrowsOntoTheScalp)
+{
+    const float R = 5.0f;
+    const AnalyticSphere sphere({0, 0, 0}, R);
+    std::vector<float3> arc;
+    for (int k = 0; k <= 100; ++k) {
+        const double th = (30.0 + 60.0 * k / 100.0) * kPi / 180.0;
+        arc.emplace_back(float((R + 1) * std::cos(th)), 0.0f, float((R + 1) * std::sin(th)));
+    }
+    const CurveSet guides = make_curves({arc});
+    BraidParams p;
+    p.orient = BraidOrient::Scalp;
+    p.frequency = 3.0f;
+    p.width = 0.4f;
+    p.height = 0.2f;
+    p.samples = 65;
+    p.clearance = 0.02f;
+    p.strand_width = 0.1f;
+    for (const bool rest : {false, true}) {
+        p.rest = rest;
+        const BraidResult res = braid(guides, p, &sphere);
+        EXPECT_EQ(res.report.lifted_sections, 0);
+        EXPECT_EQ(res.report.lowered_sections, rest ? 65 : 0);
+        for (int j = 0; j < 65; ++j) {
+            double lowest = 1e30;
+            for (int i = 0; i < 3; ++i) lowest = std::min(lowest, double(sphere.distance(point(res.curves, i, j))) - 0.05);
+            if (rest) EXPECT_NEAR(lowest, 0.02, 1e-4) << j;
+            else EXPECT_GT(lowest, 0.5) << j;
+        }
+        if (rest) EXPECT_NEAR(res.report.max_lower, 1.0f, 0.25f);
+    }
+}
+
+// With fibers every fiber point stays clear of the scalp too, and fibers are counted, numbered and
+// identified as documented.
+TEST(Braid, FibersPopulateStrandsAndStayOutsideTheScalp)
+{
+    const float R = 8.0f;
+    const AnalyticSphere sphere({0, 1, 0}, R);
+    std::vector<float3> arc;
+    for (int k = 0; k <= 60; ++k) {
+        const double th = (10.0 + 70.0 * k / 60.0) * kPi / 180.0;
+        arc.emplace_back(float(R * std::sin(th)), 1.0f + float(R * std::cos(th)), 0.0f);
+    }
+    CurveSet guides = make_curves({arc, arc});
+    auto ids = guides.add<int64_t>(Domain::Curve, attr::id);
+    ids[0] = 7;
+    ids[1] = 11;
+    BraidParams p;
+    p.orient = BraidOrient::Scalp;
+    p.frequency = 4.0f;
+    p.width = 0.6f;
+    p.height = 0.3f;
+    p.samples = 64;
+    p.fibers = 20;
+    p.fiber_radius = 0.1f;
+    p.clearance = 0.01f;
+    p.seed = 3;
+    const BraidResult res = braid(guides, p, &sphere);
+    const CurveSet& out = res.curves;
+    ASSERT_EQ(out.num_curves(), 2u * 3u * 20u);
+    EXPECT_EQ(res.report.curves, 120);
+    EXPECT_EQ(res.report.strands, 6);
+    EXPECT_EQ(res.report.points, 120 * 64);
+    const auto fiber = out.find<int32_t>(Domain::Curve, "fiber");
+    const auto strand = out.find<int32_t>(Domain::Curve, "strand");
+    const auto guide = out.find<int32_t>(Domain::Curve, "guide");
+    const auto id = out.find<int64_t>(Domain::Curve, attr::id);
+    ASSERT_FALSE(fiber.empty());
+    std::set<int64_t> unique;
+    for (size_t c = 0; c < out.num_curves(); ++c) {
+        EXPECT_EQ(fiber[c], int32_t(c % 20));
+        EXPECT_EQ(strand[c], int32_t((c / 20) % 3));
+        EXPECT_EQ(guide[c], int32_t(c / 60));
+        const int64_t gid = c / 60 == 0 ? 7 : 11;
+        EXPECT_EQ(id[c], (gid * 3 + strand[c]) * 20 + fiber[c]);
+        unique.insert(id[c]);
+    }
+    EXPECT_EQ(unique.size(), out.num_curves());
+    const auto W = out.find<float>(Domain::Point, attr::width);
+    for (size_t q = 0; q < out.num_points(); ++q) {
+        EXPECT_GE(sphere.distance(out.positions()[q]) - 0.5f * W[q], 0.01f - 1e-5f) << q;
+    }
+    // Fiber width automatic: 2 r / sqrt(M).
+    EXPECT_NEAR(W[0], 2.0f * 0.1f / std::sqrt(20.0f), 1e-6f);
+}
+
+// Knot placement shared with `groom partition --centroids knots`: F alpha(t_k) = k + 1/2.
+TEST(Braid, KnotParametersFollowFrequencyAndRemap)
+{
+    BraidParams p;
+    p.frequency = 4.0f;
+    const auto t = braid_knot_parameters(p, 12.0);
+    ASSERT_EQ(t.size(), 4u);
+    for (size_t k = 0; k < 4; ++k) EXPECT_NEAR(t[k], (k + 0.5) / 4.0, 1e-7);
+
+    // Knot length: F = length / L, knots L apart in arc length.
+    BraidParams q;
+    q.knot_length = 1.5f;
+    const auto tl = braid_knot_parameters(q, 12.0);
+    ASSERT_EQ(tl.size(), 8u);
+    for (size_t k = 0; k + 1 < tl.size(); ++k) EXPECT_NEAR((tl[k + 1] - tl[k]) * 12.0, 1.5, 1e-5);
+    EXPECT_NEAR(braid_frequency(q, 12.0), 8.0, 1e-12);
+    // Only knots whose centre lies on the guide: F = 2.4 has 2.
+    p.frequency = 2.4f;
+    EXPECT_EQ(braid_knot_parameters(p, 1.0).size(), 2u);
+
+    // Bias > 0 packs knots toward the tip; every knot centre satisfies F alpha(t_k) = k + 1/2.
+    p.frequency = 10.0f;
+    p.knot_bias = 0.5f;
+    const KnotRemap remap(p);
+    const auto tb = braid_knot_parameters(p, 1.0);
+    ASSERT_EQ(tb.size(), 10u);
+    for (size_t k = 0; k < tb.size(); ++k) EXPECT_NEAR(10.0 * remap.alpha(tb[k]), k + 0.5, 1e-4);
+    EXPECT_GT(tb[1] - tb[0], tb[9] - tb[8]);
+}
+
+// alpha(t): identity by default; Schlick bias slopes g/(1-g) at the root, (1-g)/g at the tip; the
+// density spline integrates to the closed form.
+TEST(Braid, KnotRemapMatchesClosedForms)
+{
+    BraidParams p;
+    EXPECT_TRUE(KnotRemap(p).identity());
+    EXPECT_EQ(KnotRemap(p).alpha(0.3), 0.3);
+
+    p.knot_bias = 0.5f;  // g = 0.25
+    const KnotRemap bias(p);
+    EXPECT_NEAR(bias.alpha(0.0), 0.0, 1e-12);
+    EXPECT_NEAR(bias.alpha(1.0), 1.0, 1e-12);
+    const double h = 1e-6;
+    EXPECT_NEAR(bias.alpha(h) / h, 1.0 / 3.0, 1e-4);
+    EXPECT_NEAR((1.0 - bias.alpha(1.0 - h)) / h, 3.0, 1e-4);
+    EXPECT_NEAR(bias.max_slope(), 3.0, 1e-9);
+    for (double t = 0.0; t <= 1.0; t += 0.05) EXPECT_NEAR(bias.inverse(bias.alpha(t)), t, 1e-9);
+
+    // Density 1 + 2t (two values: the clamped spline is linear): alpha = (t + t^2) / 2.
+    BraidParams d;
+    d.knot_density = {1.0f, 3.0f};
+    const KnotRemap dens(d);
+    for (double t = 0.0; t <= 1.0; t += 0.05) {
+        EXPECT_NEAR(dens.alpha(t), (t + t * t) / 2.0, 1e-6) << t;
+        EXPECT_NEAR(dens.inverse(dens.alpha(t)), t, 1e-6) << t;
+    }
+    EXPECT_NEAR(dens.max_slope(), 1.5, 1e-3);
+}
+
+// Default sample count: at least 16 points per x cycle where knots are densest, at least the
+// guide's own point count.
+TEST(Braid, AutomaticSampleCountGivesSixteenPointsPerCycle)
+{
+    const CurveSet guides = make_curves({{{0, 0, 0}, {0, 1, 0}, {0, 2, 0}}});
+    BraidParams p;
+    p.frequency = 4.0f;
+    EXPECT_EQ(braid(guides, p).curves.points_in(0), 65);
+    p.knot_bias = 0.4f;
+    const CurveSet out = braid(guides, p).curves;
+    const KnotRemap remap(p);
+    const int64_t S = out.points_in(0);
+    for (int64_t j = 0; j + 1 < S; ++j) {
+        const double step = 4.0 * (remap.alpha(double(j + 1) / (S - 1)) - remap.alpha(double(j) / (S - 1)));
+        EXPECT_LE(step, 1.0 / 16.0 + 1e-9) << j;
+    }
+    // A detailed guide keeps its detail.
+    std::vector<float3> dense;
+    for (int k = 0; k < 300; ++k) dense.emplace_back(0.0f, float(k), 0.0f);
+    p.knot_bias = 0.0f;
+    EXPECT_EQ(braid(make_curves({dense}), p).curves.points_in(0), 300);
+}
+
+TEST(Braid, RejectsInvalidOptions)
+{
+    const CurveSet guides = make_curves({{{0, 0, 0}, {0, 1, 0}}});
+    const auto rejects = [&](BraidParams p, const std::string& expected) {
+        const std::string msg = message_of([&] { braid(guides, p); });
+        EXPECT_NE(msg.find(expected), std::string::npos) << "got: " << msg << "\nexpected: " << expected;
+    };
+    BraidParams p;
+    p.strands = 1;
+    rejects(p, "braid: --strands must be >= 2 (got 1)");
+    p = {};
+    p.frequency = -1.0f;
+    rejects(p, "braid: --frequency must be a finite number >= 0 (got -1)");
+    p = {};
+    p.width = -0.5f;
+    rejects(p, "braid: --width must be a finite number >= 0 (got -0.5)");
+    p = {};
+    p.height = -2.0f;
+    rejects(p, "braid: --height must be a finite number >= 0 (got -2)");
+    p = {};
+    p.frequency = 3.0f;
+    p.knot_length = 1.0f;
+    rejects(p, "braid: --frequency and --knot-length are exclusive (got both");
+    p = {};
+    p.knot_length = 0.0f;
+    rejects(p, "braid: --knot-length must be a finite number > 0 (got 0)");
+    p = {};
+    p.samples = 1;
+    rejects(p, "braid: --samples must be >= 2");
+    p = {};
+    p.root_amplitude = -1.0f;
+    rejects(p, "braid: --root-amplitude must be a finite number >= 0");
+    p = {};
+    p.tip_amplitude = std::numeric_limits<float>::quiet_NaN();
+    rejects(p, "braid: --tip-amplitude must be a finite number >= 0");
+    p = {};
+    p.taper = {1.0f, -0.5f};
+    rejects(p, "braid: --taper values must be finite and >= 0 (value 2 is -0.5)");
+    p = {};
+    p.knot_bias = 1.0f;
+    rejects(p, "braid: --knot-bias must be in (-1, 1) (got 1)");
+    p = {};
+    p.knot_density = {1.0f, 0.0f};
+    rejects(p, "braid: --knot-density values must be finite and > 0 (value 2 is 0)");
+    p = {};
+    p.clearance = -0.1f;
+    rejects(p, "braid: --clearance must be a finite number >= 0 (got -0.1)");
+    p = {};
+    p.fibers = -3;
+    rejects(p, "braid: --fibers must be in [0, 1000000] (got -3)");
+    p = {};
+    p.fiber_radius = -1.0f;
+    rejects(p, "braid: --fiber-radius must be a finite number >= 0");
+    p = {};
+    p.orient = BraidOrient::Scalp;
+    rejects(p, "braid: --orient scalp needs a scalp");
+    p = {};
+    p.frequency = 1e9f;
+    EXPECT_THROW(braid(guides, p), LimitExceeded);
+}
+
+// Guides with nothing to braid along are skipped and reported, not turned into NaNs.
+TEST(Braid, SkipsDegenerateGuidesAndSaysSo)
+{
+    const CurveSet guides = make_curves({{{0, 0, 0}}, {{1, 1, 1}, {1, 1, 1}}, {{0, 0, 0}, {0, 2, 0}}});
+    const BraidResult res = braid(guides, BraidParams{});
+    EXPECT_EQ(res.report.skipped_guides, 2);
+    EXPECT_EQ(res.report.guides, 1);
+    ASSERT_EQ(res.curves.num_curves(), 3u);
+    for (const int32_t g : res.curves.find<int32_t>(Domain::Curve, "guide")) EXPECT_EQ(g, 2);
+    res.curves.validate();
+}
+
+// Same inputs and seed: bitwise identical output with 1 and 2 threads.
+TEST(Braid, DeterministicAcrossThreadCounts)
+{
+    const AnalyticSphere sphere({0, 0, 0}, 10.0f);
+    std::vector<std::vector<float3>> arcs;
+    for (int g = 0; g < 40; ++g) {
+        std::vector<float3> arc;
+        const double lon = g * 9.0 * kPi / 180.0;
+        for (int k = 0; k <= 30; ++k) {
+            const double lat = (80.0 - 60.0 * k / 30.0) * kPi / 180.0;
+            arc.emplace_back(float(10 * std::cos(lat) * std::cos(lon)), float(10 * std::sin(lat)), float(10 * std::cos(lat) * std::sin(lon)));
+        }
+        arcs.push_back(arc);
+    }
+    const CurveSet guides = make_curves(arcs);
+    BraidParams p;
+    p.orient = BraidOrient::Scalp;
+    p.frequency = 5.0f;
+    p.width = 0.4f;
+    p.fibers = 8;
+    p.clearance = 0.01f;
+    p.seed = 42;
+    const auto run = [&](int threads) {
+        ThreadLimit limit(threads);
+        return braid(guides, p, &sphere);
+    };
+    const BraidResult a = run(1), b = run(2);
+    ASSERT_EQ(a.curves.num_points(), b.curves.num_points());
+    ASSERT_EQ(std::vector<int64_t>(a.curves.offsets().begin(), a.curves.offsets().end()),
+              std::vector<int64_t>(b.curves.offsets().begin(), b.curves.offsets().end()));
+    EXPECT_EQ(std::memcmp(a.curves.positions().data(), b.curves.positions().data(), a.curves.num_points() * sizeof(float3)), 0);
+    const auto wa = a.curves.find<float>(Domain::Point, attr::width), wb = b.curves.find<float>(Domain::Point, attr::width);
+    EXPECT_EQ(std::memcmp(wa.data(), wb.data(), wa.size() * sizeof(float)), 0);
+    const auto ia = a.curves.find<int64_t>(Domain::Curve, attr::id), ib = b.curves.find<int64_t>(Domain::Curve, attr::id);
+    EXPECT_TRUE(std::equal(ia.begin(), ia.end(), ib.begin()));
+    EXPECT_EQ(a.report.lifted_sections, b.report.lifted_sections);
+    EXPECT_EQ(a.report.pushed_points, b.report.pushed_points);
+    EXPECT_EQ(a.report.max_lift, b.report.max_lift);
+}
+
+// Every curve and detail attribute of a guide reaches its strands; point attributes come from the
+// guide point nearest in arc length; the op's own columns are typed as documented.
+TEST(Braid, CarriesGuideAttributes)
+{
+    CurveSet guides = make_curves({{{0, 0, 0}, {0, 1, 0}, {0, 2, 0}}, {{5, 0, 0}, {5, 0, 4}}});
+    auto clump = guides.add<int32_t>(Domain::Curve, "clump");
+    clump[0] = 4;
+    clump[1] = 9;
+    auto colour = guides.add<float3>(Domain::Curve, "Cd");
+    colour[0] = {1, 0, 0};
+    colour[1] = {0, 0, 1};
+    auto id = guides.add<int32_t>(Domain::Curve, attr::id);
+    id[0] = 100;
+    id[1] = 200;
+    auto age = guides.add<float>(Domain::Point, "age");
+    for (size_t q = 0; q < age.size(); ++q) age[q] = float(q) * 10.0f;
+    guides.set_detail_string("groom_name", "cornrows");
+    BraidParams p;
+    p.strands = 4;
+    p.samples = 5;
+    const CurveSet out = braid(guides, p).curves;
+    out.validate();
+    ASSERT_EQ(out.num_curves(), 8u);
+    const auto oclump = out.find<int32_t>(Domain::Curve, "clump");
+    const auto ocd = out.find<float3>(Domain::Curve, "Cd");
+    const auto oid = out.find<int64_t>(Domain::Curve, attr::id);
+    const auto oage = out.find<float>(Domain::Point, "age");
+    ASSERT_FALSE(oclump.empty());
+    ASSERT_FALSE(ocd.empty());
+    ASSERT_FALSE(oid.empty());
+    ASSERT_FALSE(oage.empty());
+    for (size_t c = 0; c < 8; ++c) {
+        const size_t g = c / 4;
+        EXPECT_EQ(oclump[c], g == 0 ? 4 : 9);
+        EXPECT_EQ(ocd[c], g == 0 ? float3(1, 0, 0) : float3(0, 0, 1));
+        EXPECT_EQ(oid[c], (g == 0 ? 100 : 200) * 4 + int64_t(c % 4));
+    }
+    // Guide 0: samples at t = 0, .25, .5, .75, 1 -> nearest guide points 0, 0 or 1, 1, 1 or 2, 2.
+    const int64_t q0 = out.points_of(0).begin;
+    EXPECT_EQ(oage[q0 + 0], 0.0f);
+    EXPECT_EQ(oage[q0 + 2], 10.0f);
+    EXPECT_EQ(oage[q0 + 4], 20.0f);
+    // Guide 1 (points 3, 4): first half from point 3, last from 4.
+    const int64_t q4 = out.points_of(4).begin;
+    EXPECT_EQ(oage[q4 + 0], 30.0f);
+    EXPECT_EQ(oage[q4 + 4], 40.0f);
+    EXPECT_EQ(out.detail_string("groom_name"), "cornrows");
+}

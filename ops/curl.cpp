@@ -377,23 +377,21 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
                 return cpos + nn * (env * q.x) + bb * (env * q.y);
             };
 
-            // Pass 1: curl the whole centreline on its own grid.
+            // Pass 1: curl the centreline on its own grid, and (Sec. 3.1 says nothing of length; real
+            // curls shrink, the curl index) find where the curled hair reaches the input's length:
+            // it then covers only that part of its centreline, which pass 2 re-samples with all n
+            // points. Without length preservation pass 1 is the result.
             grid.resize(size_t(n));
-            for (int64_t j = 0; j < n; ++j) grid[size_t(j)] = curled(centre[size_t(j)], frames[size_t(j)].n, frames[size_t(j)].b, double(j) * ds);
-            double s_end = centre_len;
-            if (params.preserve_length) {
-                // Sec. 3.1 says nothing of length; real curls shrink (the curl index): keep the hair's
-                // length and let it cover less of its centreline. Cut where the curled length reaches
-                // the input's, then re-sample that part of the centreline with all n points.
-                double acc = 0.0;
-                for (int64_t j = 1; j < n; ++j) {
-                    const double seg = distance(grid[size_t(j - 1)], grid[size_t(j)]);
-                    if (acc + seg >= in_len) {
-                        s_end = (double(j - 1) + (seg > 0.0 ? (in_len - acc) / seg : 0.0)) * ds;
-                        break;
-                    }
-                    acc += seg;
+            double s_end = centre_len, acc = 0.0;
+            for (int64_t j = 0; j < n; ++j) {
+                grid[size_t(j)] = curled(centre[size_t(j)], frames[size_t(j)].n, frames[size_t(j)].b, double(j) * ds);
+                if (!params.preserve_length || j == 0) continue;
+                const double seg = distance(grid[size_t(j - 1)], grid[size_t(j)]);
+                if (acc + seg >= in_len) {
+                    s_end = (double(j - 1) + (seg > 0.0 ? (in_len - acc) / seg : 0.0)) * ds;
+                    break;
                 }
+                acc += seg;
             }
             out.resize(size_t(n));
             s_of.resize(size_t(n));

@@ -1,6 +1,142 @@
-// Cem Yuksel .hair (placeholder until the full reader lands).
+// Cem Yuksel's .hair format (http://www.cemyuksel.com/research/hairmodels/), little-endian:
+// a 128-byte header ("HAIR", u32 strands, u32 points, u32 flags, u32 default segments,
+// f32 default thickness, f32 default transparency, f32 default colour[3], 88 bytes of text), then
+// the arrays the flags announce: u16 segments per strand (1), f32 xyz points (2), f32 thickness per
+// point (4), f32 transparency per point (8), f32 rgb colour per point (16).
+// Mapping: thickness <-> point `width`, colour <-> point float3 `Cd`, transparency <-> point
+// `opacity` = 1 - transparency. Other attributes have no place in the format.
 #include "kernel/io/formats.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
 namespace groom::io {
-CurveSet read_hair(const FileBytes& file) { throw ParseError(file.name + ": .hair reading is not implemented yet"); }
-std::string write_hair(const CurveSet&) { throw InvalidParam(".hair writing is not implemented yet"); }
+
+namespace {
+
+constexpr size_t kHeader = 128;
+constexpr uint32_t kSegments = 1, kPoints = 2, kThickness = 4, kTransparency = 8, kColor = 16;
+
+template <class T> T get(const std::string& d, size_t at)
+{
+    T v;
+    std::memcpy(&v, d.data() + at, sizeof v);
+    if constexpr (std::endian::native == std::endian::big) {
+        char b[sizeof v];
+        std::memcpy(b, &v, sizeof v);
+        std::reverse(b, b + sizeof v);
+        std::memcpy(&v, b, sizeof v);
+    }
+    return v;
+}
+
+template <class T> void put(std::string& out, T v)
+{
+    char b[sizeof v];
+    std::memcpy(b, &v, sizeof v);
+    if constexpr (std::endian::native == std::endian::big) std::reverse(b, b + sizeof v);
+    out.append(b, sizeof v);
+}
+
+}  // namespace
+
+CurveSet read_hair(const FileBytes& file)
+{
+    const std::string& d = file.data;
+    if (d.size() < kHeader) fail_at_byte(file.name, d.size(), "truncated: expected a 128-byte .hair header, found " + std::to_string(d.size()) + " bytes");
+    if (d.compare(0, 4, "HAIR") != 0) fail_at_byte(file.name, 0, "expected the 'HAIR' signature, found " + describe_found(d.substr(0, 4)));
+    const uint32_t strands = get<uint32_t>(d, 4), points = get<uint32_t>(d, 8), flags = get<uint32_t>(d, 12);
+    const uint32_t default_segments = get<uint32_t>(d, 16);
+    const float default_thickness = get<float>(d, 20), default_transparency = get<float>(d, 24);
+    const float3 default_color{get<float>(d, 28), get<float>(d, 32), get<float>(d, 36)};
+    if (!(flags & kPoints)) fail_at_byte(file.name, 12, "flags " + std::to_string(flags) + " announce no point array (bit 2): nothing to read");
+
+    // Every announced array must fit in the file: checked before allocating anything.
+    const uint64_t need = uint64_t(flags & kSegments ? 2 : 0) * strands +
+                          uint64_t(12 + (flags & kThickness ? 4 : 0) + (flags & kTransparency ? 4 : 0) + (flags & kColor ? 12 : 0)) * points;
+    if (need > d.size() - kHeader) {
+        throw LimitExceeded(file.name + ": byte 128: header claims " + std::to_string(strands) + " strands and " + std::to_string(points) +
+                            " points (flags " + std::to_string(flags) + "), which need " + std::to_string(need) + " bytes after the header, but only " +
+                            std::to_string(d.size() - kHeader) + " follow; the file is truncated or corrupt");
+    }
+
+    std::vector<int64_t> counts(strands);
+    size_t at = kHeader;
+    int64_t total = 0;
+    for (uint32_t s = 0; s < strands; ++s) {
+        const uint32_t segs = flags & kSegments ? get<uint16_t>(d, at + 2 * s) : default_segments;
+        counts[s] = int64_t(segs) + 1;
+        total += counts[s];
+    }
+    if (flags & kSegments) at += 2 * size_t(strands);
+    if (total != points) {
+        fail_at_byte(file.name, flags & kSegments ? kHeader : 16,
+                     "strand segment counts add up to " + std::to_string(total) + " points but the header says " + std::to_string(points));
+    }
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions();
+    for (uint32_t i = 0; i < points; ++i, at += 12) {
+        P[i] = {get<float>(d, at), get<float>(d, at + 4), get<float>(d, at + 8)};
+        if (!isfinite(P[i])) fail_at_byte(file.name, at, "point " + std::to_string(i) + " is not finite (NaN or inf)");
+    }
+    if (flags & kThickness) {
+        auto w = cs.add<float>(Domain::Point, attr::width);
+        for (uint32_t i = 0; i < points; ++i, at += 4) w[i] = get<float>(d, at);
+    }
+    else if (default_thickness > 0) {
+        auto w = cs.add<float>(Domain::Point, attr::width);
+        std::fill(w.begin(), w.end(), default_thickness);
+    }
+    if (flags & kTransparency) {
+        auto o = cs.add<float>(Domain::Point, "opacity");
+        for (uint32_t i = 0; i < points; ++i, at += 4) o[i] = 1.0f - get<float>(d, at);
+    }
+    else if (default_transparency > 0) {
+        auto o = cs.add<float>(Domain::Point, "opacity");
+        std::fill(o.begin(), o.end(), 1.0f - default_transparency);
+    }
+    if (flags & kColor) {
+        auto c = cs.add<float3>(Domain::Point, "Cd");
+        for (uint32_t i = 0; i < points; ++i, at += 12) c[i] = {get<float>(d, at), get<float>(d, at + 4), get<float>(d, at + 8)};
+    }
+    (void)default_color;  // a uniform default colour is not turned into a column: it is not per-point data
+    return cs;
+}
+
+std::string write_hair(const CurveSet& curves)
+{
+    if (curves.num_curves() > UINT32_MAX || curves.num_points() > UINT32_MAX) throw InvalidParam("hair: more than 2^32 strands or points");
+    for (size_t c = 0; c < curves.num_curves(); ++c) {
+        const int64_t n = curves.points_in(c);
+        if (n < 1 || n > 65536) {
+            throw InvalidParam("hair: curve " + std::to_string(c) + " has " + std::to_string(n) +
+                               " points; .hair stores 1 to 65536 points per strand (u16 segment count)");
+        }
+    }
+    const auto width = curves.find<float>(Domain::Point, attr::width);
+    const auto opacity = curves.find<float>(Domain::Point, "opacity");
+    const auto color = curves.find<float3>(Domain::Point, "Cd");
+    const uint32_t flags = kSegments | kPoints | (width.empty() ? 0 : kThickness) | (opacity.empty() ? 0 : kTransparency) | (color.empty() ? 0 : kColor);
+    std::string out;
+    out.reserve(kHeader + curves.num_curves() * 2 + curves.num_points() * 32);
+    out += "HAIR";
+    put<uint32_t>(out, static_cast<uint32_t>(curves.num_curves()));
+    put<uint32_t>(out, static_cast<uint32_t>(curves.num_points()));
+    put<uint32_t>(out, flags);
+    put<uint32_t>(out, 0);       // default segments: unused, every strand has its own count
+    put<float>(out, 0.0f);       // default thickness: 0 = none given (read back without a width)
+    put<float>(out, 0.0f);       // default transparency
+    for (int k = 0; k < 3; ++k) put<float>(out, 1.0f);  // default colour
+    std::string info = "groom " GROOM_VERSION;
+    info.resize(88, '\0');
+    out += info;
+    for (size_t c = 0; c < curves.num_curves(); ++c) put<uint16_t>(out, static_cast<uint16_t>(curves.points_in(c) - 1));
+    for (const float3& p : curves.positions()) put(out, p.x), put(out, p.y), put(out, p.z);
+    for (float w : width) put(out, w);
+    for (float o : opacity) put(out, 1.0f - o);
+    for (const float3& c : color) put(out, c.x), put(out, c.y), put(out, c.z);
+    return out;
+}
+
 }  // namespace groom::io

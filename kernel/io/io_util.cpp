@@ -52,11 +52,11 @@ void fail_at_byte(const std::string& name, size_t offset, const std::string& mes
 }
 
 void check_claimed_count(const std::string& name, std::string_view what, uint64_t count, uint64_t min_bytes_each,
-                         uint64_t available)
+                         uint64_t available, size_t offset)
 {
     // Compare by division so an absurd count cannot overflow the product.
     if (min_bytes_each > 0 && count > available / min_bytes_each) {
-        throw LimitExceeded(name + ": header claims " + std::to_string(count) + " " + std::string(what) + " (at least " +
+        throw LimitExceeded(name + ": byte " + std::to_string(offset) + ": header claims " + std::to_string(count) + " " + std::string(what) + " (at least " +
                             std::to_string(min_bytes_each) + " bytes each) but only " + std::to_string(available) +
                             " bytes follow; the file is truncated or corrupt");
     }

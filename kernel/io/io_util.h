@@ -31,9 +31,9 @@ std::string extension_of(const std::string& path);
 [[noreturn]] void fail_at_byte(const std::string& name, size_t offset, const std::string& message);
 
 /// Throws LimitExceeded when a header claims `count` items of at least `min_bytes_each` bytes but
-/// only `available` bytes follow: refused before anything is allocated.
+/// only `available` bytes follow from byte `offset`: refused before anything is allocated.
 void check_claimed_count(const std::string& name, std::string_view what, uint64_t count, uint64_t min_bytes_each,
-                         uint64_t available);
+                         uint64_t available, size_t offset);
 
 /// Shortest text that parses back to exactly `v` (std::to_chars), appended to `out`.
 inline void append_number(std::string& out, float v)

@@ -125,3 +125,62 @@ TEST(MeshIoReal, PonytailHeadKeepsEveryFace)
     EXPECT_EQ(st.duplicate_vertices, 2604);
     EXPECT_EQ(st.non_manifold_edges, 108);
 }
+
+TEST(MeshIoOff, ReadsCubeWithCommentsAndColours)
+{
+    TempDir dir;
+    write_text(dir.file("c.off"), "OFF # cube\n8 6 12\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                  "4 0 3 2 1 255 0 0\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
+    const PolygonSoup s = read_mesh(dir.file("c.off"));
+    EXPECT_EQ(s.num_faces(), 6u);
+    const MeshStats st = mesh_stats(s);
+    EXPECT_EQ(st.boundary_edges, 0);
+    EXPECT_EQ(st.shells, 1);
+    expect_mesh_error(dir.file("r.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "r.off:6: vertex index 3 out of range (3 vertices)");
+    expect_mesh_error(dir.file("h.off"), "OFF\n4000000000 1 0\n0 0 0\n", "header claims 4000000000 vertices");
+}
+
+TEST(MeshIoStl, AsciiAndBinaryKeepEveryTriangle)
+{
+    TempDir dir;
+    write_text(dir.file("a.stl"), "solid t\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n"
+                                  "facet normal 0 0 1\n outer loop\n  vertex 1 0 0\n  vertex 1 1 0\n  vertex 0 1 0\n endloop\nendfacet\nendsolid t\n");
+    const PolygonSoup a = read_mesh(dir.file("a.stl"));
+    EXPECT_EQ(a.num_faces(), 2u);
+    EXPECT_EQ(a.points.size(), 6u);
+    const MeshStats st = mesh_stats(a);
+    EXPECT_EQ(st.duplicate_vertices, 2);
+    EXPECT_EQ(st.boundary_edges, 4);  // a unit square made of two triangles
+    // Binary: header starting with "solid" on purpose (some exporters do this).
+    std::string b = "solid but binary";
+    b.resize(80, ' ');
+    const uint32_t n = 2;
+    b.append(reinterpret_cast<const char*>(&n), 4);
+    const float tri[2][12] = {{0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 0}};
+    for (const auto& t : tri) {
+        b.append(reinterpret_cast<const char*>(t), 48);
+        b.append(2, '\0');
+    }
+    write_text(dir.file("b.stl"), b);
+    const PolygonSoup bs = read_mesh(dir.file("b.stl"));
+    EXPECT_EQ(bs.num_faces(), 2u);
+    EXPECT_EQ(bs.points[4], float3(1, 1, 0));
+    write_text(dir.file("t.stl"), b.substr(0, b.size() - 10));
+    expect_mesh_error(dir.file("t.stl"), b.substr(0, b.size() - 10), "binary STL claims 2 triangles (184 bytes) but the file has 174 bytes");
+    expect_mesh_error(dir.file("e.stl"), "solid x\nfacet normal 0 0 1\n outer loop\n  vertex 0 0\n", "e.stl:4: expected 3 vertex coordinates");
+}
+
+TEST(MeshIoPly, WriteReadRoundTripKeepsNgons)
+{
+    TempDir dir;
+    write_text(dir.file("m.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0.5 1.5 0\nv 0 1 0\nv 2 0 0\nf 1 2 3 4 5\nf 2 6 3\n");
+    const PolygonSoup a = read_mesh(dir.file("m.obj"));
+    write_mesh(a, dir.file("m.ply"));
+    const PolygonSoup b = read_mesh(dir.file("m.ply"));
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(a.face_offsets, b.face_offsets);
+    EXPECT_EQ(a.face_indices, b.face_indices);
+    expect_mesh_error(dir.file("r.ply"), "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                                         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n3 0 0 5\n",
+                      "face 0 uses vertex 5, out of range (1 vertices)");
+}

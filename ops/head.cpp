@@ -40,7 +40,7 @@ float rounded_cylinder(const float3& p, float x0, float z0, float y0, float y1, 
 
 // The vertices are found along rays from this point, inside the skull behind the face.
 const float3 kCenter{0.0f, -2.0f, -0.5f};
-constexpr float kMaxRadius = 40.0f;
+constexpr float kMaxRadius = 30.0f;  // beyond the neck's base corners (~22 cm away)
 
 }  // namespace
 
@@ -58,8 +58,8 @@ float head_distance(const float3& p, bool ears)
 {
     // Proportions of an adult head in centimetres (breadth ~15, length ~20, crown to chin ~23.5).
     float d = ellipsoid(p, {0.0f, 3.0f, -1.0f}, {7.4f, 9.0f, 9.8f});                 // cranium
-    d = smin(d, ellipsoid(p, {0.0f, -4.2f, 2.6f}, {5.9f, 7.4f, 6.4f}), 2.5f);        // face and jaw
-    d = smin(d, ellipsoid(p, {0.0f, -6.5f, 1.0f}, {6.2f, 4.0f, 5.5f}), 2.0f);        // jaw angle, cheeks
+    d = smin(d, ellipsoid(p, {0.0f, -4.0f, 2.4f}, {6.3f, 7.3f, 6.5f}), 3.0f);        // face and jaw
+    d = smin(d, ellipsoid(p, {0.0f, -6.0f, 0.8f}, {6.4f, 4.4f, 5.8f}), 2.5f);        // jaw angle, cheeks
     d = smin(d, ellipsoid(p, {0.0f, 1.6f, 7.4f}, {5.6f, 1.5f, 2.2f}), 1.2f);         // brow ridge
     d = smax(d, -ellipsoid(p, {-3.0f, 0.0f, 9.3f}, {1.5f, 1.1f, 1.2f}), 0.8f);       // eye sockets
     d = smax(d, -ellipsoid(p, {3.0f, 0.0f, 9.3f}, {1.5f, 1.1f, 1.2f}), 0.8f);
@@ -69,12 +69,12 @@ float head_distance(const float3& p, bool ears)
     d = smin(d, ellipsoid(p, {0.0f, -4.4f, 9.9f}, {1.7f, 0.9f, 1.1f}), 0.6f);        // nostrils
     d = smin(d, ellipsoid(p, {0.0f, -6.6f, 8.6f}, {2.3f, 0.75f, 1.1f}), 0.5f);       // upper lip
     d = smin(d, ellipsoid(p, {0.0f, -7.7f, 8.3f}, {2.0f, 0.7f, 1.0f}), 0.5f);        // lower lip
-    d = smin(d, ellipsoid(p, {0.0f, -10.2f, 7.0f}, {2.6f, 1.8f, 1.9f}), 1.2f);       // chin
+    d = smin(d, ellipsoid(p, {0.0f, -9.9f, 6.6f}, {2.4f, 1.6f, 1.8f}), 1.8f);       // chin
     if (ears) {
         d = smin(d, ellipsoid(p, {-7.4f, -1.0f, -0.9f}, {1.1f, 3.1f, 1.9f}), 0.7f);
         d = smin(d, ellipsoid(p, {7.4f, -1.0f, -0.9f}, {1.1f, 3.1f, 1.9f}), 0.7f);
     }
-    d = smin(d, rounded_cylinder(p, 0.0f, -1.6f, -22.0f, -4.0f, 5.3f, 0.8f), 3.0f);  // neck
+    d = smin(d, rounded_cylinder(p, 0.0f, -1.8f, -22.0f, -4.0f, 5.4f, 0.8f), 4.0f);  // neck
     return d;
 }
 
@@ -101,7 +101,8 @@ PolygonSoup make_head(const HeadParams& params)
             // surface crossing along the ray, which keeps the mesh closed even where the head is
             // not star-shaped (behind the ears, under the jaw). Then bisect to 1e-5 cm.
             float outside = kMaxRadius, inside = 0.0f;
-            for (float r = kMaxRadius; r > 0.0f; r -= 0.05f) {
+            // Steps of 1 mm: finer than any feature (the ears are ~2 cm thick).
+            for (float r = kMaxRadius; r > 0.0f; r -= 0.1f) {
                 if (head_distance(kCenter + dir * r, params.ears) < 0.0f) {
                     inside = r;
                     break;

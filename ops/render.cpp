@@ -737,7 +737,7 @@ RgbImage render_sheet(const RenderScene& scene, std::span<const View> views, con
         height = std::max(height, cams.back().ortho_height);
     }
     RgbImage sheet(params.width * int(views.size()), params.height);
-    const int scale = std::max(1, params.height / 220);
+    const int scale = std::max(2, params.height / 200);
     for (size_t i = 0; i < views.size(); ++i) {
         cams[i].ortho_height = height;
         RgbImage one = render(scene, cams[i], params, progress);

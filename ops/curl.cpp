@@ -395,14 +395,33 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
             }
             out.resize(size_t(n));
             s_of.resize(size_t(n));
-            if (s_end < centre_len) {
-                const double ds2 = s_end / double(n - 1);
+            auto curl_prefix = [&](double end) {
+                const double ds2 = end / double(n - 1);
                 for (int64_t j = 0; j < n; ++j) {
                     const double s = double(j) * ds2;
                     float3 cpos, nn, bb;
                     centre_at(centre, frames, ds, s, cpos, nn, bb);
                     out[size_t(j)] = curled(cpos, nn, bb, s);
                     s_of[size_t(j)] = s;
+                }
+            };
+            if (s_end < centre_len) {
+                curl_prefix(s_end);
+                // Pass 2 samples each cycle more densely than pass 1 did (by the curl index), so its
+                // polyline measures longer; for tight curls correct the cut on pass 2's own polyline
+                // (at most twice) until the length is within 0.2%.
+                for (int iter = 0; iter < 2; ++iter) {
+                    double len = 0.0, cut = -1.0;
+                    for (int64_t j = 1; j < n; ++j) {
+                        const double seg = distance(out[size_t(j - 1)], out[size_t(j)]);
+                        if (cut < 0.0 && len + seg >= in_len) {
+                            cut = s_of[size_t(j - 1)] + (seg > 0.0 ? (in_len - len) / seg : 0.0) * (s_of[size_t(j)] - s_of[size_t(j - 1)]);
+                        }
+                        len += seg;
+                    }
+                    if (std::fabs(len - in_len) <= 2e-3 * in_len) break;
+                    s_end = cut >= 0.0 ? cut : std::min(centre_len, s_end * in_len / std::max(len, 1e-30));
+                    curl_prefix(s_end);
                 }
             }
             else {

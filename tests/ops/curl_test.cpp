@@ -322,6 +322,28 @@ TEST(Curl, RootEasesInAndTheHairKeepsItsLength)
     EXPECT_GT(polyline_length(whole.positions().subspan(size_t(r.begin), size_t(r.size()))), 25.0f * 1.05f);
 }
 
+// Length is kept for every type, including tight coils whose curled hair covers a quarter of its
+// guide, and with shapes of sharp curvature (the star-like Lame curve, the rose).
+TEST(Curl, KeepsTheHairLengthForEveryHairType)
+{
+    CurveSet guides = straight_guides(10, 30.0f, 6);
+    auto P = guides.positions();
+    for (size_t i = 0; i < P.size(); ++i) P[i].z += 0.5f * std::sin(0.2f * P[i].y);  // gently bent
+    for (const HairTypePreset& preset : hair_type_presets()) {
+        CurlParams p;
+        p.hair_type = preset.name;
+        p.uniformity = 0.2f;
+        p.shape.lame_exponent = 0.7f;
+        const CurveSet out = curl(guides, p);
+        for (size_t c = 0; c < out.num_curves(); ++c) {
+            const IndexRange a = guides.points_of(c), b = out.points_of(c);
+            const float want = polyline_length(P.subspan(size_t(a.begin), size_t(a.size())));
+            const float got = polyline_length(out.positions().subspan(size_t(b.begin), size_t(b.size())));
+            EXPECT_NEAR(got, want, 0.005f * want) << preset.name << " curve " << c;
+        }
+    }
+}
+
 // Frames are rotation-minimising: on a strongly bent guide, circle curls stay at exactly the
 // amplitude from the centreline (no frame collapse) and the cross-section never flips.
 TEST(Curl, CirclesStayAtTheAmplitudeOnABentGuide)

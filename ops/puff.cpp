@@ -3,11 +3,15 @@
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
+#include "kernel/rng.h"
+#include "ops/hair_types.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 namespace groom {
 
@@ -121,6 +125,74 @@ void PuffParams::validate() const
     }
     if (!(bend > 0.0f && bend <= 1.0f)) throw InvalidParam("puff: --bend must be in (0, 1] (got " + str(bend) + ")");
     if (first_id < 0) throw InvalidParam("puff: --first-id must be >= 0 (got " + std::to_string(first_id) + ")");
+    if (hairs < 0) throw InvalidParam("puff: --hairs must be >= 0 (got " + std::to_string(hairs) + ")");
+    if (hair_points < 4) throw InvalidParam("puff: --hair-points must be >= 4 (got " + std::to_string(hair_points) + ")");
+    if (neighbours < 1) throw InvalidParam("puff: --neighbours must be >= 1 (got " + std::to_string(neighbours) + ")");
+    if (!(power > 0.0f) || !std::isfinite(power)) {
+        throw InvalidParam("puff: --power must be a finite number > 0 (got " + str(power) + ")");
+    }
+    if (hairs > 0) curl.validate();
+}
+
+float curl_reach(const CurlParams& params)
+{
+    float amplitude = params.amplitude.hi;
+    if (params.amplitude.lo == 0.0f && params.amplitude.hi == 0.0f) {
+        const HairTypePreset* type = find_hair_type(params.hair_type);
+        amplitude = type ? type->radius_cm * params.units_per_cm * 1.2f : 0.0f;
+    }
+    const float n = params.shape.lame_exponent;
+    const float shape = n > 2.0f ? std::pow(2.0f, 0.5f - 1.0f / n) : 1.0f;  // a squircle's corner
+    return amplitude * shape + std::max(0.0f, params.offset.hi);
+}
+
+CurveSet join_curves(const CurveSet& a, const CurveSet& b)
+{
+    std::vector<int64_t> counts;
+    counts.reserve(a.num_curves() + b.num_curves());
+    for (size_t c = 0; c < a.num_curves(); ++c) counts.push_back(a.points_in(c));
+    for (size_t c = 0; c < b.num_curves(); ++c) counts.push_back(b.points_in(c));
+    CurveSet dst = CurveSet::from_counts(counts);
+    for (Domain d : {Domain::Point, Domain::Curve}) {
+        const size_t na = d == Domain::Point ? a.num_points() : a.num_curves();
+        // Every column of either side, in a's order then b's new ones.
+        std::vector<std::string> names;
+        for (const Attribute& col : a.attributes(d).all()) names.push_back(col.name);
+        for (const Attribute& col : b.attributes(d).all())
+            if (!a.attributes(d).find(col.name)) names.push_back(col.name);
+        for (const std::string& name : names) {
+            const Attribute* ca = a.attributes(d).find(name);
+            const Attribute* cb = b.attributes(d).find(name);
+            if (ca && cb && ca->type() != cb->type()) {
+                throw InvalidGeometry(std::string("join: ") + domain_name(d) + " attribute '" + name + "' is " +
+                                      type_name(ca->type()) + " in the guides but " + type_name(cb->type()) + " in the hairs");
+            }
+            const AttrType type = (ca ? ca : cb)->type();
+            Attribute& out = dst.attributes(d).add(name, d, type, dst.domain_size(d));
+            std::visit(
+                [&](auto& values) {
+                    using T = typename std::decay_t<decltype(values)>::value_type;
+                    T fill{};
+                    if constexpr (std::is_integral_v<T>) fill = T(-1);
+                    std::fill(values.begin(), values.end(), fill);
+                    if (ca) {
+                        const auto& src = std::get<std::vector<T>>(ca->data);
+                        std::copy(src.begin(), src.end(), values.begin());
+                    }
+                    if (cb) {
+                        const auto& src = std::get<std::vector<T>>(cb->data);
+                        std::copy(src.begin(), src.end(), values.begin() + na);
+                    }
+                },
+                out.data);
+        }
+    }
+    for (const CurveSet* s : {&a, &b}) {
+        for (const Attribute& col : s->attributes(Domain::Detail).all()) {
+            if (!dst.attributes(Domain::Detail).find(col.name)) dst.attributes(Domain::Detail).all().push_back(col);
+        }
+    }
+    return dst;
 }
 
 CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* progress)
@@ -222,6 +294,58 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
                               "--bend, or move --sphere-center over the region");
     }
     return dst;
+}
+
+PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParams& params, Progress* progress)
+{
+    params.validate();
+    PuffResult result;
+    result.guides = puff_guides(scalp, params, progress);
+    if (params.hairs == 0) return result;
+
+    // Centrelines: roots area-uniform in the region, shapes blended from the nearest guides.
+    GenerateParams gen;
+    gen.count = params.hairs;
+    gen.neighbours = params.neighbours;
+    gen.power = params.power;
+    gen.points = params.hair_points;
+    gen.region_center = scalp.closest_point(params.center);
+    gen.region_radius = params.radius;
+    gen.seed = mix64(params.curl.seed ^ 0x70756666ull);  // roots and curls draw from different streams
+    gen.first_id = params.first_id + int64_t(result.guides.num_curves());
+    CurveSet centres = generate(result.guides, scalp, sample, gen, progress);
+
+    // Tips onto the sphere, by a warp that vanishes with its derivative at the root.
+    auto P = centres.positions();
+    const float3 C = params.sphere_center;
+    const float R = params.sphere_radius;
+    parallel_for(int64_t(centres.num_curves()), 256, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = centres.points_of(c);
+            const auto pts = P.subspan(r.begin, r.size());
+            const auto cum = cumulative_lengths(pts);
+            const float3 tip = pts.back();
+            const float3 shift = C + normalize(tip - C, normalize(tip - pts.front())) * R - tip;
+            for (size_t i = 1; i < pts.size(); ++i) {
+                const float s = cum.back() > 0.0 ? float(cum[i] / cum.back()) : 1.0f;
+                pts[i] += shift * (s * s);
+            }
+            pts.back() = C + normalize(tip - C, normalize(tip - pts.front())) * R;  // exact, not up to rounding
+        }
+    });
+    push_out_of_scalp(centres, scalp);
+
+    CurlParams curl_params = params.curl;
+    curl_params.preserve_length = false;
+    result.hairs = curl(centres, curl_params, &scalp, progress);
+    // The curl op lifts points that touch the scalp by a hair's breadth, roots included; the roots
+    // were sampled on the scalp, so they go back exactly there.
+    auto H = result.hairs.positions();
+    for (size_t c = 0; c < result.hairs.num_curves(); ++c) {
+        if (result.hairs.points_in(c) > 0) H[result.hairs.points_of(c).begin] = P[centres.points_of(c).begin];
+    }
+    for (int32_t& k : result.hairs.add<int32_t>(Domain::Curve, "kind")) k = 1;
+    return result;
 }
 
 double min_curve_separation(const CurveSet& curves)

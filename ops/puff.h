@@ -7,6 +7,8 @@
 #include "fields/surface.h"
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
+#include "ops/curl.h"
+#include "ops/generate.h"
 
 #include <cstdint>
 
@@ -31,7 +33,19 @@ struct PuffParams {
     /// Length of each guide's end tangents (root: scalp normal, tip: sphere normal) as a fraction of
     /// its root-to-tip distance; larger bends the guides later (--bend; (0, 1]).
     float bend = 0.4f;
-    int64_t first_id = 0;   ///< guide ids are first_id .. first_id + rows*cols - 1 (--first-id), >= 0
+    int64_t first_id = 0;   ///< guide ids are first_id .. first_id + rows*cols - 1 (--first-id), >= 0;
+                            ///< hair ids follow on from the last guide id
+
+    // --- Hairs (Sec. 3.2: "curls randomly rooted within the radius on the scalp that follow the
+    // directionality of the sphere curves").
+    int64_t hairs = 0;       ///< curls to grow, >= 0 (--hairs); 0 = guides only
+    int hair_points = 24;    ///< points per hair centreline before curling, >= 4 (--hair-points)
+    int neighbours = 4;      ///< guides blended per hair (--neighbours), >= 1
+    float power = 2.0f;      ///< inverse-distance exponent of that blend (--power), > 0
+    /// Every `groom curl` option; curl.seed also seeds the hair roots. Puff always curls the whole
+    /// centreline (preserve_length is ignored: a length-preserving curl would stop short of the
+    /// sphere and break the silhouette).
+    CurlParams curl;
 
     /// Throws InvalidParam naming the option, the value and the valid range.
     void validate() const;
@@ -51,6 +65,36 @@ struct PuffParams {
 /// Throws InvalidParam (params; a tip that would lie inside the scalp), InvalidGeometry (the region
 /// has no scalp within `radius` of c0 along the grid, or guides would cross).
 CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* progress = nullptr);
+
+/// What puff() makes: the guides (kind 0) and the curled hairs (kind 1).
+struct PuffResult {
+    CurveSet guides;
+    CurveSet hairs;
+};
+
+/// @brief A whole afro puff (Sec. 3.2): puff_guides(), then params.hairs curls.
+///
+/// Hair roots are drawn area-uniformly from the scalp within `radius` of c0 (by `sample`, seeded
+/// from curl.seed); each hair's centreline is interpolated from its nearest guides by
+/// generate_at_roots() (so it follows them), its tip is then moved onto the sphere along the
+/// direction from the sphere centre (a smooth warp, p += (tip' - tip) s^2 for arc-length fraction
+/// s, which keeps the root and the root direction), and it is curled by curl() with the scalp.
+/// A curl moves points at most curl_reach(curl) off the centreline, so every hair tip lies within
+/// that distance of the sphere.
+/// Hairs: point P (+ the curl op's point `shape`, `cycle`), curve `id` (after the guides' ids),
+/// `kind` = 1, `guide` = nearest guide; detail `hair_type`. No hair point lies inside the scalp.
+/// Throws as puff_guides(), generate() and curl() do.
+PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParams& params, Progress* progress = nullptr);
+
+/// The farthest a curl with `params` moves a point from its centreline, scene units: the largest
+/// amplitude (the hair type's radius x units_per_cm x 1.2 when unset) times the largest radius of a
+/// unit cross-section (2^(1/2 - 1/n) for a Lame curve with exponent n > 2, else 1), plus the largest offset.
+float curl_reach(const CurlParams& params);
+
+/// One set holding the curves of `a` then those of `b`. Columns only one side has are filled with
+/// -1 (integers) or 0 (floats, float3) on the other; a detail string keeps a's value when both have
+/// it. Throws InvalidGeometry when a column has different types in a and b.
+CurveSet join_curves(const CurveSet& a, const CurveSet& b);
 
 /// Smallest distance between two different curves of `curves` (segment to segment), scene units;
 /// +infinity with fewer than two curves. O(points^2): for checks and tests, not big grooms.

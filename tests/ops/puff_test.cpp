@@ -2,6 +2,8 @@
 
 #include "kernel/error.h"
 #include "kernel/parallel.h"
+#include "ops/hair_types.h"
+#include "ops/sphere_cap_sampler.h"
 
 #include <gtest/gtest.h>
 
@@ -265,4 +267,201 @@ TEST(Puff, RejectsInvalidParams)
     p = top_puff();
     p.first_id = -1;
     EXPECT_NE(message(p).find("--first-id"), std::string::npos) << message(p);
+}
+
+namespace {
+
+PuffParams hairy(PuffParams p, int64_t hairs)
+{
+    p.hairs = hairs;
+    p.curl.amplitude = {0.15f, 0.3f};
+    p.curl.frequency = {1.0f, 1.5f};
+    p.curl.offset = {0.0f, 0.05f};
+    p.curl.seed = 3;
+    return p;
+}
+
+}  // namespace
+
+TEST(Puff, CurlReachClosedForm)
+{
+    CurlParams c;
+    c.amplitude = {0.1f, 0.3f};
+    c.offset = {0.0f, 0.05f};
+    c.shape.lame_exponent = 2.5f;
+    EXPECT_NEAR(curl_reach(c), 0.3f * std::pow(2.0f, 0.1f) + 0.05f, 1e-6f);
+    c.shape.lame_exponent = 1.5f;
+    EXPECT_NEAR(curl_reach(c), 0.35f, 1e-6f);
+    // Unset amplitude: the hair type's radius, +20%.
+    c.amplitude = {0, 0};
+    c.units_per_cm = 2.0f;
+    c.offset = {};
+    const HairTypePreset* t = find_hair_type(c.hair_type);
+    ASSERT_NE(t, nullptr);
+    EXPECT_NEAR(curl_reach(c), t->radius_cm * 2.0f * 1.2f, 1e-6f);
+}
+
+TEST(Puff, JoinCurvesFillsMissingColumns)
+{
+    CurveSet a = CurveSet::from_counts(std::vector<int64_t>{2, 3});
+    CurveSet b = CurveSet::from_counts(std::vector<int64_t>{4});
+    a.add<int32_t>(Domain::Curve, "kind")[1] = 7;
+    b.add<int32_t>(Domain::Curve, "kind")[0] = 1;
+    b.add<int32_t>(Domain::Point, "shape")[3] = 4;
+    a.add<float>(Domain::Point, "width")[0] = 0.5f;
+    b.positions()[2] = float3(1, 2, 3);
+    b.set_detail_string("hair_type", "4a");
+    const CurveSet j = join_curves(a, b);
+    ASSERT_EQ(j.num_curves(), 3u);
+    ASSERT_EQ(j.num_points(), 9u);
+    EXPECT_EQ(j.positions()[7], float3(1, 2, 3));
+    const auto kind = j.find<int32_t>(Domain::Curve, "kind");
+    EXPECT_EQ(kind[0], 0);
+    EXPECT_EQ(kind[1], 7);
+    EXPECT_EQ(kind[2], 1);
+    const auto shape = j.find<int32_t>(Domain::Point, "shape");
+    EXPECT_EQ(shape[0], -1);
+    EXPECT_EQ(shape[8], 4);
+    EXPECT_EQ(j.find<float>(Domain::Point, "width")[0], 0.5f);
+    EXPECT_EQ(j.find<float>(Domain::Point, "width")[8], 0.0f);
+    EXPECT_EQ(j.detail_string("hair_type"), "4a");
+    EXPECT_NO_THROW(j.validate());
+    b.add<float>(Domain::Curve, "clump");
+    a.add<int32_t>(Domain::Curve, "clump");
+    EXPECT_THROW(join_curves(a, b), InvalidGeometry);
+}
+
+class PuffHairs : public ::testing::TestWithParam<int> {
+protected:
+    PuffParams params(int64_t hairs) const { return hairy(GetParam() == 0 ? top_puff() : side_puff(), hairs); }
+};
+
+TEST_P(PuffHairs, RootsAreaUniformInsideTheRegionAndOnTheScalp)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    PuffParams p = params(8000);
+    p.curl.frequency = {0.3f, 0.4f};  // few cycles: this test is about the roots
+    const PuffResult r = puff(head, test::sphere_cap_sampler(kHeadC, kHeadR), p);
+    ASSERT_EQ(r.hairs.num_curves(), 8000u);
+    const float3 c0 = normalize(p.center) * kHeadR;
+    const float3 axis = normalize(c0);
+    const float3 e1 = any_perpendicular(axis), e2 = cross(axis, e1);
+    // The region ball cuts the cap cos(theta) >= 1 - r^2 / (2 R^2) around c0.
+    const double cos_max = 1.0 - double(p.radius * p.radius) / (2.0 * kHeadR * kHeadR);
+    std::vector<int> band(10, 0), sector(8, 0);
+    for (size_t c = 0; c < r.hairs.num_curves(); ++c) {
+        const float3 root = curve(r.hairs, c)[0];
+        ASSERT_LT(std::fabs(head.distance(root)), 1e-5f * kHeadR);
+        ASSERT_LE(distance(root, c0), p.radius * (1 + 1e-6f));
+        const float3 d = normalize(root);
+        band[std::min(9, int((1.0 - dot(d, axis)) / (1.0 - cos_max) * 10.0))]++;
+        const double phi = std::atan2(double(dot(d, e2)), double(dot(d, e1))) + 3.141592653589793;
+        sector[std::min(7, int(phi / 6.283185307179586 * 8.0))]++;
+    }
+    double bands = 0, sectors = 0;
+    for (int b : band) bands += (b - 800.0) * (b - 800.0) / 800.0;
+    for (int s : sector) sectors += (s - 1000.0) * (s - 1000.0) / 1000.0;
+    EXPECT_LT(bands, 27.88);   // chi-square, 9 degrees of freedom, p = 0.001
+    EXPECT_LT(sectors, 24.32); // 7 degrees of freedom
+}
+
+TEST_P(PuffHairs, SilhouetteNothingInsideAndDirectionsFollowGuides)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    const PuffParams p = params(1500);
+    const PuffResult r = puff(head, test::sphere_cap_sampler(kHeadC, kHeadR), p);
+    const float reach = curl_reach(p.curl);
+    const auto near = r.hairs.find<int32_t>(Domain::Curve, "guide");
+    ASSERT_EQ(near.size(), r.hairs.num_curves());
+
+    // The widest angular gap between neighbouring guide tips.
+    const size_t ng = r.guides.num_curves();
+    std::vector<float3> gdir(ng);
+    for (size_t g = 0; g < ng; ++g) gdir[g] = normalize(curve(r.guides, g).back() - p.sphere_center);
+    float spacing = 0;
+    for (size_t g = 0; g < ng; ++g) {
+        float nearest = INFINITY;
+        for (size_t h = 0; h < ng; ++h)
+            if (h != g) nearest = std::min(nearest, std::acos(std::clamp(dot(gdir[g], gdir[h]), -1.0f, 1.0f)));
+        spacing = std::max(spacing, nearest);
+    }
+
+    float worst_tip = 0;
+    for (size_t c = 0; c < r.hairs.num_curves(); ++c) {
+        const auto pts = curve(r.hairs, c);
+        for (const float3& q : pts) ASSERT_GE(head.distance(q), -1e-5f * kHeadR) << "hair " << c;
+        const float off = std::fabs(distance(pts.back(), p.sphere_center) - p.sphere_radius);
+        worst_tip = std::max(worst_tip, off);
+        // The nearest guide really is the nearest (by root), and the hair points where it points.
+        const float3 root = pts[0];
+        for (size_t g = 0; g < ng; ++g) ASSERT_LE(distance(root, curve(r.guides, near[c])[0]), distance(root, curve(r.guides, g)[0]));
+        const float3 tipdir = normalize(pts.back() - p.sphere_center);
+        EXPECT_LT(std::acos(std::clamp(dot(tipdir, gdir[near[c]]), -1.0f, 1.0f)), 2.0f * spacing) << "hair " << c;
+        const auto gp = curve(r.guides, near[c]);
+        EXPECT_GT(dot(normalize(pts.back() - pts[0]), normalize(gp.back() - gp[0])), 0.85f) << "hair " << c;
+    }
+    EXPECT_LE(worst_tip, reach + 1e-4f * p.sphere_radius);
+    EXPECT_GT(worst_tip, 0.0f);  // the curls do move the tips: the bound is not trivially met
+}
+
+TEST_P(PuffHairs, AttributesAndIds)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    PuffParams p = params(200);
+    p.first_id = 10;
+    const PuffResult r = puff(head, test::sphere_cap_sampler(kHeadC, kHeadR), p);
+    const CurveSet all = join_curves(r.guides, r.hairs);
+    const size_t ng = r.guides.num_curves();
+    ASSERT_EQ(all.num_curves(), ng + 200);
+    const auto id = all.find<int64_t>(Domain::Curve, attr::id);
+    const auto kind = all.find<int32_t>(Domain::Curve, "kind");
+    ASSERT_EQ(id.size(), all.num_curves());
+    ASSERT_EQ(kind.size(), all.num_curves());
+    for (size_t c = 0; c < all.num_curves(); ++c) {
+        EXPECT_EQ(id[c], 10 + int64_t(c));
+        EXPECT_EQ(kind[c], c < ng ? 0 : 1);
+    }
+    EXPECT_FALSE(all.find<int32_t>(Domain::Point, "shape").empty());
+    EXPECT_NO_THROW(all.validate());
+}
+
+TEST_P(PuffHairs, DeterministicAcrossThreadCounts)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    const PuffParams p = params(1000);
+    auto run = [&](int threads) {
+        ThreadLimit limit(threads);
+        return puff(head, test::sphere_cap_sampler(kHeadC, kHeadR), p).hairs;
+    };
+    const CurveSet a = run(1), b = run(2);
+    ASSERT_EQ(a.num_points(), b.num_points());
+    EXPECT_EQ(std::memcmp(a.positions().data(), b.positions().data(), a.positions().size_bytes()), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(TopAndSide, PuffHairs, ::testing::Values(0, 1));
+
+TEST(Puff, RejectsInvalidHairParams)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    PuffParams p = hairy(top_puff(), -1);
+    EXPECT_THROW(p.validate(), InvalidParam);
+    p = hairy(top_puff(), 10);
+    p.hair_points = 3;
+    EXPECT_THROW(p.validate(), InvalidParam);
+    p = hairy(top_puff(), 10);
+    p.neighbours = 0;
+    EXPECT_THROW(p.validate(), InvalidParam);
+    p = hairy(top_puff(), 10);
+    p.power = 0;
+    EXPECT_THROW(p.validate(), InvalidParam);
+    // Curl options are checked as `groom curl` checks them.
+    p = hairy(top_puff(), 10);
+    p.curl.uniformity = 2.0f;
+    try {
+        puff(head, test::sphere_cap_sampler(kHeadC, kHeadR), p);
+        FAIL() << "expected InvalidParam";
+    }
+    catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("--uniformity"), std::string::npos) << e.what();
+    }
 }

@@ -355,6 +355,9 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
     if (params.orient == BraidOrient::Scalp && !scalp) {
         throw InvalidParam("braid: --orient scalp needs a scalp (give --scalp SCALP)");
     }
+    if (!scalp && (params.rest || params.clearance > 0.0f)) {
+        throw InvalidParam(std::string("braid: ") + (params.rest ? "--rest" : "--clearance") + " needs a scalp (give --scalp SCALP)");
+    }
     const KnotRemap remap(params);
     const auto GP = guides.positions();
     const size_t ng = guides.num_curves();

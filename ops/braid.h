@@ -154,7 +154,7 @@ struct BraidResult {
 /// @param scalp   required for orient = Scalp; with it no output point ends inside the scalp (whole
 ///                cross-sections are lifted along the scalp normal by what is needed plus clearance,
 ///                and any point still closer than clearance is pushed out alone).
-/// @throws InvalidParam (bad params, Scalp orientation without a scalp), LimitExceeded (output over
+/// @throws InvalidParam (bad params; Scalp orientation, clearance > 0 or rest without a scalp), LimitExceeded (output over
 ///         kMaxBraidPoints points, or ids that would overflow).
 BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surface* scalp = nullptr,
                   Progress* progress = nullptr);

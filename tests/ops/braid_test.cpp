@@ -547,6 +547,12 @@ TEST(Braid, RejectsInvalidOptions)
     p.orient = BraidOrient::Scalp;
     rejects(p, "braid: --orient scalp needs a scalp");
     p = {};
+    p.clearance = 0.1f;
+    rejects(p, "braid: --clearance needs a scalp");
+    p = {};
+    p.rest = true;
+    rejects(p, "braid: --rest needs a scalp");
+    p = {};
     p.frequency = 1e9f;
     EXPECT_THROW(braid(guides, p), LimitExceeded);
 }

@@ -25,7 +25,7 @@ int parse_shape(const std::string& option, const std::string& text)
 
 }  // namespace
 
-void add_curl_options(CLI::App* app, CurlOptions& o)
+void add_curl_options(CLI::App* app, CurlOptions& o, bool with_seed)
 {
     const CurlParams d;
     app->add_option("--type", o.type, "Hair type " + hair_type_list() + ": sets the frequency:amplitude ratio, default radius and shapes (default " + d.hair_type + ")");
@@ -46,7 +46,7 @@ void add_curl_options(CLI::App* app, CurlOptions& o)
     app->add_option("--polygon-sides", o.params.shape.polygon_sides, "Polygon sides, 3..64")->capture_default_str();
     app->add_option("--ellipse-aspect", o.params.shape.ellipse_aspect, "Ellipse minor/major axis, (0, 1]")->capture_default_str();
     app->add_option("--rose-petals", o.params.shape.rose_petals, "Polar rose k in r = cos(k theta), 1..32")->capture_default_str();
-    app->add_option("--seed", o.params.seed, "Random seed")->capture_default_str();
+    if (with_seed) app->add_option("--seed", o.params.seed, "Random seed")->capture_default_str();
 }
 
 CurlParams curl_params_from(const CurlOptions& o)

@@ -20,8 +20,9 @@ struct CurlOptions {
 
 /// Adds --type --dominant --uniformity --shapes --amplitude --frequency --phase --offset
 /// --units-per-cm --root-ease --root-ramp --samples --blend --keep-extent --lame-exponent
-/// --polygon-sides --ellipse-aspect --rose-petals --seed to `app`, writing into `o`.
-void add_curl_options(CLI::App* app, CurlOptions& o);
+/// --polygon-sides --ellipse-aspect --rose-petals and (with_seed) --seed to `app`, writing into `o`.
+/// A command with a --seed of its own passes with_seed = false and sets o.params.seed itself.
+void add_curl_options(CLI::App* app, CurlOptions& o, bool with_seed = true);
 
 /// The validated CurlParams the options describe. Throws InvalidParam naming the option.
 CurlParams curl_params_from(const CurlOptions& o);

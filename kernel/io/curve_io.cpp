@@ -62,4 +62,49 @@ void write_curves(const CurveSet& curves, const std::string& path, const CurveWr
     out.commit();
 }
 
+std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path)
+{
+    const std::string fmt = path == "-" ? "usda" : io::extension_of(path);
+    std::vector<std::string> lost;
+    for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
+        for (const Attribute& a : curves.attributes(d).all()) {
+            if (d == Domain::Point && a.name == attr::P) continue;
+            bool kept = fmt == "usda" || fmt == "ply";
+            if (fmt == "hair") {
+                kept = d == Domain::Point && ((a.type() == AttrType::Float && (a.name == attr::width || a.name == "opacity")) ||
+                                              (a.type() == AttrType::Float3 && a.name == "Cd"));
+            }
+            if (!kept) lost.push_back(std::string(domain_name(d)) + " " + a.name);
+        }
+    }
+    return lost;
+}
+
+bool holds_curves(const std::string& path)
+{
+    const std::string ext = io::extension_of(path);
+    if (ext == "usda" || ext == "hair" || path == "-") return true;
+    if (ext == "off" || ext == "stl") return false;
+    const io::FileBytes file = io::read_all(path);
+    const std::string_view d = file.data;
+    if (ext == "ply") {
+        const size_t end = d.find("end_header");
+        const std::string_view header = d.substr(0, end);
+        const bool face = header.find("\nelement face ") != std::string_view::npos;
+        const bool edge = header.find("\nelement edge ") != std::string_view::npos || header.find("\nelement curve ") != std::string_view::npos;
+        return edge && !face;
+    }
+    bool lines = false, faces = false;
+    for (size_t pos = 0; pos < d.size();) {
+        const size_t start = d.find_first_not_of(" \t", pos);
+        if (start == std::string_view::npos) break;
+        if (d.compare(start, 2, "l ") == 0 || d.compare(start, 2, "l\t") == 0) lines = true;
+        if (d.compare(start, 2, "f ") == 0 || d.compare(start, 2, "f\t") == 0) faces = true;
+        if (faces) break;
+        const size_t nl = d.find('\n', start);
+        pos = nl == std::string_view::npos ? d.size() : nl + 1;
+    }
+    return lines && !faces;
+}
+
 }  // namespace groom

@@ -9,6 +9,7 @@
 #include "kernel/curve_set.h"
 
 #include <string>
+#include <vector>
 
 namespace groom {
 
@@ -32,5 +33,16 @@ struct CurveWriteOptions {
 
 /// Writes `curves` atomically to `path` (format by extension). Throws IoError / InvalidParam.
 void write_curves(const CurveSet& curves, const std::string& path, const CurveWriteOptions& options = {});
+
+/// The columns of `curves` that the format of `path` cannot hold ("domain name" each, e.g.
+/// "curve id"): .obj keeps only P; .hair keeps P and point width, opacity, Cd; .usda and .ply
+/// keep everything (.ply stores int64 as double, exact up to 2^53, and refuses more).
+std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path);
+
+/// Whether a file that could be either (.obj, .ply) holds curves rather than a mesh, by content:
+/// an OBJ with `l` records and no `f` is curves; a PLY with an `edge` or `curve` element and no
+/// `face` is curves. .usda and .hair are always curves, .off and .stl always meshes.
+/// Throws IoError when the file cannot be read.
+bool holds_curves(const std::string& path);
 
 }  // namespace groom

@@ -913,7 +913,6 @@ void append_array(std::string& out, std::span<const T> values, std::span<const i
     out += "[";
     size_t next_break = 1;
     for (size_t i = 0; i < values.size(); ++i) {
-        if (i > 0) out += ", ";
         bool brk = false;
         if (!breaks.empty()) {
             while (next_break < breaks.size() && breaks[next_break] <= static_cast<int64_t>(i)) {
@@ -924,6 +923,7 @@ void append_array(std::string& out, std::span<const T> values, std::span<const i
         else {
             brk = i > 0 && i % 16 == 0;
         }
+        if (i > 0) out += brk ? "," : ", ";
         if (brk) {
             out += '\n';
             out += indent;

@@ -1,0 +1,43 @@
+// `groom convert IN -o OUT`: between the curve formats (.usda .obj .ply .hair), saying which
+// attributes the target format cannot hold.
+#include "cli/command.h"
+#include "kernel/io/curve_io.h"
+
+namespace groom::cli {
+namespace {
+
+struct Args {
+    std::string input, output;
+    bool ascii = false;
+    int samples = 8;
+};
+
+void setup(CommandContext& ctx)
+{
+    auto args = std::make_shared<Args>();
+    CLI::App* app = ctx.app;
+    app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = .usda on stdin)")->required();
+    app->add_option("-o,--output", args->output, "Output curves (.usda .obj .ply .hair, - = .usda on stdout)")->required();
+    app->add_flag("--ascii", args->ascii, "Write .ply as ASCII (default binary little-endian)");
+    app->add_option("--samples-per-segment", args->samples, "Points per segment when reading cubic .usda curves (>= 1)");
+    const CommonOptions& common = *ctx.common;
+    ctx.run = [args, &common] {
+        check_output(args->output, {args->input}, common);
+        if (args->samples < 1) throw InvalidParam("convert: --samples-per-segment must be >= 1 (got " + std::to_string(args->samples) + ")");
+        CurveReadOptions ro;
+        ro.cubic_samples_per_segment = args->samples;
+        const CurveSet cs = read_curves(args->input, ro);
+        CurveWriteOptions wo;
+        wo.ply_encoding = args->ascii ? PlyEncoding::Ascii : PlyEncoding::Binary;
+        write_curves(cs, args->output, wo);
+        std::string lost;
+        for (const std::string& a : attributes_dropped(cs, args->output)) lost += (lost.empty() ? "" : ", ") + a;
+        if (!lost.empty()) note(common, "convert: the output format cannot hold these attributes, dropped: " + lost);
+        note(common, "convert: " + std::to_string(cs.num_curves()) + " curves, " + std::to_string(cs.num_points()) + " points -> " + args->output);
+    };
+}
+
+const Registrar reg({"convert", "Convert curves between .usda, .obj, .ply and .hair", 20, setup});
+
+}  // namespace
+}  // namespace groom::cli

@@ -1,0 +1,196 @@
+// `groom info FILE [--json]`: what a curve or mesh file holds. Curves: counts, points per curve,
+// lengths, bounds, attributes. Meshes: vertices, faces by kind, shells, boundary and non-manifold
+// edges, duplicate vertices, degenerate faces.
+#include "cli/command.h"
+#include "kernel/error.h"
+#include "kernel/io/curve_io.h"
+#include "kernel/io/mesh_io.h"
+#include "kernel/math/polyline.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace groom::cli {
+namespace {
+
+struct Args {
+    std::string input;
+    bool json = false, mesh = false, curves = false;
+};
+
+std::string num(double v)
+{
+    char buf[32];
+    return std::string(buf, std::to_chars(buf, buf + sizeof buf, static_cast<float>(v)).ptr);
+}
+
+std::string json_string(std::string_view s)
+{
+    std::string out = "\"";
+    for (char c : s) {
+        switch (c) {
+            case '"': out += "\\\""; break;
+            case '\\': out += "\\\\"; break;
+            case '\n': out += "\\n"; break;
+            case '\r': out += "\\r"; break;
+            case '\t': out += "\\t"; break;
+            default:
+                if (static_cast<unsigned char>(c) < 0x20) {
+                    char buf[8];
+                    std::snprintf(buf, sizeof buf, "\\u%04x", c);
+                    out += buf;
+                }
+                else {
+                    out += c;
+                }
+        }
+    }
+    return out + "\"";
+}
+
+/// min, median (mean of the two middle values for an even count), max of `v` (which it sorts).
+struct Summary {
+    double min = 0, median = 0, max = 0;
+};
+Summary summarise(std::vector<double>& v)
+{
+    Summary s;
+    if (v.empty()) return s;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    s.min = v.front();
+    s.max = v.back();
+    s.median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    return s;
+}
+
+std::string triple(const float3& p, const char* open = "(", const char* close = ")")
+{
+    return open + num(p.x) + ", " + num(p.y) + ", " + num(p.z) + close;
+}
+
+void info_curves(const Args& a)
+{
+    const CurveSet cs = read_curves(a.input);
+    std::vector<double> counts(cs.num_curves()), lengths(cs.num_curves());
+    const auto P = cs.positions();
+    for (size_t c = 0; c < cs.num_curves(); ++c) {
+        const IndexRange r = cs.points_of(c);
+        counts[c] = static_cast<double>(r.size());
+        lengths[c] = polyline_length(P.subspan(r.begin, r.size()));
+    }
+    const Summary sc = summarise(counts), sl = summarise(lengths);
+    const Bounds3 b = cs.bounds();
+    std::ostringstream o;
+    if (a.json) {
+        o << "{\n  \"file\": " << json_string(a.input) << ",\n  \"kind\": \"curves\",\n  \"curves\": " << cs.num_curves()
+          << ",\n  \"points\": " << cs.num_points() << ",\n";
+        if (cs.num_curves() > 0) {
+            o << "  \"points_per_curve\": {\"min\": " << sc.min << ", \"median\": " << sc.median << ", \"max\": " << sc.max << "},\n";
+            o << "  \"length\": {\"min\": " << num(sl.min) << ", \"median\": " << num(sl.median) << ", \"max\": " << num(sl.max) << "},\n";
+        }
+        if (!b.empty()) o << "  \"bounds\": {\"min\": " << triple(b.lo, "[", "]") << ", \"max\": " << triple(b.hi, "[", "]") << "},\n";
+        o << "  \"attributes\": [";
+        bool first = true;
+        for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
+            for (const Attribute& at : cs.attributes(d).all()) {
+                o << (first ? "\n" : ",\n") << "    {\"name\": " << json_string(at.name) << ", \"domain\": \"" << domain_name(d) << "\", \"type\": \""
+                  << type_name(at.type()) << "\"";
+                if (d == Domain::Detail && at.type() == AttrType::String) o << ", \"value\": " << json_string(at.values<std::string>()[0]);
+                o << "}";
+                first = false;
+            }
+        }
+        o << (first ? "]\n}\n" : "\n  ]\n}\n");
+    }
+    else {
+        o << a.input << ": curves\n";
+        o << "  curves            " << cs.num_curves() << "\n";
+        o << "  points            " << cs.num_points() << "\n";
+        if (cs.num_curves() > 0) {
+            o << "  points per curve  min " << sc.min << "  median " << sc.median << "  max " << sc.max << "\n";
+            o << "  length            min " << num(sl.min) << "  median " << num(sl.median) << "  max " << num(sl.max) << "\n";
+        }
+        if (!b.empty()) o << "  bounds            " << triple(b.lo) << " to " << triple(b.hi) << "  size " << triple(b.size()) << "\n";
+        o << "  attributes\n";
+        for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
+            for (const Attribute& at : cs.attributes(d).all()) {
+                char line[160];
+                std::snprintf(line, sizeof line, "    %-7s %-20s %s", domain_name(d), at.name.c_str(), type_name(at.type()));
+                o << line;
+                if (d == Domain::Detail) {
+                    std::visit(
+                        [&](const auto& v) {
+                            using T = typename std::decay_t<decltype(v)>::value_type;
+                            if constexpr (std::is_same_v<T, std::string>) o << " = " << json_string(v[0]);
+                            else if constexpr (std::is_same_v<T, float3>) o << " = " << triple(v[0]);
+                            else if constexpr (std::is_same_v<T, float>) o << " = " << num(v[0]);
+                            else o << " = " << v[0];
+                        },
+                        at.data);
+                }
+                o << "\n";
+            }
+        }
+    }
+    std::cout << o.str();
+}
+
+void info_mesh(const Args& a)
+{
+    const PolygonSoup soup = read_mesh(a.input);
+    const MeshStats s = mesh_stats(soup);
+    Bounds3 b;
+    for (const float3& p : soup.points) b.extend(p);
+    std::ostringstream o;
+    if (a.json) {
+        o << "{\n  \"file\": " << json_string(a.input) << ",\n  \"kind\": \"mesh\",\n  \"vertices\": " << s.vertices << ",\n  \"faces\": " << s.faces
+          << ",\n  \"triangles\": " << s.triangles << ",\n  \"quads\": " << s.quads << ",\n  \"ngons\": " << s.ngons << ",\n  \"shells\": " << s.shells
+          << ",\n  \"boundary_edges\": " << s.boundary_edges << ",\n  \"non_manifold_edges\": " << s.non_manifold_edges
+          << ",\n  \"duplicate_vertices\": " << s.duplicate_vertices << ",\n  \"degenerate_faces\": " << s.degenerate_faces;
+        if (!b.empty()) o << ",\n  \"bounds\": {\"min\": " << triple(b.lo, "[", "]") << ", \"max\": " << triple(b.hi, "[", "]") << "}";
+        o << "\n}\n";
+    }
+    else {
+        o << a.input << ": mesh\n";
+        o << "  vertices            " << s.vertices << "\n";
+        o << "  faces               " << s.faces << " (" << s.triangles << " triangles, " << s.quads << " quads, " << s.ngons << " n-gons)\n";
+        o << "  shells              " << s.shells << "\n";
+        o << "  boundary edges      " << s.boundary_edges << "\n";
+        o << "  non-manifold edges  " << s.non_manifold_edges << "\n";
+        o << "  duplicate vertices  " << s.duplicate_vertices << "\n";
+        o << "  degenerate faces    " << s.degenerate_faces << "\n";
+        if (!b.empty()) o << "  bounds              " << triple(b.lo) << " to " << triple(b.hi) << "  size " << triple(b.size()) << "\n";
+        o << "  (edges, shells and duplicates count vertices at identical positions as one)\n";
+    }
+    std::cout << o.str();
+}
+
+void setup(CommandContext& ctx)
+{
+    auto args = std::make_shared<Args>();
+    CLI::App* app = ctx.app;
+    app->add_option("FILE", args->input, "Curves (.usda .obj .ply .hair) or mesh (.obj .ply .off .stl); - = curves on stdin")->required();
+    app->add_flag("--json", args->json, "Print JSON instead of text");
+    auto* m = app->add_flag("--mesh", args->mesh, "Read FILE as a mesh (default: decided by extension and content)");
+    app->add_flag("--curves", args->curves, "Read FILE as curves")->excludes(m);
+    ctx.run = [args] {
+        bool curves = args->curves;
+        if (!args->curves && !args->mesh) {
+            if (args->input != "-" && !is_curve_path(args->input) && !is_mesh_path(args->input)) {
+                throw InvalidParam("info: " + args->input + ": unknown format (expected .usda .obj .ply .hair .off .stl)");
+            }
+            curves = holds_curves(args->input);
+        }
+        if (curves) info_curves(*args);
+        else info_mesh(*args);
+    };
+}
+
+const Registrar reg({"info", "Describe a curve or mesh file (counts, lengths, bounds, attributes, topology)", 10, setup});
+
+}  // namespace
+}  // namespace groom::cli

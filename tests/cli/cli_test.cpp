@@ -1,0 +1,217 @@
+// General behaviour of the `groom` command line, through the real executable: help, version,
+// suggestions for typos, exit codes (0 ok, 1 failure, 2 usage), `-` for stdin/stdout, refusal to
+// overwrite an input, and atomic output. Also `groom info`, `convert` and `resample` end to end.
+#include "test_support.h"
+
+#include "kernel/io/curve_io.h"
+
+#include <cstring>
+#include <filesystem>
+
+using namespace groom;
+using groom::test::read_bytes;
+using groom::test::run_groom;
+using groom::test::TempDir;
+using groom::test::write_text;
+
+namespace {
+
+const char* kTwoCurvesUsda = R"(#usda 1.0
+def BasisCurves "c" {
+    uniform token type = "linear"
+    int[] curveVertexCounts = [2, 3]
+    point3f[] points = [(0, 0, 0), (0, 3, 4), (1, 0, 0), (1, 1, 0), (1, 2, 0)]
+    float[] widths = [0.1, 0.1, 0.2, 0.2, 0.2] (interpolation = "vertex")
+    int64[] primvars:id = [7, 9] (interpolation = "uniform")
+}
+)";
+
+std::vector<std::string> files_in(const TempDir& dir)
+{
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir.path())) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+}  // namespace
+
+TEST(Cli, HelpListsCommandsAndExitsZero)
+{
+    const auto r = run_groom({"--help"});
+    EXPECT_EQ(r.exit_code, 0);
+    for (const char* cmd : {"info", "convert", "resample"}) EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
+    const auto sub = run_groom({"convert", "--help"});
+    EXPECT_EQ(sub.exit_code, 0);
+    EXPECT_NE(sub.out.find("--ascii"), std::string::npos);
+    EXPECT_NE(sub.out.find("--threads"), std::string::npos);
+}
+
+TEST(Cli, VersionPrintsNameAndVersion)
+{
+    const auto r = run_groom({"--version"});
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.out.rfind("groom " GROOM_VERSION, 0), 0u) << r.out;
+}
+
+TEST(Cli, UnknownCommandSuggestsTheNearestAndExitsTwo)
+{
+    const auto r = run_groom({"infoo", "x.usda"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("groom: error: unknown command 'infoo'; did you mean 'info'?"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty());
+}
+
+TEST(Cli, UnknownOptionSuggestsTheNearestAndExitsTwo)
+{
+    TempDir dir;
+    write_text(dir.file("a.usda"), kTwoCurvesUsda);
+    const auto r = run_groom({"convert", dir.file("a.usda"), "-o", dir.file("b.ply"), "--acsii"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("convert: unknown option '--acsii'; did you mean '--ascii'?"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("b.ply")));
+}
+
+TEST(Cli, MissingRequiredArgumentAndBadValueExitTwo)
+{
+    EXPECT_EQ(run_groom({"convert"}).exit_code, 2);
+    TempDir dir;
+    write_text(dir.file("a.usda"), kTwoCurvesUsda);
+    const auto r = run_groom({"resample", dir.file("a.usda"), "-o", dir.file("b.usda"), "--count", "1"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("groom: error: resample: --count must be >= 2 (got 1)"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("b.usda")));
+}
+
+TEST(Cli, UnreadableOrMalformedInputExitsOneNamingTheFile)
+{
+    TempDir dir;
+    const auto missing = run_groom({"info", dir.file("missing.usda")});
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_NE(missing.err.find("groom: error: " + dir.file("missing.usda") + ": cannot open for reading"), std::string::npos) << missing.err;
+    write_text(dir.file("bad.obj"), "v 0 0 0\nv 1 1 1\nl 1 2 3\n");
+    const auto bad = run_groom({"convert", dir.file("bad.obj"), "-o", dir.file("out.usda")});
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.err.find(dir.file("bad.obj") + ":3: vertex index 3 out of range (2 vertices)"), std::string::npos) << bad.err;
+    // Atomic output: nothing named out.usda, and no temporary left behind either.
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"bad.obj"});
+}
+
+TEST(Cli, FailedWriteLeavesNoFile)
+{
+    // An attribute name USD cannot hold fails while encoding: no output and no temporary.
+    TempDir dir;
+    write_text(dir.file("a.ply"), "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                                  "property float 1bad\nelement edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n0 0 0 1\n0 1 0 1\n0 1\n");
+    const auto r = run_groom({"convert", dir.file("a.ply"), "-o", dir.file("b.usda")});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("attribute '1bad' is not a valid USD property name"), std::string::npos) << r.err;
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"a.ply"});
+    // An output directory that does not exist: exit 1, nothing written.
+    const auto nodir = run_groom({"convert", dir.file("a.ply"), "-o", dir.file("no/such/dir/b.obj")});
+    EXPECT_EQ(nodir.exit_code, 1);
+    EXPECT_NE(nodir.err.find("cannot open for writing"), std::string::npos) << nodir.err;
+}
+
+TEST(Cli, OutputOntoInputIsRefusedWithoutForce)
+{
+    TempDir dir;
+    write_text(dir.file("a.usda"), kTwoCurvesUsda);
+    const auto r = run_groom({"resample", dir.file("a.usda"), "-o", dir.file("a.usda"), "--count", "4"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("is also an input file; refusing to overwrite it (pass --force to allow)"), std::string::npos) << r.err;
+    EXPECT_EQ(read_bytes(dir.file("a.usda")), kTwoCurvesUsda);
+    const auto forced = run_groom({"resample", dir.file("a.usda"), "-o", dir.file("a.usda"), "--count", "4", "--force"});
+    EXPECT_EQ(forced.exit_code, 0) << forced.err;
+    EXPECT_EQ(read_curves(dir.file("a.usda")).num_points(), 8u);
+}
+
+TEST(Cli, DashMeansStdinAndStdout)
+{
+    const auto r = run_groom({"convert", "-", "-o", "-", "--quiet"}, kTwoCurvesUsda);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("#usda 1.0", 0), 0u);
+    EXPECT_NE(r.out.find("point3f[] points = [(0, 0, 0), (0, 3, 4),\n        (1, 0, 0), (1, 1, 0), (1, 2, 0)]"), std::string::npos) << r.out;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    const auto info = run_groom({"info", "-", "--json"}, kTwoCurvesUsda);
+    EXPECT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NE(info.out.find("\"curves\": 2"), std::string::npos) << info.out;
+}
+
+TEST(CliInfo, CurvesTextAndJson)
+{
+    TempDir dir;
+    write_text(dir.file("a.usda"), kTwoCurvesUsda);
+    const auto text = run_groom({"info", dir.file("a.usda")});
+    EXPECT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("curves            2\n"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("points            5\n"), std::string::npos);
+    EXPECT_NE(text.out.find("points per curve  min 2  median 2.5  max 3\n"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("length            min 2  median 3.5  max 5\n"), std::string::npos) << text.out;  // 2 and 5 (a 3-4-5 segment)
+    EXPECT_NE(text.out.find("bounds            (0, 0, 0) to (1, 3, 4)"), std::string::npos) << text.out;
+    const auto json = run_groom({"info", dir.file("a.usda"), "--json"});
+    EXPECT_EQ(json.exit_code, 0);
+    EXPECT_NE(json.out.find("\"points_per_curve\": {\"min\": 2, \"median\": 2.5, \"max\": 3}"), std::string::npos) << json.out;
+    EXPECT_NE(json.out.find("{\"name\": \"width\", \"domain\": \"point\", \"type\": \"float\"}"), std::string::npos) << json.out;
+    EXPECT_NE(json.out.find("{\"name\": \"id\", \"domain\": \"curve\", \"type\": \"int64\"}"), std::string::npos) << json.out;
+}
+
+TEST(CliInfo, MeshByContentAndForcedKinds)
+{
+    TempDir dir;
+    write_text(dir.file("cube.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                     "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+    const auto r = run_groom({"info", dir.file("cube.obj"), "--json"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    for (const char* s : {"\"kind\": \"mesh\"", "\"vertices\": 8", "\"faces\": 6", "\"quads\": 6", "\"shells\": 1", "\"boundary_edges\": 0",
+                          "\"non_manifold_edges\": 0", "\"duplicate_vertices\": 0"})
+        EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+    const auto forced = run_groom({"info", dir.file("cube.obj"), "--curves"});
+    EXPECT_EQ(forced.exit_code, 1);
+    EXPECT_NE(forced.err.find("this is a mesh"), std::string::npos) << forced.err;
+    EXPECT_EQ(run_groom({"info", dir.file("cube.obj"), "--curves", "--mesh"}).exit_code, 2);
+}
+
+TEST(CliConvert, ChainThroughEveryFormatKeepsPointsExactly)
+{
+    TempDir dir;
+    write_text(dir.file("a.usda"), kTwoCurvesUsda);
+    const std::vector<std::string> chain{"a.usda", "b.ply", "c.hair", "d.obj", "e.ply", "f.usda"};
+    for (size_t i = 0; i + 1 < chain.size(); ++i) {
+        std::vector<std::string> args{"convert", dir.file(chain[i]), "-o", dir.file(chain[i + 1])};
+        if (chain[i + 1] == "e.ply") args.push_back("--ascii");
+        const auto r = run_groom(args);
+        ASSERT_EQ(r.exit_code, 0) << chain[i] << " -> " << chain[i + 1] << ": " << r.err;
+    }
+    const CurveSet a = read_curves(dir.file("a.usda")), f = read_curves(dir.file("f.usda"));
+    ASSERT_EQ(a.num_points(), f.num_points());
+    EXPECT_EQ(std::memcmp(a.positions().data(), f.positions().data(), a.num_points() * sizeof(float3)), 0);
+    EXPECT_EQ(std::vector<int64_t>(a.offsets().begin(), a.offsets().end()), std::vector<int64_t>(f.offsets().begin(), f.offsets().end()));
+    EXPECT_NE(read_bytes(dir.file("e.ply")).find("format ascii 1.0"), std::string::npos);
+}
+
+TEST(CliConvert, SaysWhichAttributesTheTargetDrops)
+{
+    TempDir dir;
+    write_text(dir.file("a.usda"), kTwoCurvesUsda);
+    const auto r = run_groom({"convert", dir.file("a.usda"), "-o", dir.file("b.obj")});
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.err.find("dropped: point width, curve id"), std::string::npos) << r.err;
+    const auto hair = run_groom({"convert", dir.file("a.usda"), "-o", dir.file("b.hair")});
+    EXPECT_NE(hair.err.find("dropped: curve id"), std::string::npos) << hair.err;
+    const auto quiet = run_groom({"convert", dir.file("a.usda"), "-o", dir.file("c.ply"), "-q"});
+    EXPECT_TRUE(quiet.err.empty()) << quiet.err;
+}
+
+TEST(CliResample, CountAndSegmentLength)
+{
+    TempDir dir;
+    write_text(dir.file("a.usda"), kTwoCurvesUsda);
+    ASSERT_EQ(run_groom({"resample", dir.file("a.usda"), "-o", dir.file("b.ply"), "--count", "6"}).exit_code, 0);
+    const CurveSet b = read_curves(dir.file("b.ply"));
+    EXPECT_EQ(b.num_points(), 12u);
+    EXPECT_EQ(b.positions()[5], float3(0, 3, 4));  // tip kept exactly
+    const auto both = run_groom({"resample", dir.file("a.usda"), "-o", dir.file("c.ply"), "--count", "6", "--segment-length", "0.5"});
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_NE(both.err.find("exclusive"), std::string::npos);
+}

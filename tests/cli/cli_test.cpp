@@ -5,7 +5,9 @@
 
 #include "kernel/io/curve_io.h"
 
+#include <cstdlib>
 #include <cstring>
+#include <sys/wait.h>
 #include <filesystem>
 
 using namespace groom;
@@ -214,4 +216,21 @@ TEST(CliResample, CountAndSegmentLength)
     const auto both = run_groom({"resample", dir.file("a.usda"), "-o", dir.file("c.ply"), "--count", "6", "--segment-length", "0.5"});
     EXPECT_EQ(both.exit_code, 2);
     EXPECT_NE(both.err.find("exclusive"), std::string::npos);
+}
+
+TEST(CliConvert, UsdaOutputParsesWithTinyusdz)
+{
+    // Independent reader (scripts/check-usda.sh): skipped where node or a cached tinyusdz is absent,
+    // so the suite never needs the network.
+    TempDir dir;
+    write_text(dir.file("a.obj"), "v 0 0 0\nv 0 1 0\nv 0 2 0.5\nv 1 0 0\nv 1 1 0\nl 1 2 3\nl 4 5\n");
+    ASSERT_EQ(run_groom({"convert", dir.file("a.obj"), "-o", dir.file("b.ply")}).exit_code, 0);
+    ASSERT_EQ(run_groom({"resample", dir.file("b.ply"), "-o", dir.file("c.usda"), "--count", "5"}).exit_code, 0);
+    const std::string cmd = "GROOM='" GROOM_BINARY "' bash '" GROOM_SOURCE_DIR "/scripts/check-usda.sh' --no-install '" + dir.file("c.usda") + "' > '" +
+                            dir.file("log") + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    if (WEXITSTATUS(status) == 77) GTEST_SKIP() << read_bytes(dir.file("log"));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << read_bytes(dir.file("log"));
+    EXPECT_NE(read_bytes(dir.file("log")).find("\"curves\":2\"points\":10"), std::string::npos) << read_bytes(dir.file("log"));
 }

@@ -7,6 +7,7 @@
 #include "kernel/math/spline.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -74,6 +75,85 @@ public:
         }
     }
     const std::string& name() const { return file_.name; }
+
+    /// Fast path for the big numeric arrays (points, widths, primvars): parses `[n, ...]` or
+    /// `[(a, b, c), ...]` straight from the text, skipping the token machinery. Returns false and
+    /// consumes nothing when anything unusual is there (comments, nan/inf, a malformed number):
+    /// the token parser then takes over and reports errors with their line.
+    bool scan_numeric_array(AttrType type, AttributeData& data)
+    {
+        if (has_peek_ || type == AttrType::String) return false;
+        const size_t save_pos = pos_, save_line = line_;
+        auto ws = [&] {
+            while (pos_ < text_.size()) {
+                const char c = text_[pos_];
+                if (c == '\n') ++line_;
+                else if (c != ' ' && c != '\t' && c != '\r') break;
+                ++pos_;
+            }
+        };
+        auto lit = [&](char c) {
+            ws();
+            if (pos_ < text_.size() && text_[pos_] == c) {
+                ++pos_;
+                return true;
+            }
+            return false;
+        };
+        auto number = [&](auto& out) {
+            ws();
+            const size_t start = pos_;
+            while (pos_ < text_.size() && (std::isdigit(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '.' || text_[pos_] == '-' ||
+                                           text_[pos_] == '+' || text_[pos_] == 'e' || text_[pos_] == 'E'))
+                ++pos_;
+            const char* b = text_.data() + start;
+            if (start < pos_ && *b == '+') ++b;
+            const auto res = std::from_chars(b, text_.data() + pos_, out);
+            return start < pos_ && res.ec == std::errc() && res.ptr == text_.data() + pos_;
+        };
+        auto give_up = [&] {
+            pos_ = save_pos;
+            line_ = save_line;
+            data = make_attribute_data(type, 0);
+            return false;
+        };
+        if (!lit('[')) return give_up();
+        if (lit(']')) return true;
+        for (;;) {
+            bool ok = true;
+            switch (type) {
+                case AttrType::Float: {
+                    float v;
+                    ok = number(v);
+                    std::get<std::vector<float>>(data).push_back(v);
+                    break;
+                }
+                case AttrType::Int32: {
+                    int32_t v;
+                    ok = number(v);
+                    std::get<std::vector<int32_t>>(data).push_back(v);
+                    break;
+                }
+                case AttrType::Int64: {
+                    int64_t v;
+                    ok = number(v);
+                    std::get<std::vector<int64_t>>(data).push_back(v);
+                    break;
+                }
+                case AttrType::Float3: {
+                    float3 v;
+                    ok = lit('(') && number(v.x) && lit(',') && number(v.y) && lit(',') && number(v.z) && lit(')');
+                    std::get<std::vector<float3>>(data).push_back(v);
+                    break;
+                }
+                case AttrType::String: ok = false; break;
+            }
+            if (!ok) return give_up();
+            if (lit(']')) return true;
+            if (!lit(',')) return give_up();
+            if (lit(']')) return true;  // trailing comma
+        }
+    }
 
     /// Checks and consumes the `#usda 1.0` header line.
     void header()
@@ -314,6 +394,10 @@ public:
     /// A value of `type`: `[a, b, ...]` when `array`, else one scalar. `None` gives no value.
     std::optional<AttributeData> typed_value(AttrType type, bool array)
     {
+        if (array) {
+            AttributeData fast = make_attribute_data(type, 0);
+            if (lex_.scan_numeric_array(type, fast)) return fast;
+        }
         if (lex_.peek().kind == Tok::Ident && lex_.peek().text == "None") {
             lex_.next();
             return std::nullopt;

@@ -185,6 +185,34 @@ multi-line doc"""
     EXPECT_EQ(u[3], 0.5f);
 }
 
+TEST(CurveIoUsda, ArraysWithCommentsSpecialValuesAndTinyNumbersParse)
+{
+    // These defeat the fast array scanner on purpose; the token parser must take over.
+    TempDir dir;
+    write_text(dir.file("s.usda"), R"(#usda 1.0
+def BasisCurves "c" {
+    uniform token type = "linear"
+    int[] curveVertexCounts = [ # two curves
+        1, 2, ]
+    point3f[] points = [(0, 0, 0), # root
+                        (1e-50, +2, -3), (4.5, 1E3, 0)]
+    float[] primvars:f = [inf, -inf, nan] (interpolation = "vertex")
+    bool[] primvars:b = [true, false] (interpolation = "uniform")
+}
+)");
+    const CurveSet cs = read_curves(dir.file("s.usda"));
+    ASSERT_EQ(cs.num_curves(), 2u);
+    EXPECT_EQ(cs.positions()[1], float3(0, 2, -3));  // 1e-50 underflows to 0 in float
+    EXPECT_EQ(cs.positions()[2], float3(4.5f, 1000, 0));
+    auto f = cs.find<float>(Domain::Point, "f");
+    ASSERT_EQ(f.size(), 3u);
+    EXPECT_TRUE(std::isinf(f[0]) && f[0] > 0);
+    EXPECT_TRUE(std::isnan(f[2]));
+    auto b = cs.find<int32_t>(Domain::Curve, "b");
+    ASSERT_EQ(b.size(), 2u);
+    EXPECT_EQ(b[0], 1);
+}
+
 TEST(CurveIoUsda, ConcatenatesEveryBasisCurvesPrim)
 {
     TempDir dir;
@@ -362,6 +390,14 @@ TEST(CurveIoReal, PonytailGuidesHave16PointsPerStrand)
         total += cs.num_curves();
     }
     EXPECT_EQ(total, 4933u);  // the dataset README's count
+}
+
+TEST(CurveIoReal, MohawkGuidesHave2228StrandsOf32Points)
+{
+    GROOM_REQUIRE_SHARED(path, "ratboy_mohawk_tressfx/mohawk_guides.obj");
+    const CurveSet cs = read_curves(path);
+    EXPECT_EQ(cs.num_curves(), 2228u);
+    EXPECT_EQ(cs.num_points(), 2228u * 32u);
 }
 
 TEST(CurveIoReal, SintelGuidesRoundTripThroughUsdaExactly)

@@ -1,0 +1,142 @@
+#include "ops/cornrow_guides.h"
+
+#include "kernel/error.h"
+#include "kernel/math/polyline.h"
+#include "kernel/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace groom {
+
+namespace {
+
+constexpr float kDeg = 3.14159265358979f / 180.0f;
+
+std::string fmt(float v)
+{
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+void require(bool ok, const std::string& what)
+{
+    if (!ok) throw InvalidParam("cornrow-guides: " + what);
+}
+
+/// A point on the scalp: projected, then lifted along the normal.
+float3 on_scalp(const Surface& scalp, const float3& q, float offset)
+{
+    const float3 p = scalp.closest_point(q);
+    return offset > 0.0f ? p + scalp.normal(p) * offset : p;
+}
+
+}  // namespace
+
+void CornrowGuidesParams::validate() const
+{
+    require(count >= 1 && count <= 256, "--count must be in [1, 256] (got " + std::to_string(count) + ")");
+    require(std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z), "--center must be finite");
+    require(std::isfinite(radius) && radius > 0.0f, "--radius must be > 0 (got " + fmt(radius) + ")");
+    require(std::isfinite(pivot) && pivot >= 0.0f && pivot < radius,
+            "--pivot must be in [0, radius) = [0, " + fmt(radius) + ") (got " + fmt(pivot) + ")");
+    require(std::isfinite(spread) && spread >= 0.0f && spread < 90.0f, "--spread must be in [0, 90) degrees (got " + fmt(spread) + ")");
+    require(std::isfinite(front_angle) && front_angle > -90.0f && front_angle < 90.0f,
+            "--front-angle must be in (-90, 90) degrees (got " + fmt(front_angle) + ")");
+    require(std::isfinite(hairline_curve) && hairline_curve >= 0.0f && hairline_curve < 90.0f,
+            "--hairline-curve must be in [0, 90) degrees (got " + fmt(hairline_curve) + ")");
+    require(std::isfinite(back_angle) && back_angle > -90.0f && back_angle < 90.0f,
+            "--back-angle must be in (-90, 90) degrees (got " + fmt(back_angle) + ")");
+    require(samples >= 2 && samples <= 100000, "--samples must be in [2, 100000] (got " + std::to_string(samples) + ")");
+    require(std::isfinite(offset) && offset >= 0.0f, "--offset must be >= 0 (got " + fmt(offset) + ")");
+    require(std::isfinite(tail_length) && tail_length >= 0.0f, "--tail-length must be >= 0 (got " + fmt(tail_length) + ")");
+    require(tail_samples >= 2 && tail_samples <= 100000, "--tail-samples must be in [2, 100000] (got " + std::to_string(tail_samples) + ")");
+}
+
+CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params)
+{
+    params.validate();
+    const int n = params.count;
+    CornrowGuides out;
+    std::vector<int64_t> counts(size_t(n), params.samples);
+    out.guides = CurveSet::from_counts(counts);
+    auto P = out.guides.positions();
+    // Dense paths before re-spacing: projection bunches points where the head curves away from the
+    // sphere, so sample generously and resample by arc length afterwards.
+    const int dense = std::max(4 * params.samples, 64);
+    parallel_for(n, 1, [&](int64_t b, int64_t e) {
+        for (int64_t i = b; i < e; ++i) {
+            const float u = n == 1 ? 0.0f : -1.0f + 2.0f * float(i) / float(n - 1);  // -1 .. 1 across the head
+            const float phi = params.spread * u * kDeg;
+            // In the guide's plane, with coordinates s along lean = (sin phi, cos phi, 0) from the
+            // pivot point c - h Y and w along Z, the sphere |p - c| = R is the circle
+            // (s - h cos phi)^2 + w^2 = R^2 - h^2 sin^2 phi.
+            const float h = params.pivot;
+            const float3 lean{std::sin(phi), std::cos(phi), 0.0f};
+            const float3 pivot = params.center - float3(0.0f, h, 0.0f);
+            const float s0 = h * std::cos(phi);
+            const float rho = std::sqrt(params.radius * params.radius - h * h * std::sin(phi) * std::sin(phi));
+            // The arc runs from the hairline (front, +Z) over the top to the nape: an angle from +Z
+            // towards `lean`, from front_angle to 180 - back_angle.
+            const float a0 = (params.front_angle + params.hairline_curve * u * u) * kDeg;
+            const float a1 = (180.0f - params.back_angle) * kDeg;
+            std::vector<float3> path(static_cast<size_t>(dense));
+            for (int k = 0; k < dense; ++k) {
+                const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
+                const float3 q = pivot + lean * (s0 + rho * std::sin(a)) + float3(0.0f, 0.0f, rho * std::cos(a));
+                path[size_t(k)] = on_scalp(scalp, q, params.offset);
+            }
+            const std::vector<float3> even = resample_by_count(path, params.samples);
+            for (int k = 0; k < params.samples; ++k) {
+                // Resampled points sit on chords; put them back on the scalp.
+                P[i * params.samples + k] = on_scalp(scalp, even[size_t(k)], params.offset);
+            }
+        }
+    });
+    auto id = out.guides.add<int64_t>(Domain::Curve, attr::id);
+    auto guide = out.guides.add<int32_t>(Domain::Curve, "guide");
+    for (int i = 0; i < n; ++i) {
+        id[size_t(i)] = i;
+        guide[size_t(i)] = i;
+    }
+    if (params.tail_length <= 0.0f) return out;
+
+    std::vector<int64_t> tail_counts(size_t(n), params.tail_samples);
+    out.tails = CurveSet::from_counts(tail_counts);
+    auto T = out.tails.positions();
+    parallel_for(n, 1, [&](int64_t b, int64_t e) {
+        for (int64_t i = b; i < e; ++i) {
+            const float3* g = &P[size_t(i) * params.samples];
+            const float3 end = g[params.samples - 1];
+            const float3 dir0 = normalize(end - g[params.samples - 2], float3(0, -1, 0));
+            // Gravity: the direction turns from the guide's end tangent to straight down (and a
+            // little away from the neck) over the first third of the tail.
+            const float3 down = normalize(float3(0.0f, -1.0f, -0.25f));
+            const int m = params.tail_samples;
+            const float step = params.tail_length / float(m - 1);
+            float3 p = end;
+            T[size_t(i) * m] = p;
+            for (int k = 1; k < m; ++k) {
+                const float w = std::min(1.0f, float(k) / (0.33f * float(m - 1)));
+                const float3 d = normalize(dir0 * (1.0f - w) + down * w, down);
+                p = p + d * step;
+                // Hanging hair rests against the neck rather than entering it.
+                const float dist = scalp.distance(p);
+                if (dist < params.offset) p = p + scalp.normal(p) * (params.offset - dist);
+                T[size_t(i) * m + k] = p;
+            }
+        }
+    });
+    auto tid = out.tails.add<int64_t>(Domain::Curve, attr::id);
+    auto tguide = out.tails.add<int32_t>(Domain::Curve, "guide");
+    for (int i = 0; i < n; ++i) {
+        tid[size_t(i)] = i;
+        tguide[size_t(i)] = i;
+    }
+    return out;
+}
+
+}  // namespace groom

@@ -1,0 +1,53 @@
+// cornrow_guides: the hand-sculpted source curves of a cornrow style, made procedurally so the demo
+// (and users without a groom package) can start from a scalp alone. N guides run front to back over
+// the scalp like the rows of a fan: guide i lies in the plane that contains the front-to-back axis
+// `pivot` below `center` and leans sideways by phi_i (evenly spaced in [-spread, spread]). Where
+// that plane cuts a sphere around the cranium is a circle; the guide is its arc from the hairline
+// at the front over the crown down to the nape. Every point is then projected onto the scalp
+// (Surface::closest_point), lifted by `offset` along the scalp normal and re-spaced evenly in arc
+// length. pivot = 0 gives great circles (rows meeting at the front and back); a large pivot gives
+// nearly parallel rows that never reach the sides; the default sits between, so the outer rows run
+// above the ears. Optionally each guide continues past the nape as a free-hanging tail (the loose
+// ends of the braids), which the demo curls.
+//
+// Frame: +Y up, the face towards +Z (the convention of `groom head`).
+#pragma once
+
+#include "fields/surface.h"
+#include "kernel/curve_set.h"
+
+namespace groom {
+
+struct CornrowGuidesParams {
+    int count = 8;                    ///< guides, [1, 256]
+    float3 center{0.0f, 3.0f, -1.0f}; ///< centre of the sphere paths are laid on (default: the default head's cranium)
+    float radius = 10.0f;             ///< radius of that sphere, scene units; > 0 (roughly the cranium's)
+    float pivot = 5.0f;               ///< depth of the fan's axis below center, scene units; [0, radius)
+    float spread = 55.0f;             ///< the outermost guides lean this far from vertical, degrees; [0, 90)
+    // Angles are measured in each guide's plane around its circle's centre, from the front
+    // horizontal (+Z) upwards; for the middle guide they are plain elevations.
+    float front_angle = 12.0f;        ///< where the middle guide starts (the hairline), degrees; (-90, 90)
+    float hairline_curve = 28.0f;     ///< the outermost guides start this many degrees further back (hairline round the temples); [0, 90)
+    float back_angle = -40.0f;        ///< where guides end at the back (the nape; negative = below the horizontal), degrees; (-90, 90)
+    int samples = 48;                 ///< points per guide, >= 2
+    float offset = 0.0f;              ///< height of the guides above the scalp, scene units; >= 0
+    float tail_length = 0.0f;         ///< length of the free tail past the nape, scene units; >= 0 (0 = no tails)
+    int tail_samples = 24;            ///< points per tail, >= 2
+    void validate() const;            ///< throws InvalidParam naming the option, value and range
+};
+
+struct CornrowGuides {
+    /// Curves root (hairline) to tip (nape). Curve attributes: `id` (int64, = index) and `guide`
+    /// (int32, = index, left to right seen from the front: -x first).
+    CurveSet guides;
+    /// One tail per guide when tail_length > 0, rooted at its guide's last point, leaving along the
+    /// guide's end direction and bending down under gravity; no point ends up inside the scalp
+    /// (pushed out to `offset`). Same `id` and `guide` as its guide. Empty otherwise.
+    CurveSet tails;
+};
+
+/// Makes the guides on `scalp` (any Surface: an exact sphere in tests, a ScalpField for real heads).
+/// Throws InvalidParam.
+CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params);
+
+}  // namespace groom

@@ -1,0 +1,134 @@
+#include "ops/cornrow_guides.h"
+
+#include "kernel/error.h"
+#include "kernel/math/polyline.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace groom;
+
+namespace {
+constexpr float kDeg = 3.14159265358979f / 180.0f;
+
+/// Angle of v around the circle centre in the plane spanned by +Z and `lean`, from +Z towards
+/// `lean`, degrees in [-90, 270).
+float path_angle(const float3& v, const float3& lean)
+{
+    float a = std::atan2(dot(v, lean), v.z) / kDeg;
+    return a < -90.0f ? a + 360.0f : a;
+}
+}  // namespace
+
+TEST(CornrowGuides, WithTheFanAxisThroughTheCentreGuidesAreGreatCirclesWithExactEnds)
+{
+    // Scalp: a sphere of radius 8 around the path sphere's centre (radius 10) and pivot 0, so each
+    // guide's plane contains the centre and radial projection keeps it: guide i lies in the plane
+    // with normal (cos phi_i, -sin phi_i, 0) through c, on the sphere, and keeps the path's angles.
+    const float3 c{0.5f, 3.0f, -1.0f};
+    const AnalyticSphere sphere(c, 8.0f);
+    CornrowGuidesParams p;
+    p.center = c;
+    p.pivot = 0.0f;
+    p.count = 5;
+    p.spread = 40.0f;
+    p.samples = 40;
+    p.front_angle = 20.0f;
+    p.hairline_curve = 10.0f;
+    p.back_angle = -30.0f;
+    const CornrowGuides g = cornrow_guides(sphere, p);
+    ASSERT_EQ(g.guides.num_curves(), 5u);
+    ASSERT_EQ(g.guides.num_points(), 200u);
+    EXPECT_EQ(g.tails.num_curves(), 0u);
+    const auto P = g.guides.positions();
+    const auto guide = g.guides.find<int32_t>(Domain::Curve, "guide");
+    ASSERT_EQ(guide.size(), 5u);
+    for (int i = 0; i < 5; ++i) {
+        EXPECT_EQ(guide[i], i);
+        const float u = -1.0f + 0.5f * float(i);
+        const float phi = 40.0f * u * kDeg;
+        const float3 normal{std::cos(phi), -std::sin(phi), 0.0f}, lean{std::sin(phi), std::cos(phi), 0.0f};
+        const IndexRange r = g.guides.points_of(size_t(i));
+        for (int64_t k = r.begin; k < r.end; ++k) {
+            EXPECT_NEAR(distance(P[k], c), 8.0f, 1e-4f);
+            EXPECT_NEAR(dot(P[k] - c, normal), 0.0f, 1e-4f) << "guide " << i << " point " << k - r.begin;
+        }
+        // Root at the (curved) hairline, tip at the nape: 180 - back_angle.
+        EXPECT_NEAR(path_angle(P[r.begin] - c, lean), 20.0f + 10.0f * u * u, 0.01f);
+        EXPECT_NEAR(path_angle(P[r.end - 1] - c, lean), 210.0f, 0.01f);
+        // Evenly spaced in arc length (chords of one circle: equal to 1e-3 relative).
+        const std::vector<float3> pts(P.begin() + r.begin, P.begin() + r.end);
+        const float step = polyline_length(pts) / float(pts.size() - 1);
+        for (size_t k = 1; k < pts.size(); ++k) EXPECT_NEAR(distance(pts[k], pts[k - 1]), step, 1e-3f * step);
+        // Root to tip runs front to back; the outer guides lean outwards, to their own side.
+        EXPECT_GT(P[r.begin].z, P[r.end - 1].z);
+        if (i != 2) EXPECT_EQ(P[r.begin + 20].x > c.x, u > 0.0f);
+    }
+}
+
+TEST(CornrowGuides, OffsetLiftsAlongTheNormalAndTailsHangWithoutEnteringTheScalp)
+{
+    const float3 c{0.0f, 3.0f, -1.0f};
+    const AnalyticSphere sphere(c, 9.0f);
+    CornrowGuidesParams p;
+    p.count = 3;
+    p.offset = 0.25f;
+    p.tail_length = 12.0f;
+    p.tail_samples = 30;
+    const CornrowGuides g = cornrow_guides(sphere, p);
+    for (const float3& q : g.guides.positions()) EXPECT_NEAR(distance(q, c), 9.25f, 1e-4f);
+    ASSERT_EQ(g.tails.num_curves(), 3u);
+    const auto T = g.tails.positions();
+    for (size_t i = 0; i < 3; ++i) {
+        const IndexRange r = g.tails.points_of(i);
+        const IndexRange gr = g.guides.points_of(i);
+        EXPECT_EQ(T[r.begin], g.guides.positions()[gr.end - 1]) << "tail starts where its guide ends";
+        const std::vector<float3> pts(T.begin() + r.begin, T.begin() + r.end);
+        // Length kept to within what pushing out of the sphere adds.
+        EXPECT_NEAR(polyline_length(pts), 12.0f, 0.6f);
+        for (const float3& q : pts) EXPECT_GE(sphere.distance(q), 0.25f - 1e-4f);
+        EXPECT_LT(pts.back().y, pts.front().y - 6.0f) << "tails hang down";
+    }
+    EXPECT_EQ(g.tails.find<int32_t>(Domain::Curve, "guide")[2], 2);
+}
+
+TEST(CornrowGuides, InvalidOptionsAreRejected)
+{
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    auto rejects = [&](CornrowGuidesParams p, const std::string& needle) {
+        try {
+            cornrow_guides(sphere, p);
+            ADD_FAILURE() << "accepted: " << needle;
+        } catch (const InvalidParam& e) {
+            EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+        }
+    };
+    CornrowGuidesParams p;
+    p.count = 0;
+    rejects(p, "--count must be in [1, 256] (got 0)");
+    p = {};
+    p.radius = -1.0f;
+    rejects(p, "--radius must be > 0");
+    p = {};
+    p.pivot = 10.0f;
+    rejects(p, "--pivot must be in [0, radius)");
+    p = {};
+    p.spread = 90.0f;
+    rejects(p, "--spread must be in [0, 90) degrees");
+    p = {};
+    p.front_angle = 95.0f;
+    rejects(p, "--front-angle");
+    p = {};
+    p.back_angle = std::nanf("");
+    rejects(p, "--back-angle");
+    p = {};
+    p.samples = 1;
+    rejects(p, "--samples must be in [2, 100000] (got 1)");
+    p = {};
+    p.offset = -0.1f;
+    rejects(p, "--offset must be >= 0");
+    p = {};
+    p.tail_length = -1.0f;
+    rejects(p, "--tail-length");
+}

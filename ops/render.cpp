@@ -352,29 +352,50 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
     const float tl = dot(tangent, kKey);
     const float kay_diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
     const float drange = p.dmax - p.dmin;
+    // Per row, only the samples within the band |x - x_line(y)| <= r len / |ey| can be within r of
+    // the segment (the capsule lies inside that band): a long diagonal segment then costs its area,
+    // not its bounding box's.
+    const float len = std::sqrt(len2);
+    const bool steep = std::fabs(ey) > 1e-6f;
+    const float slope = steep ? ex / ey : 0.0f;
+    const float half_band = steep ? rmax * len / std::fabs(ey) : 0.0f;
+    // Everything that does not vary per sample, hoisted out of the loop.
+    const float d0 = p.pd[i], dd = p.pd[j] - p.pd[i];
+    const float rw0 = p.pwrad[i], drw = p.pwrad[j] - p.pwrad[i];
+    const float dr = r1 - r0;
+    const float cue_scale = drange > 0.0f ? 0.35f / drange : 0.0f;
+    const float3 base0 = unpack(p.pcolor[i]), base1 = unpack(p.pcolor[j]);
+    const float light0 = 0.30f + 0.30f * kay_diffuse;
     for (int y = y0; y <= y1; ++y) {
         const float sy = float(y) + 0.5f;
-        for (int x = x0; x <= x1; ++x) {
-            const float sx = float(x) + 0.5f;
-            const float dx = sx - ax, dy = sy - ay;
+        int xa = x0, xb = x1;
+        if (steep) {
+            const float xc = ax + (sy - ay) * slope;
+            xa = std::max(x0, static_cast<int>(std::ceil(xc - half_band - 0.5f)));
+            xb = std::min(x1, static_cast<int>(std::floor(xc + half_band - 0.5f)));
+        }
+        const float dy = sy - ay;
+        float* depth_row = buf.depth.data() + size_t(y) * size_t(buf.ws);
+        uint32_t* color_row = buf.color.data() + size_t(y) * size_t(buf.ws);
+        for (int x = xa; x <= xb; ++x) {
+            const float dx = float(x) + 0.5f - ax;
             const float t = std::clamp((dx * ex + dy * ey) * inv_len2, 0.0f, 1.0f);
             const float qx = dx - t * ex, qy = dy - t * ey;
             const float dist2 = qx * qx + qy * qy;
-            const float r = r0 + (r1 - r0) * t;
-            if (dist2 > r * r) continue;
+            const float r = r0 + dr * t;
+            const float r2 = r * r;
+            if (dist2 > r2) continue;
             // A tube: its front surface is nearer than the centreline by the radius times cos(angle),
             // so curves lying on the scalp win the depth test and braided strands occlude correctly.
-            const float cosv = std::sqrt(std::max(0.0f, 1.0f - dist2 / (r * r)));
-            const float rw = p.pwrad[i] + (p.pwrad[j] - p.pwrad[i]) * t;
-            const float d = p.pd[i] + (p.pd[j] - p.pd[i]) * t - rw * cosv;
-            const size_t idx = size_t(y) * size_t(buf.ws) + size_t(x);
-            if (!(d < buf.depth[idx])) continue;
-            const float cue = drange > 0.0f ? 1.0f - 0.35f * (p.pd[i] + (p.pd[j] - p.pd[i]) * t - p.dmin) / drange : 1.0f;
-            const float3 base = unpack(t < 0.5f ? p.pcolor[i] : p.pcolor[j]);
-            const float light = (0.30f + 0.50f * cosv + 0.30f * kay_diffuse) * cue;
+            const float cosv = std::sqrt(std::max(0.0f, 1.0f - dist2 / r2));
+            const float centre_depth = d0 + dd * t;
+            const float d = centre_depth - (rw0 + drw * t) * cosv;
+            if (!(d < depth_row[x])) continue;
+            const float cue = 1.0f - cue_scale * (centre_depth - p.dmin);
+            const float light = (light0 + 0.50f * cosv) * cue;
             const float s = spec * cosv;
-            buf.depth[idx] = d;
-            buf.color[idx] = pack(base * light + float3(s, s, s));
+            depth_row[x] = d;
+            color_row[x] = pack((t < 0.5f ? base0 : base1) * light + float3(s, s, s));
         }
     }
 }

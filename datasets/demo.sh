@@ -1,7 +1,139 @@
 #!/usr/bin/env bash
-# The demo groom, as a chain of `groom` commands (copy it to start your own scripts).
-# Usage: datasets/demo.sh [OUT_DIR]   (expects `groom` on PATH)
+# The demo groom, as a chain of `groom` commands: copy it to start your own scripts.
+# Usage: datasets/demo.sh [OUT_DIR]   (expects `groom` on PATH; scripts/demo.sh builds and runs it)
+#
+# With no input from you it
+#   1. makes the default head (`groom head`) and converts it to a scalp field (`groom scalp`);
+#   2. builds an Alisha-style groom: cornrow guides front to back over the scalp, braided lying on the
+#      scalp (`--orient scalp`), edge hairs between the rows pulled into each knot, loose curly ends
+#      past the nape;
+#   3. builds an Izzy-style groom: two afro puffs of curls with mixed cross-sections;
+#   4. writes each groom as .usda and renders front, side and top pictures;
+#   5. prints what it made (curves, points, seconds per step) and where the files are.
+# Every length is in centimetres (the head's units).
 set -euo pipefail
 out=${1:-out/demo}
 mkdir -p "$out"
+log="$out/demo.log"
+: >"$log"
+threads=${GROOM_THREADS:-0}
+
+# --- helpers ------------------------------------------------------------------------------------------
+# `step NAME groom ARGS...` runs one command, times it, keeps its messages in demo.log and prints the
+# command's own summary line (each groom command ends with one: what it made and where).
+summary=()
+step() {
+    local name=$1
+    shift
+    local t0 t1 secs msg
+    t0=$(date +%s.%N)
+    if ! "$@" --threads "$threads" 2>"$out/.step.err"; then
+        cat "$out/.step.err" >&2
+        echo "demo: step '$name' failed: $*" >&2
+        exit 1
+    fi
+    t1=$(date +%s.%N)
+    secs=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }')
+    msg=$(grep -v '^\s*$' "$out/.step.err" | tail -n 1 || true)
+    { echo "\$ $*"; cat "$out/.step.err"; } >>"$log"
+    printf '  %-22s %7ss  %s\n' "$name" "$secs" "$msg"
+    summary+=("$(printf '%-22s %7ss  %s' "$name" "$secs" "$msg")")
+}
+# True when this build of groom has the command (ops land one by one; the demo runs what exists).
+have() { groom --help 2>/dev/null | grep -qE "^  $1 "; }
+skipped=()
+skip() {
+    skipped+=("$1")
+    echo "  (skipped: $1)"
+}
+
 groom --version
+echo "demo: writing to $out"
+
+# --- 1. the head and its scalp field ------------------------------------------------------------------
+echo "1. head and scalp"
+step "head" groom head -o "$out/head.obj" --resolution 96
+scalp="$out/head.obj"  # every --scalp accepts a mesh (converted on the fly) or the .vdb below
+if have scalp; then
+    step "scalp" groom scalp "$out/head.obj" -o "$out/head.vdb"
+    scalp="$out/head.vdb"
+else
+    skip "groom scalp (scalp field conversion) is not in this build"
+fi
+
+# --- 2. Alisha: cornrows, edge hairs, loose curly ends -----------------------------------------------
+echo "2. Alisha: cornrows"
+alisha=()
+knot=1.3  # cm per knot, shared by braid and partition so edge hairs meet the braids' knots
+if have cornrow-guides; then
+    step "cornrow guides" groom cornrow-guides --scalp "$scalp" -o "$out/alisha_guides.usda" \
+        --count 12 --tails-out "$out/alisha_tails.usda" --tail-length 14
+    if have braid; then
+        step "braid" groom braid "$out/alisha_guides.usda" --scalp "$scalp" -o "$out/alisha_braids.usda" \
+            --orient scalp --strands 3 --knot-length "$knot" --width 0.42 --height 0.25 --rest --clearance 0.05 \
+            --fibers 40
+        alisha+=("$out/alisha_braids.usda")
+    else
+        skip "groom braid is not in this build"
+        alisha+=("$out/alisha_guides.usda")
+    fi
+    if have partition; then
+        step "partition" groom partition "$out/alisha_guides.usda" --scalp "$scalp" -o "$out/alisha_edges.usda" \
+            --count 60 --samples 6 --max-height 1
+        alisha+=("$out/alisha_edges.usda")
+    else
+        skip "groom partition (edge hairs) is not in this build"
+    fi
+    tails="$out/alisha_tails.usda"
+    if have populate; then
+        step "populate tails" groom populate "$tails" -o "$out/alisha_tail_hairs.usda" --count 40 --radius 0.3
+        tails="$out/alisha_tail_hairs.usda"
+    else
+        skip "groom populate (hairs around each tail) is not in this build"
+    fi
+    step "curl tails" groom curl "$tails" -o "$out/alisha_curls.usda" --type 3c --root-ease 1 --seed 1
+    alisha+=("$out/alisha_curls.usda")
+else
+    skip "groom cornrow-guides is not in this build"
+fi
+
+# --- 3. Izzy: two afro puffs --------------------------------------------------------------------------
+echo "3. Izzy: afro puffs"
+izzy=()
+if have puff; then
+    # Left and right of the crown; each puff's sphere sits above and outside its root patch.
+    step "puff left" groom puff --scalp "$scalp" -o "$out/izzy_puff_left.usda" \
+        --center -4.5,10,-1 --radius 3.2 --sphere-center -7,14.5,-1 --sphere-radius 5.5 --hairs 8000 --seed 1
+    step "puff right" groom puff --scalp "$scalp" -o "$out/izzy_puff_right.usda" \
+        --center 4.5,10,-1 --radius 3.2 --sphere-center 7,14.5,-1 --sphere-radius 5.5 --hairs 8000 --seed 2
+    izzy+=("$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda")
+else
+    skip "groom puff is not in this build"
+fi
+
+# --- 4. pictures ----------------------------------------------------------------------------------------
+echo "4. pictures"
+render_groom() {  # NAME FILES...
+    local name=$1
+    shift
+    step "render $name" groom render "$@" --scalp "$out/head.obj" -o "$out/$name.png" \
+        --views front,left,top --size 480x480
+    step "render $name 3/4" groom render "$@" --scalp "$out/head.obj" -o "$out/${name}_three_quarter.png" \
+        --view three-quarter --size 720x720
+}
+step "render head" groom render --scalp "$out/head.obj" -o "$out/head.png" --views front,left,top --size 400x400
+if ((${#alisha[@]})); then render_groom alisha "${alisha[@]}"; fi
+if ((${#izzy[@]})); then render_groom izzy "${izzy[@]}"; fi
+
+# --- 5. what was made ---------------------------------------------------------------------------------
+echo
+echo "demo: done. Steps (seconds, and what each made):"
+printf '  %s\n' "${summary[@]}"
+echo "Files in $out:"
+(cd "$out" && ls -1 -- *.usda *.obj *.vdb *.png 2>/dev/null | sed 's/^/  /') || true
+echo "  (every command's messages: $log)"
+if ((${#skipped[@]})); then
+    echo "not run, because this build lacks the command:"
+    printf '  %s\n' "${skipped[@]}"
+fi
+rm -f "$out/.step.err"

@@ -209,6 +209,39 @@ std::array<GuidePointIndex::SideHit, 2> GuidePointIndex::nearest_on_sides(const 
     return out;
 }
 
+GuidePointIndex::SideHit GuidePointIndex::nearest_other(const float3& p, int32_t exclude) const
+{
+    SideHit out;
+    if (!impl_->tree) return out;
+    Incremental search(*impl_->tree, to_point(p), 0.0, true, TreeDistance(IndexPointMap{&impl_->points}));
+    for (auto it = search.begin(); it != search.end(); ++it) {
+        const int32_t g = impl_->guide_of[it->first];
+        if (g == exclude) continue;
+        return {g, int64_t(it->first), float(std::sqrt(it->second))};
+    }
+    return out;
+}
+
+float typical_guide_gap(const CurveSet& guides, const GuidePointIndex& index)
+{
+    const auto P = guides.positions();
+    const size_t nc = guides.num_curves();
+    std::vector<float> gaps(nc, INFINITY);
+    parallel_for(int64_t(nc), 16, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = guides.points_of(c);
+            if (r.size() < 2) continue;
+            const auto pts = P.subspan(r.begin, r.size());
+            const auto cum = cumulative_lengths(pts);
+            gaps[c] = index.nearest_other(point_at_length(pts, cum, 0.5 * cum.back()), int32_t(c)).distance;
+        }
+    });
+    std::erase_if(gaps, [](float g) { return !std::isfinite(g); });
+    if (gaps.size() < 2) return 0.0f;
+    std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+    return gaps[gaps.size() / 2];
+}
+
 // --- adjacency ------------------------------------------------------------------------------------------
 
 std::vector<AdjacentGuides> find_adjacent_guides(const CurveSet& guides, const Surface& scalp, float max_gap, Progress* progress)
@@ -216,6 +249,7 @@ std::vector<AdjacentGuides> find_adjacent_guides(const CurveSet& guides, const S
     const size_t nc = guides.num_curves();
     std::vector<AdjacentGuides> out(nc);
     const GuidePointIndex index(guides);
+    if (!(max_gap > 0.0f)) max_gap = kAutoGapFactor * typical_guide_gap(guides, index);
     const auto P = guides.positions();
     ProgressStep step(progress, "partition: neighbours", int64_t(nc));
     parallel_for(int64_t(nc), 4, [&](int64_t b, int64_t e) {

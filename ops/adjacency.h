@@ -74,10 +74,22 @@ public:
     std::array<SideHit, 2> nearest_on_sides(const float3& p, const float3& normal, const float3& left, int32_t exclude,
                                             float max_gap = 0.0f) const;
 
+    /// Nearest point of any guide other than `exclude`, on any side. Thread-safe.
+    SideHit nearest_other(const float3& p, int32_t exclude) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+/// The typical distance between neighbouring guides: the median over guides (with >= 2 points) of
+/// the distance from the guide's arc-length midpoint to the nearest point of any other guide, scene
+/// units. 0 when fewer than two guides have points.
+float typical_guide_gap(const CurveSet& guides, const GuidePointIndex& index);
+
+/// find_adjacent_guides() with max_gap 0 searches only this many typical gaps away, so a guide at the
+/// edge of the layout does not walk every point of the groom looking for a neighbour it lacks.
+inline constexpr float kAutoGapFactor = 4.0f;
 
 /// Unit tangent of a polyline at arc length `s` (clamped), blending the vertex tangents of
 /// polyline_tangents() across the segment that holds s. `cumulative` from cumulative_lengths(pts).
@@ -104,7 +116,8 @@ inline constexpr int kAdjacencyStations = 32;
 /// guide on each side is found (GuidePointIndex::nearest_on_sides, tangent from the polyline, normal
 /// from `scalp`); per side the guide nearest at the most stations wins (ties: smaller summed
 /// distance, then lower index). A guide at the edge of the groom gets -1 on its open side.
-/// @param max_gap  scene units; > 0 ignores guides farther than this; 0 = no limit
+/// @param max_gap  scene units; > 0 ignores guides farther than this; 0 = automatic, kAutoGapFactor
+///                 times typical_guide_gap() (no limit when that is 0)
 /// @return one entry per guide, in guide order (guides with < 2 points get none on either side)
 std::vector<AdjacentGuides> find_adjacent_guides(const CurveSet& guides, const Surface& scalp, float max_gap = 0.0f,
                                                  Progress* progress = nullptr);

@@ -46,16 +46,28 @@ void PartitionParams::validate() const
     require(std::isfinite(mediate) && mediate >= 0.0f && mediate <= 1.0f,
             "--mediate must be in [0, 1] (got " + num(mediate) + ")");
     require(!(count != 0 && spacing != 0.0f), "--count and --spacing are exclusive (got both)");
-    if (count != 0) require(count >= 1, "--count must be >= 1 (got " + std::to_string(count) + ")");
+    if (spacing == 0.0f) require(count >= 1, "--count must be >= 1 (got " + std::to_string(count) + ")");
     else require(std::isfinite(spacing) && spacing > 0.0f, "--spacing must be > 0 scene units (got " + num(spacing) + ")");
     require(samples >= 2, "--samples must be >= 2 (got " + std::to_string(samples) + ")");
     require(std::isfinite(width) && width > 0.0f, "--width must be > 0 scene units (got " + num(width) + ")");
     require(std::isfinite(jitter) && jitter >= 0.0f && jitter <= 1.0f, "--jitter must be in [0, 1] (got " + num(jitter) + ")");
-    require(std::isfinite(max_gap) && max_gap >= 0.0f, "--max-gap must be >= 0 scene units, 0 = no limit (got " + num(max_gap) + ")");
+    require(std::isfinite(max_gap) && max_gap >= 0.0f, "--max-gap must be >= 0 scene units, 0 = automatic (got " + num(max_gap) + ")");
     require(std::isfinite(max_height) && max_height >= 0.0f,
             "--max-height must be >= 0 scene units, 0 = no limit (got " + num(max_height) + ")");
     if (centroids == CentroidMode::Every) {
         require(every >= 1, "--centroids every:K needs K >= 1 (got " + std::to_string(every) + ")");
+    }
+    if (centroids == CentroidMode::Knots) {
+        require(!(knots.frequency && knots.knot_length), "--frequency and --knot-length are exclusive (got both)");
+        if (knots.frequency) {
+            require(std::isfinite(*knots.frequency) && *knots.frequency >= 0.0f,
+                    "--frequency must be >= 0 knots per guide (got " + num(*knots.frequency) + ")");
+        }
+        if (knots.knot_length) {
+            require(std::isfinite(*knots.knot_length) && *knots.knot_length > 0.0f,
+                    "--knot-length must be > 0 scene units (got " + num(*knots.knot_length) + ")");
+        }
+        knots.validate();  // the remap options, worded as groom braid words them
     }
     if (centroids == CentroidMode::Points) {
         for (const CentroidPoint& c : centroid_points) {
@@ -137,6 +149,10 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                 const int n = params.count > 0 ? params.count : std::max(1, int(std::floor(length / params.spacing)));
                 const double spacing = params.count > 0 ? length / n : double(params.spacing);
                 const double start = 0.5 * (length - (n - 1) * spacing);
+                // Centroids along this source as arc-length fractions, sorted.
+                const std::vector<float> us = params.centroids == CentroidMode::Points ? centroid_u[c]
+                                              : params.centroids == CentroidMode::Knots  ? braid_knot_parameters(params.knots, length)
+                                                                                         : std::vector<float>{};
                 const int32_t sides[2] = {adjacent[c].left, adjacent[c].right};
                 for (int side = 0; side < 2; ++side) {
                     if (sides[side] < 0) continue;
@@ -166,9 +182,8 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                             plan.group = g;
                             end_s = start + spacing * (g * params.every + 0.5 * (members - 1));
                         }
-                        else if (params.centroids == CentroidMode::Points && !centroid_u[c].empty()) {
+                        else if (!us.empty()) {
                             // The nearest centroid by arc length; ties to the earlier one.
-                            const auto& us = centroid_u[c];
                             int best = 0;
                             for (int k = 1; k < int(us.size()); ++k) {
                                 if (std::fabs(us[k] * length - s) < std::fabs(us[best] * length - s)) best = k;

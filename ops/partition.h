@@ -7,6 +7,7 @@
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
 #include "ops/adjacency.h"
+#include "ops/braid.h"
 
 #include <cstdint>
 #include <vector>
@@ -19,6 +20,7 @@ class Surface;
 enum class CentroidMode {
     Stations,  ///< no grouping: each segment ends at its own station on the source (the default)
     Every,     ///< every `every` consecutive stations form a group ending at the group's middle station
+    Knots,     ///< each segment joins the nearest braid knot centre (braid_knot_parameters(knots, length))
     Points,    ///< centroids given per guide (`centroid_points`); each segment joins the nearest one
 };
 
@@ -43,8 +45,9 @@ struct PartitionParams {
     /// Random shift of each station along the source, as a fraction of the spacing; [0, 1].
     float jitter = 0.0f;
     uint64_t seed = 0;
-    /// Neighbours farther than this are ignored (scene units); 0 = no limit. Also drops a station
-    /// whose closest adjacent point is farther than this.
+    /// Neighbours farther than this are ignored (scene units), and a station whose closest adjacent
+    /// point is farther than this gets no segment. 0 = automatic: the neighbour search reaches
+    /// kAutoGapFactor typical gaps between guides (typical_guide_gap) and no station is dropped.
     float max_gap = 0.0f;
     /// Stations where the source is more than this above the scalp get no segment (e.g. a braid
     /// hanging free past the nape), scene units; 0 = no limit.
@@ -53,6 +56,10 @@ struct PartitionParams {
     CentroidMode centroids = CentroidMode::Stations;
     int every = 0;                               ///< stations per group for CentroidMode::Every (>= 1)
     std::vector<CentroidPoint> centroid_points;  ///< for CentroidMode::Points; guides absent get Stations
+    /// For CentroidMode::Knots: the knot placement of `groom braid` (frequency or knot_length, and the
+    /// knot_bias / knot_density remap), so the edge hairs meet the braid at its knots. A guide too
+    /// short for one knot (F < 1/2) gets Stations.
+    BraidParams knots;
 
     /// Neighbours chosen by the user; empty = found by find_adjacent_guides(). When given, only the
     /// sources listed get segments.
@@ -68,7 +75,7 @@ struct PartitionParams {
 /// (count, or spacing centred on the source; shifted by jitter). At a station p with closest point q
 /// on the adjacent guide (exact polyline closest point, PolylineNearest), the segment's root is
 /// scalp.closest_point(lerp(p, q, mediate)) and its end is p, or the group's centroid on the source
-/// with CentroidMode::Every/Points. Between them the segment follows the scalp: each sample of the
+/// with CentroidMode::Every/Knots/Points. Between them the segment follows the scalp: each sample of the
 /// straight root-to-end line that is lower than a height rising linearly from 0 at the root to the
 /// end's height is pushed out along the scalp normal to that height, so no point but possibly the end
 /// (when the source itself dips inside) lies inside the scalp.

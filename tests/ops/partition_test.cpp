@@ -177,6 +177,22 @@ TEST(Adjacency, MaxGapLeavesDistantGuidesOut)
     EXPECT_EQ(adj[2].right, -1);
 }
 
+TEST(Adjacency, AutomaticGapIgnoresAGuideFarOffTheLayout)
+{
+    // Gaps 1, 1, 1, 10: the typical gap is 1, so the search reaches 4 and guide 3 is nobody's neighbour.
+    const CurveSet guides = straight_guides({0.0f, 1.0f, 2.0f, 12.0f});
+    const AnalyticPlane plane({0, 0, 0}, {0, 1, 0});
+    EXPECT_FLOAT_EQ(typical_guide_gap(guides, GuidePointIndex(guides)), 1.0f);
+    auto adj = find_adjacent_guides(guides, plane);
+    EXPECT_EQ(adj[2].left, -1);
+    EXPECT_EQ(adj[2].right, 1);
+    EXPECT_EQ(adj[3].left, -1);
+    EXPECT_EQ(adj[3].right, -1);
+    adj = find_adjacent_guides(guides, plane, 20.0f);  // an explicit gap reaches it
+    EXPECT_EQ(adj[2].left, 3);
+    EXPECT_EQ(adj[3].right, 2);
+}
+
 TEST(Adjacency, ClassifySideUsesTheTangentPlane)
 {
     const float3 n(0, 1, 0), left(1, 0, 0);
@@ -387,6 +403,44 @@ TEST(Partition, EveryKGroupsConvergeOnTheirCentroid)
     }
 }
 
+TEST(Partition, KnotCentroidsAreTheBraidsKnotCentres)
+{
+    // A 4-unit guide: knot k is centred where F t = k + 1/2 (ops/braid.h), each segment joins the
+    // nearest knot centre.
+    const CurveSet guides = straight_guides({0.0f, 1.0f});
+    const AnalyticPlane plane({0, 0, 0}, {0, 1, 0});
+    PartitionParams params;
+    params.count = 16;  // stations at z = 0.125, 0.375, ...
+    params.centroids = CentroidMode::Knots;
+    for (int run = 0; run < 2; ++run) {
+        // F = 4 given directly, or as 1-unit knots on the 4-unit guide: centres at z = 0.5, 1.5, 2.5, 3.5.
+        params.knots.frequency.reset();
+        params.knots.knot_length.reset();
+        if (run == 0) params.knots.frequency = 4.0f;
+        else params.knots.knot_length = 1.0f;
+        const CurveSet out = partition(guides, plane, params);
+        const auto group = out.find<int32_t>(Domain::Curve, "group");
+        const auto curves = curves_of(out, 0, 0);
+        ASSERT_EQ(curves.size(), 16u);
+        for (int i = 0; i < 16; ++i) {
+            EXPECT_EQ(group[curves[i]], i / 4);
+            EXPECT_NEAR3(last_point(out, curves[i]), float3(0, 0.2f, i / 4 + 0.5f), 1e-5f);
+        }
+    }
+    // 1.5-unit knots: F = 8/3, centres at 0.75, 2.25, 3.75 (a fourth would be centred past the tip).
+    params.knots.knot_length = 1.5f;
+    const CurveSet out = partition(guides, plane, params);
+    const auto group = out.find<int32_t>(Domain::Curve, "group");
+    const auto curves = curves_of(out, 1, 1);
+    ASSERT_EQ(curves.size(), 16u);
+    for (int i = 0; i < 16; ++i) {
+        const float z = 0.125f + 0.25f * i;
+        const int k = z < 1.5f ? 0 : (z < 3.0f ? 1 : 2);
+        EXPECT_EQ(group[curves[i]], k);
+        EXPECT_NEAR3(last_point(out, curves[i]), float3(1, 0.2f, 0.75f + 1.5f * k), 1e-5f);
+    }
+}
+
 TEST(Partition, GivenCentroidsGatherTheNearestSegments)
 {
     const std::vector<Arc> arcs = {{0.0f, -0.5f, 0.5f}, {0.3f, -0.5f, 0.5f}};
@@ -531,7 +585,7 @@ TEST(Partition, RejectsEachInvalidOption)
     expect_rejected([](auto& p) { p.mediate = -0.1f; }, "--mediate must be in [0, 1] (got -0.1)");
     expect_rejected([](auto& p) { p.mediate = 1.5f; }, "--mediate must be in [0, 1] (got 1.5)");
     expect_rejected([](auto& p) { p.mediate = NAN; }, "--mediate");
-    expect_rejected([](auto& p) { p.count = 0; }, "--spacing must be > 0");
+    expect_rejected([](auto& p) { p.count = 0; }, "--count must be >= 1 (got 0)");
     expect_rejected([](auto& p) { p.count = -3; }, "--count must be >= 1 (got -3)");
     expect_rejected([](auto& p) { p.spacing = 0.5f; }, "--count and --spacing are exclusive");
     expect_rejected([](auto& p) { p.count = 0; p.spacing = -1; }, "--spacing must be > 0 scene units (got -1)");
@@ -541,6 +595,9 @@ TEST(Partition, RejectsEachInvalidOption)
     expect_rejected([](auto& p) { p.max_gap = -1; }, "--max-gap must be >= 0");
     expect_rejected([](auto& p) { p.max_height = INFINITY; }, "--max-height");
     expect_rejected([](auto& p) { p.centroids = CentroidMode::Every; }, "every:K needs K >= 1 (got 0)");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Knots; p.knots.frequency = -1.0f; }, "--frequency must be >= 0 knots per guide (got -1)");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Knots; p.knots.knot_length = 0.0f; }, "--knot-length must be > 0 scene units (got 0)");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Knots; p.knots.frequency = 2.0f; p.knots.knot_length = 1.0f; }, "are exclusive");
     expect_rejected([](auto& p) { p.centroids = CentroidMode::Points; p.centroid_points = {{0, 1.2f}}; }, "in [0, 1] (got 1.2 for guide 0)");
     expect_rejected([](auto& p) { p.centroids = CentroidMode::Points; p.centroid_points = {{5, 0.5f}}; }, "--centroids: guide 5 out of range (2 guides");
     expect_rejected([](auto& p) { p.adjacent = {{2, 0, -1}}; }, "--adjacent: source guide 2 out of range");

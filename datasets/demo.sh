@@ -79,7 +79,7 @@ if have cornrow-guides; then
     fi
     if have partition; then
         step "partition" groom partition "$out/alisha_guides.usda" --scalp "$scalp" -o "$out/alisha_edges.usda" \
-            --count 60 --samples 6 --max-height 1
+            --centroids knots --knot-length "$knot" --count 60 --samples 6 --max-height 1
         alisha+=("$out/alisha_edges.usda")
     else
         skip "groom partition (edge hairs) is not in this build"
@@ -103,9 +103,9 @@ izzy=()
 if have puff; then
     # Left and right of the crown; each puff's sphere sits above and outside its root patch.
     step "puff left" groom puff --scalp "$scalp" -o "$out/izzy_puff_left.usda" \
-        --center -4.5,10,-1 --radius 3.2 --sphere-center -7,14.5,-1 --sphere-radius 5.5 --hairs 8000 --seed 1
+        --center -4.5,10,-1 --radius 3.2 --sphere-center -7,14.5,-1 --sphere-radius 5.5 --rows 6 --cols 6 --hairs 8000 --type 4a --seed 1
     step "puff right" groom puff --scalp "$scalp" -o "$out/izzy_puff_right.usda" \
-        --center 4.5,10,-1 --radius 3.2 --sphere-center 7,14.5,-1 --sphere-radius 5.5 --hairs 8000 --seed 2
+        --center 4.5,10,-1 --radius 3.2 --sphere-center 7,14.5,-1 --sphere-radius 5.5 --rows 6 --cols 6 --hairs 8000 --type 4a --seed 2
     izzy+=("$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda")
 else
     skip "groom puff is not in this build"

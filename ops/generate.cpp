@@ -191,7 +191,7 @@ void GenerateParams::validate() const
     if (first_id < 0) throw InvalidParam("generate: --first-id must be >= 0 (got " + std::to_string(first_id) + ")");
 }
 
-std::vector<float3> scatter_roots(const CurveSet& guides, const RootSampler& sample, const GenerateParams& params)
+std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const RootSampler& sample, const GenerateParams& params)
 {
     params.validate();
     if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
@@ -227,7 +227,7 @@ std::vector<float3> scatter_roots(const CurveSet& guides, const RootSampler& sam
 
     // Rejection from an area-uniform superset stays area-uniform; batches use fresh seeds so the
     // result depends only on params.seed.
-    std::vector<float3> out;
+    std::vector<SurfaceSample> out;
     out.reserve(size_t(params.count));
     std::vector<GuideIndex::Hit> hits;
     double rate = 1.0;
@@ -241,11 +241,11 @@ std::vector<float3> scatter_roots(const CurveSet& guides, const RootSampler& sam
         const int64_t want = params.count - int64_t(out.size());
         const int64_t ask = std::min<int64_t>(int64_t(std::ceil(double(want) * 1.1 / std::max(rate, 0.02))) + 16,
                                               std::max<int64_t>(4 * params.count, 1 << 16));
-        const std::vector<float3> got = sample(center, radius, ask, mix64(params.seed ^ mix64(batch + 0x5bd1e995ull)));
+        const std::vector<SurfaceSample> got = sample(center, radius, ask, mix64(params.seed ^ mix64(batch + 0x5bd1e995ull)));
         int64_t kept = 0;
-        for (const float3& p : got) {
+        for (const SurfaceSample& p : got) {
             if (int64_t(out.size()) == params.count) break;
-            if (accept(p, hits)) {
+            if (accept(p.position, hits)) {
                 out.push_back(p);
                 ++kept;
             }
@@ -256,9 +256,12 @@ std::vector<float3> scatter_roots(const CurveSet& guides, const RootSampler& sam
 }
 
 CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
-                           const GenerateParams& params, Progress* progress)
+                           std::span<const float3> normals, const GenerateParams& params, Progress* progress)
 {
     params.validate();
+    if (!normals.empty() && normals.size() != roots.size()) {
+        throw InvalidParam("generate: " + std::to_string(normals.size()) + " root normals for " + std::to_string(roots.size()) + " roots");
+    }
     if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
     const PreparedGuides pg = prepare(guides, scalp, params.points);
     const GuideIndex index(pg.roots);
@@ -310,7 +313,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
                 total = 0.0;
                 for (int j = 0; j < k; ++j) total += (w[j] = std::pow(1.0 / hits[j].distance, double(params.power)));
             }
-            const float3 n = scalp.normal(x);
+            const float3 n = normals.empty() ? scalp.normal(x) : normalize(normals[c], scalp.normal(x));
             for (int i = 0; i < np; ++i) out[i] = float3();
             for (int j = 0; j < k; ++j) {
                 const int64_t g = hits[j].guide;
@@ -336,8 +339,13 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
 CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
                   Progress* progress)
 {
-    const std::vector<float3> roots = scatter_roots(guides, sample, params);
-    return generate_at_roots(guides, scalp, roots, params, progress);
+    const std::vector<SurfaceSample> samples = scatter_roots(guides, sample, params);
+    std::vector<float3> roots(samples.size()), normals(samples.size());
+    for (size_t i = 0; i < samples.size(); ++i) {
+        roots[i] = samples[i].position;
+        normals[i] = samples[i].normal;
+    }
+    return generate_at_roots(guides, scalp, roots, normals, params, progress);
 }
 
 int64_t push_out_of_scalp(CurveSet& curves, const Surface& scalp, float clearance)

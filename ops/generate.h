@@ -5,6 +5,7 @@
 // curves").
 #pragma once
 
+#include "fields/scalp_field.h"
 #include "fields/surface.h"
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
@@ -16,12 +17,22 @@
 
 namespace groom {
 
-/// Draws `count` points area-uniformly on the scalp among the parts of it near the ball
+/// Draws `count` samples (position and surface normal) area-uniformly on the scalp among the parts of it near the ball
 /// (center, radius), deterministically for `seed`. It may return points outside the ball (a face
 /// straddling the sphere, say) and fewer than asked for; generate() keeps only those inside the ball
 /// and asks again with fresh seeds until it has enough, so any superset sampler stays area-uniform.
 /// The CLI wraps ScalpField::sample_ball; tests wrap an exact spherical-cap sampler.
-using RootSampler = std::function<std::vector<float3>(const float3& center, float radius, int64_t count, uint64_t seed)>;
+/// The normal is the sampler's (a face normal for a mesh): exact where the sample lies, which a
+/// level set's gradient need not be on the zero crossing itself.
+using RootSampler = std::function<std::vector<SurfaceSample>(const float3& center, float radius, int64_t count, uint64_t seed)>;
+
+/// ScalpField::sample_ball as a RootSampler (the sampler every command uses). `scalp` must outlive it.
+inline RootSampler scalp_root_sampler(const ScalpField& scalp)
+{
+    return [&scalp](const float3& center, float radius, int64_t count, uint64_t seed) {
+        return scalp.sample_ball(center, radius, count, seed);
+    };
+}
 
 struct GenerateParams {
     int64_t count = 1000;     ///< roots to scatter, >= 1 (--count)
@@ -56,16 +67,16 @@ struct GenerateParams {
 CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
                   Progress* progress = nullptr);
 
-/// The roots generate() would use: params.count points, area-uniform inside the region (or footprint),
-/// in a deterministic order for params.seed.
-std::vector<float3> scatter_roots(const CurveSet& guides, const RootSampler& sample, const GenerateParams& params);
+/// The roots generate() would use: params.count samples, area-uniform inside the region (or
+/// footprint), in a deterministic order for params.seed.
+std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const RootSampler& sample, const GenerateParams& params);
 
 /// @brief One curve per root, shaped from the K = params.neighbours guides whose roots are nearest
 /// (CGAL kd-tree search).
 ///
 /// Each guide is first resampled to the common point count (params.points). A guide's shape is its
 /// points relative to its root, expressed in its root frame (normal = scalp normal at the guide root);
-/// at a new root x with normal n that frame is carried over by the minimal rotation taking the guide's
+/// at a new root x with normal n (normals[i], or scalp.normal(x) when `normals` is empty) that frame is carried over by the minimal rotation taking the guide's
 /// normal onto n, so shapes follow the curvature of the scalp. Shapes are blended with Franke-Little
 /// inverse-distance weights w_g = ((d_{K+1} - d_g) / (d_{K+1} d_g))^power (d_{K+1}: the next guide
 /// out, so a guide's weight falls to zero as it leaves the K nearest and shapes vary continuously).
@@ -73,7 +84,7 @@ std::vector<float3> scatter_roots(const CurveSet& guides, const RootSampler& sam
 /// (all but the root) found inside the scalp are pushed out to params.clearance.
 /// Uses params: neighbours, power, points, clearance, first_id. Attributes as for generate().
 CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
-                           const GenerateParams& params, Progress* progress = nullptr);
+                           std::span<const float3> normals, const GenerateParams& params, Progress* progress = nullptr);
 
 /// Moves every point but each curve's root that lies inside `scalp` (distance < clearance) out to
 /// distance `clearance` along the surface normal. Returns the number of points moved.

@@ -77,7 +77,7 @@ TEST(Generate, RootOnGuideRootReproducesGuideExactly)
     const CurveSet guides = pole_guides();
     const std::vector<float3> roots{curve(guides, 2)[0], curve(guides, 4)[0], on_sphere(0.1, 0.3)};
     GenerateParams params;
-    const CurveSet out = generate_at_roots(guides, head, roots, params);
+    const CurveSet out = generate_at_roots(guides, head, roots, {}, params);
     ASSERT_EQ(out.num_curves(), 3u);
     for (int k = 0; k < 2; ++k) {
         const auto want = curve(guides, k == 0 ? 2 : 4), got = curve(out, k);
@@ -86,7 +86,7 @@ TEST(Generate, RootOnGuideRootReproducesGuideExactly)
     }
     // With another point count the guide is resampled first: the copy is of the resampled guide.
     params.points = 20;
-    const CurveSet out20 = generate_at_roots(guides, head, roots, params);
+    const CurveSet out20 = generate_at_roots(guides, head, roots, {}, params);
     const std::vector<float3> want = resample_by_count(curve(guides, 4), 20);
     const auto got = curve(out20, 1);
     ASSERT_EQ(got.size(), 20u);
@@ -104,7 +104,7 @@ TEST(Generate, ShapeFollowsScalpNormal)
     for (int k = 0; k < 12; ++k) roots.push_back(on_sphere(0.05 + 0.06 * k, 0.5 * k));
     GenerateParams params;
     params.neighbours = 1;
-    const CurveSet out = generate_at_roots(guides, head, roots, params);
+    const CurveSet out = generate_at_roots(guides, head, roots, {}, params);
     for (size_t c = 0; c < roots.size(); ++c) {
         const float3 n = normalize(roots[c] - kC);
         const auto pts = curve(out, c);
@@ -128,13 +128,13 @@ TEST(Generate, InverseDistanceWeightsBlendShapes)
     params.neighbours = 2;
     // Franke-Little: w = ((d3 - d) / (d3 d))^2 with d3 = 9 the third guide's distance.
     const double wa = std::pow((9.0 - 1.0) / 9.0, 2), wb = std::pow((9.0 - 3.0) / 27.0, 2);
-    EXPECT_NEAR(curve(generate_at_roots(guides, ground, roots, params), 0)[2].y, (wa * 1 + wb * 3) / (wa + wb), 1e-5);
+    EXPECT_NEAR(curve(generate_at_roots(guides, ground, roots, {}, params), 0)[2].y, (wa * 1 + wb * 3) / (wa + wb), 1e-5);
     // All guides in the blend: plain inverse distance, w = 1 / d^2.
     params.neighbours = 3;
     const double v[3] = {1.0, 1.0 / 9.0, 1.0 / 81.0};
-    EXPECT_NEAR(curve(generate_at_roots(guides, ground, roots, params), 0)[2].y,
+    EXPECT_NEAR(curve(generate_at_roots(guides, ground, roots, {}, params), 0)[2].y,
                 (v[0] * 1 + v[1] * 3 + v[2] * 5) / (v[0] + v[1] + v[2]), 1e-5);
-    EXPECT_EQ(curve(generate_at_roots(guides, ground, roots, params), 0)[2].x, 1.0f);  // straight up
+    EXPECT_EQ(curve(generate_at_roots(guides, ground, roots, {}, params), 0)[2].x, 1.0f);  // straight up
 }
 
 TEST(Generate, ShapesVaryContinuouslyAsNeighboursChange)
@@ -149,7 +149,7 @@ TEST(Generate, ShapesVaryContinuouslyAsNeighboursChange)
     for (int i = 0; i <= 3000; ++i) roots.push_back(float3(0.3f + 0.001f * float(i), 0, 0.01f));
     GenerateParams params;
     params.neighbours = 3;
-    const CurveSet out = generate_at_roots(to_curves(g), ground, roots, params);
+    const CurveSet out = generate_at_roots(to_curves(g), ground, roots, {}, params);
     float worst = 0;
     for (size_t c = 1; c < roots.size(); ++c) worst = std::max(worst, std::fabs(curve(out, c)[1].y - curve(out, c - 1)[1].y));
     EXPECT_LT(worst, 0.02f);
@@ -164,7 +164,7 @@ TEST(Generate, RootsAreaUniformInsideRegion)
     params.region_radius = 4.0f;
     params.seed = 11;
     const CurveSet guides = pole_guides();
-    const std::vector<float3> roots = scatter_roots(guides, test::sphere_cap_sampler(kC, kR), params);
+    const std::vector<SurfaceSample> roots = scatter_roots(guides, test::sphere_cap_sampler(kC, kR), params);
     ASSERT_EQ(roots.size(), 20000u);
     // The ball cuts the cap cos(theta) >= 1 - r^2 / (2 R^2).
     const double cos_max = 1.0 - 16.0 / 200.0;
@@ -175,9 +175,10 @@ TEST(Generate, RootsAreaUniformInsideRegion)
         for (int b : bins) x += (b - expected) * (b - expected) / expected;
         return x;
     };
-    auto stats = [&](const std::vector<float3>& pts, double& bands, double& sectors) {
+    auto stats = [&](const std::vector<SurfaceSample>& pts, double& bands, double& sectors) {
         std::vector<int> band(10, 0), sector(8, 0);
-        for (const float3& p : pts) {
+        for (const SurfaceSample& s : pts) {
+            const float3 p = s.position;
             const double z = double(p.y) / kR;
             band[std::min(9, int((1.0 - z) / (1.0 - cos_max) * 10.0))]++;
             const double phi = std::atan2(double(p.z), double(p.x)) + 3.141592653589793;
@@ -186,7 +187,8 @@ TEST(Generate, RootsAreaUniformInsideRegion)
         bands = chi2(band, pts.size() / 10.0);
         sectors = chi2(sector, pts.size() / 8.0);
     };
-    for (const float3& p : roots) {
+    for (const SurfaceSample& s : roots) {
+        const float3 p = s.position;
         ASSERT_LE(distance(p, params.region_center), params.region_radius * (1 + 1e-6f));
         ASSERT_LT(std::fabs(head.distance(p)), 1e-5f * kR);
     }
@@ -197,10 +199,10 @@ TEST(Generate, RootsAreaUniformInsideRegion)
 
     // The test has power: roots uniform in polar angle (not in area) fail it.
     const RootSampler biased = [](const float3&, float, int64_t count, uint64_t seed) {
-        std::vector<float3> out;
+        std::vector<SurfaceSample> out;
         for (int64_t i = 0; i < count; ++i) {
             Rng rng(seed, uint64_t(i), 3);
-            out.push_back(on_sphere(std::acos(1.0 - 16.0 / 200.0) * rng.uniform_double(), 6.283185307179586 * rng.uniform_double()));
+            out.push_back({on_sphere(std::acos(1.0 - 16.0 / 200.0) * rng.uniform_double(), 6.283185307179586 * rng.uniform_double()), float3(0, 1, 0), -1});
         }
         return out;
     };
@@ -210,8 +212,8 @@ TEST(Generate, RootsAreaUniformInsideRegion)
     // generate() grows its curves from exactly these roots.
     params.count = 500;
     const CurveSet out = generate(guides, head, test::sphere_cap_sampler(kC, kR), params);
-    const std::vector<float3> first = scatter_roots(guides, test::sphere_cap_sampler(kC, kR), params);
-    for (size_t c = 0; c < out.num_curves(); ++c) ASSERT_EQ(curve(out, c)[0], first[c]);
+    const std::vector<SurfaceSample> first = scatter_roots(guides, test::sphere_cap_sampler(kC, kR), params);
+    for (size_t c = 0; c < out.num_curves(); ++c) ASSERT_EQ(curve(out, c)[0], first[c].position);
 }
 
 TEST(Generate, FootprintKeepsRootsNearGuides)
@@ -223,9 +225,10 @@ TEST(Generate, FootprintKeepsRootsNearGuides)
     for (size_t g = 0; g < guides.num_curves(); ++g) groots.push_back(curve(guides, g)[0]);
     // The coarsest spacing: each outer guide's nearest is the pole guide, 2 R sin(0.125) away.
     const float D = 2.0f * kR * std::sin(0.125f);
-    const std::vector<float3> roots = scatter_roots(guides, test::sphere_cap_sampler(kC, kR, 1.0), params);
+    const std::vector<SurfaceSample> roots = scatter_roots(guides, test::sphere_cap_sampler(kC, kR, 1.0), params);
     float farthest = 0;
-    for (const float3& p : roots) {
+    for (const SurfaceSample& s : roots) {
+        const float3 p = s.position;
         float nearest = INFINITY;
         for (const float3& r : groots) nearest = std::min(nearest, distance(p, r));
         ASSERT_LE(nearest, D * (1 + 1e-5f));
@@ -233,7 +236,8 @@ TEST(Generate, FootprintKeepsRootsNearGuides)
     }
     EXPECT_GT(farthest, 0.9f * D);  // the footprint is filled out to its edge
     params.footprint_scale = 0.5f;
-    for (const float3& p : scatter_roots(guides, test::sphere_cap_sampler(kC, kR, 1.0), params)) {
+    for (const SurfaceSample& s : scatter_roots(guides, test::sphere_cap_sampler(kC, kR, 1.0), params)) {
+        const float3 p = s.position;
         float nearest = INFINITY;
         for (const float3& r : groots) nearest = std::min(nearest, distance(p, r));
         ASSERT_LE(nearest, 0.5f * D * (1 + 1e-5f));
@@ -378,8 +382,8 @@ TEST(Generate, RejectsInvalidParams)
     EXPECT_THROW(scatter_roots(to_curves(one), test::sphere_cap_sampler(kC, kR), {}), InvalidParam);
     one.push_back({on_sphere(0.1, 0)});
     const std::vector<float3> roots{on_sphere(0, 0)};
-    EXPECT_THROW(generate_at_roots(to_curves(one), head, roots, {}), InvalidGeometry);
-    EXPECT_THROW(generate_at_roots(CurveSet(), head, roots, {}), InvalidParam);
+    EXPECT_THROW(generate_at_roots(to_curves(one), head, roots, {}, {}), InvalidGeometry);
+    EXPECT_THROW(generate_at_roots(CurveSet(), head, roots, {}, {}), InvalidParam);
 }
 
 TEST(Generate, RegionOffTheScalpIsRefused)

@@ -25,14 +25,14 @@ inline RootSampler sphere_cap_sampler(const float3& C, float R, double margin = 
         if (h > 0.0) cos_max = std::clamp((h * h + double(R) * R - double(radius) * radius) / (2.0 * h * R), -1.0, 1.0);
         const double theta = std::min(3.14159265358979, std::acos(cos_max) * margin);
         const double lo = std::cos(theta);
-        std::vector<float3> out(static_cast<size_t>(count));
+        std::vector<SurfaceSample> out(static_cast<size_t>(count));
         for (int64_t i = 0; i < count; ++i) {
             Rng rng(seed, uint64_t(i), 7);
             const double z = 1.0 - rng.uniform_double() * (1.0 - lo);  // cos(polar angle): uniform = area-uniform
             const double phi = 6.283185307179586 * rng.uniform_double();
             const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
             const float3 d = normalize(a * float(z) + e1 * float(s * std::cos(phi)) + e2 * float(s * std::sin(phi)));
-            out[size_t(i)] = C + d * R;
+            out[size_t(i)] = {C + d * R, d, -1};
         }
         return out;
     };

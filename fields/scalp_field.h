@@ -1,32 +1,40 @@
 // ScalpField: the scalp as an OpenVDB signed-distance level set plus the repaired mesh it came from.
-// Built from any mesh a user has (see fields/mesh_repair.h), or loaded from a .vdb written by
-// `groom scalp`. OpenVDB stays behind a pimpl so ops/ and cli/ compile without its headers.
+// Built from any mesh a user has (repair in fields/mesh_repair.cpp, report in fields/mesh_repair.h),
+// or loaded from a .vdb written by `groom scalp`. OpenVDB, OpenMesh and CGAL stay behind a pimpl so
+// ops/ and cli/ compile without their headers.
+//
+// Queries are const and thread-safe (each call uses its own unregistered OpenVDB accessor). Inside
+// the narrow band they interpolate the grid; outside it they answer exactly from the mesh through a
+// CGAL AABB tree, so every point in space gets a correct answer.
 #pragma once
 
+#include "fields/mesh_repair.h"
 #include "fields/surface.h"
 #include "kernel/io/mesh_io.h"
 #include "kernel/progress.h"
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace groom {
 
 struct ScalpBuildParams {
-    float voxel_size = 0.0f;      ///< scene units; 0 = automatic from the mesh size
-    float band_voxels = 3.0f;     ///< narrow-band half width in voxels; >= 1
-    bool flip = false;            ///< treat the mesh as inside out
+    float voxel_size = 0.0f;      ///< scene units; 0 = automatic (bounding-box diagonal / 256)
+    float band_voxels = 3.0f;     ///< narrow-band half width in voxels; 1..64
+    bool flip = false;            ///< treat the mesh as inside out (after automatic orientation)
     uint64_t memory_budget = 4ull << 30;  ///< bytes; larger grids are refused with a suggested voxel size
-    void validate() const;        ///< throws InvalidParam
+    bool remove_enclosed_shells = true;   ///< drop shells lying inside a larger one (eyes, teeth)
+    void validate() const;        ///< throws InvalidParam naming the option, value and range
 };
 
 /// One sampled root on the scalp.
 struct SurfaceSample {
     float3 position;
-    float3 normal;
-    int32_t face = -1;
+    float3 normal;      ///< unit outward normal of the field at `position`
+    int32_t face = -1;  ///< triangle of the repaired mesh it was drawn on
 };
 
 class ScalpField final : public Surface {
@@ -36,16 +44,34 @@ public:
     ScalpField(ScalpField&&) noexcept;
     ScalpField& operator=(ScalpField&&) noexcept;
 
+    /// Signed distance (scene units; negative inside). Trilinear in the band, exact from the mesh outside.
     float distance(const float3& p) const override;
+    /// Unit outward normal: the normalised gradient of the distance (central differences of the grid
+    /// in the band; (p - closest) / distance from the mesh outside it).
     float3 normal(const float3& p) const override;
+    /// Projection onto the surface: p - d * n, refined by Newton steps on the grid in the band; exact
+    /// closest point on the mesh outside it.
     float3 closest_point(const float3& p) const override;
-    bool first_intersection(const float3& a, const float3& b, float3& hit, float tolerance = 0.0f) const override;
+    /// Signed distance, unit normal and closest point in one call (cheaper than three).
+    float query(const float3& p, float3& normal, float3& closest) const;
 
     float voxel_size() const;
+    float band_voxels() const;
+    Bounds3 bounds() const;
+    /// True when built from a mesh; false when the mesh was extracted from a loaded .vdb (exact to
+    /// about a voxel rather than to the original mesh).
+    bool has_source_mesh() const;
+    /// The repaired triangle mesh the queries fall back to (oriented outward).
+    PolygonSoup mesh() const;
+    int64_t num_faces() const;
 
-    /// `count` points area-uniformly distributed over the scalp faces whose points lie within
-    /// `radius` of `center` (radius <= 0: the whole surface), deterministic for a given seed.
+    /// `count` points area-uniformly distributed over the part of the scalp within `radius` of
+    /// `center` (radius <= 0: the whole surface). Deterministic for a given seed and independent of
+    /// the thread count: sample i is drawn from Rng(seed, i). Returns fewer (possibly none) only
+    /// when the ball holds no surface.
     std::vector<SurfaceSample> sample_ball(const float3& center, float radius, int64_t count, uint64_t seed) const;
+    /// The same over the faces with face_mask[f] != 0 (size num_faces()). Throws InvalidParam on a size mismatch.
+    std::vector<SurfaceSample> sample_faces(std::span<const uint8_t> face_mask, int64_t count, uint64_t seed) const;
 
     struct Impl;
     Impl& impl() { return *impl_; }
@@ -53,16 +79,25 @@ public:
 
 private:
     std::unique_ptr<Impl> impl_;
-    friend ScalpField build_scalp(const PolygonSoup&, const ScalpBuildParams&, struct RepairReport*, Progress*);
-    friend ScalpField read_scalp_vdb(const std::string&);
 };
 
-}  // namespace groom
+/// Repairs `soup` (see RepairReport) and converts it to a narrow-band level set named "scalp".
+/// Throws InvalidGeometry (empty mesh, NaN, index out of range, nothing left after repair),
+/// InvalidParam (bad params) or LimitExceeded (the grid would exceed params.memory_budget; the
+/// message suggests a voxel size that fits).
+ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params = {}, RepairReport* report = nullptr,
+                       Progress* progress = nullptr);
 
-namespace groom {
+/// Writes the level set (grid "scalp", class level set, half-float off) to a .vdb file atomically:
+/// readable by vdb_print, pyopenvdb and Houdini. Throws IoError.
+void write_scalp(const ScalpField& scalp, const std::string& path);
+
+/// Reads a .vdb holding a float level set named "scalp" (groom's, vdb_tool's, Houdini's); the mesh for
+/// far queries and sampling is extracted from its zero crossing. Throws IoError / ParseError.
+ScalpField read_scalp_vdb(const std::string& path, Progress* progress = nullptr);
 
 /// Loads the scalp for any command's --scalp: a .vdb written by `groom scalp` (grid "scalp"), or a
-/// mesh converted on the fly with `params`. Throws ParseError/IoError/InvalidParam.
+/// mesh converted on the fly with `params`. Throws ParseError/IoError/InvalidParam/InvalidGeometry.
 std::unique_ptr<ScalpField> load_scalp(const std::string& path, const ScalpBuildParams& params = {}, Progress* progress = nullptr);
 
 }  // namespace groom

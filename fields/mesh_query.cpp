@@ -1,0 +1,158 @@
+// Exact geometry of the repaired mesh: closest point on a triangle, angle-weighted pseudo-normals
+// and a CGAL AABB tree for the queries that fall outside the level set's narrow band.
+#include "fields/scalp_impl.h"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace groom::detail {
+
+float3 closest_on_triangle(const float3& p, const float3& a, const float3& b, const float3& c, Feature& feature)
+{
+    const float3 ab = b - a, ac = c - a, ap = p - a;
+    const float d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0.0f && d2 <= 0.0f) {
+        feature = Feature::Vertex0;
+        return a;
+    }
+    const float3 bp = p - b;
+    const float d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0.0f && d4 <= d3) {
+        feature = Feature::Vertex1;
+        return b;
+    }
+    const float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+        feature = Feature::Edge0;
+        return a + ab * (d1 / (d1 - d3));
+    }
+    const float3 cp = p - c;
+    const float d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0.0f && d5 <= d6) {
+        feature = Feature::Vertex2;
+        return c;
+    }
+    const float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+        feature = Feature::Edge2;
+        return a + ac * (d2 / (d2 - d6));
+    }
+    const float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+        feature = Feature::Edge1;
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    const float denom = 1.0f / (va + vb + vc);
+    feature = Feature::Face;
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+void MeshGeometry::compute(const TriMesh& mesh)
+{
+    const size_t nv = mesh.n_vertices(), nf = mesh.n_faces();
+    points.resize(nv);
+    Bounds3 box;
+    for (size_t v = 0; v < nv; ++v) {
+        const auto& q = mesh.point(TriMesh::VertexHandle{int(v)});
+        points[v] = float3(q[0], q[1], q[2]);
+        box.extend(points[v]);
+    }
+    bounds_lo = box.lo;
+    bounds_hi = box.hi;
+    tris.resize(nf);
+    face_normals.resize(nf);
+    face_areas.resize(nf);
+    edge_normals.assign(nf * 3, float3());
+    vertex_normals.assign(nv, float3());
+    for (size_t f = 0; f < nf; ++f) {
+        const TriMesh::FaceHandle fh{int(f)};
+        int k = 0;
+        for (auto fv : mesh.fv_range(fh)) tris[f][k++] = fv.idx();
+        const float3 &a = points[tris[f][0]], &b = points[tris[f][1]], &c = points[tris[f][2]];
+        const float3 n = cross(b - a, c - a);
+        face_areas[f] = 0.5 * double(length(n));
+        face_normals[f] = normalize(n);
+        // Angle-weighted vertex pseudo-normals: the weight is the face's angle at the vertex.
+        for (int j = 0; j < 3; ++j) {
+            const float3& p = points[tris[f][j]];
+            const float3 e1 = normalize(points[tris[f][(j + 1) % 3]] - p), e2 = normalize(points[tris[f][(j + 2) % 3]] - p);
+            const float angle = std::acos(std::clamp(dot(e1, e2), -1.0f, 1.0f));
+            vertex_normals[tris[f][j]] += face_normals[f] * angle;
+        }
+    }
+    for (float3& n : vertex_normals) n = normalize(n);
+    // Edge pseudo-normals: the sum of the two faces' normals (one face on a boundary edge).
+    for (size_t f = 0; f < nf; ++f) {
+        for (int k = 0; k < 3; ++k) {
+            const auto vh = TriMesh::VertexHandle(tris[f][k]), wh = TriMesh::VertexHandle(tris[f][(k + 1) % 3]);
+            const auto he = mesh.find_halfedge(vh, wh);
+            float3 n = face_normals[f];
+            if (he.is_valid()) {
+                const auto opp = mesh.opposite_face_handle(he);
+                if (opp.is_valid()) n += face_normals[opp.idx()];
+            }
+            edge_normals[f * 3 + k] = normalize(n, face_normals[f]);
+        }
+    }
+}
+
+float3 MeshGeometry::pseudo_normal(int32_t face, Feature feature) const
+{
+    switch (feature) {
+    case Feature::Face: return face_normals[face];
+    case Feature::Edge0: return edge_normals[face * 3 + 0];
+    case Feature::Edge1: return edge_normals[face * 3 + 1];
+    case Feature::Edge2: return edge_normals[face * 3 + 2];
+    case Feature::Vertex0: return vertex_normals[tris[face][0]];
+    case Feature::Vertex1: return vertex_normals[tris[face][1]];
+    case Feature::Vertex2: return vertex_normals[tris[face][2]];
+    }
+    return face_normals[face];
+}
+
+float MeshGeometry::signed_distance_to_face(const float3& p, int32_t f, float3& closest) const
+{
+    Feature feature;
+    closest = closest_on_triangle(p, points[tris[f][0]], points[tris[f][1]], points[tris[f][2]], feature);
+    const float3 d = p - closest;
+    const float dist = length(d);
+    return dot(d, pseudo_normal(f, feature)) < 0.0f ? -dist : dist;
+}
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Triangles = std::vector<K::Triangle_3>;
+using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
+using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+
+struct MeshQuery::Tree {
+    Triangles triangles;
+    AabbTree tree;
+};
+
+MeshQuery::MeshQuery(const MeshGeometry& geometry) : geometry_(geometry), tree_(std::make_unique<Tree>())
+{
+    auto P = [&](int32_t v) { return K::Point_3(geometry.points[v].x, geometry.points[v].y, geometry.points[v].z); };
+    tree_->triangles.reserve(geometry.tris.size());
+    for (const auto& t : geometry.tris) tree_->triangles.emplace_back(P(t[0]), P(t[1]), P(t[2]));
+    tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
+    tree_->tree.build();
+    // Builds the internal kd-tree of hints now, so later const queries from many threads never write.
+    tree_->tree.accelerate_distance_queries();
+}
+
+MeshQuery::~MeshQuery() = default;
+
+float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face) const
+{
+    const auto hit = tree_->tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
+    face = static_cast<int32_t>(hit.second - tree_->triangles.cbegin());
+    // The AABB tree finds the face; the pseudo-normal of the feature hit gives the sign.
+    return geometry_.signed_distance_to_face(p, face, closest);
+}
+
+}  // namespace groom::detail

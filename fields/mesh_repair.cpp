@@ -1,0 +1,444 @@
+// Soup -> oriented manifold triangle mesh with CGAL Polygon Mesh Processing, then into OpenMesh
+// through CGAL's graph traits (one mesh type). Shell orientation and enclosed-shell removal are ours:
+// PMP orients each component consistently but picks its side arbitrarily, and knows nothing of
+// eyes inside heads.
+#include "fields/scalp_impl.h"
+
+#include "kernel/error.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/boost/graph/graph_traits_TriMesh_ArrayKernelT.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+namespace groom {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Polygon = std::vector<std::size_t>;
+
+std::string RepairReport::summary() const
+{
+    std::ostringstream s;
+    auto line = [&](int64_t n, const char* what) {
+        if (n) s << "  " << n << " " << what << "\n";
+    };
+    s << "repair: " << input_vertices << " vertices, " << input_faces << " faces in; " << output_vertices << " vertices, "
+      << output_faces << " triangles out\n";
+    line(duplicate_vertices_merged, "duplicate vertices merged");
+    line(degenerate_faces_removed, "degenerate faces removed");
+    line(duplicate_faces_removed, "duplicate faces removed");
+    line(pinched_faces_split, "pinched faces split");
+    line(isolated_vertices_removed, "unused vertices removed");
+    line(ngons_triangulated, "quads/n-gons triangulated");
+    line(non_manifold_edges, "non-manifold edges cut");
+    line(non_manifold_vertices, "non-manifold vertices split");
+    line(faces_flipped, "faces flipped to a consistent, outward winding");
+    s << "  " << shells << " shells (" << closed_shells << " closed), " << boundary_loops << " boundary loops\n";
+    line(shells_flipped, "shells turned outward");
+    line(enclosed_shells_removed, "enclosed shells removed");
+    if (flipped_by_user) s << "  all faces flipped (--flip)\n";
+    for (const std::string& n : notes) s << "  note: " << n << "\n";
+    std::string out = s.str();
+    if (!out.empty()) out.pop_back();
+    return out;
+}
+
+std::string RepairReport::to_json() const
+{
+    std::ostringstream s;
+    s << "{\n";
+    auto field = [&](const char* k, int64_t v) { s << "  \"" << k << "\": " << v << ",\n"; };
+    field("input_vertices", input_vertices);
+    field("input_faces", input_faces);
+    field("duplicate_vertices_merged", duplicate_vertices_merged);
+    field("degenerate_faces_removed", degenerate_faces_removed);
+    field("duplicate_faces_removed", duplicate_faces_removed);
+    field("pinched_faces_split", pinched_faces_split);
+    field("isolated_vertices_removed", isolated_vertices_removed);
+    field("ngons_triangulated", ngons_triangulated);
+    field("triangles_from_ngons", triangles_from_ngons);
+    field("non_manifold_edges", non_manifold_edges);
+    field("non_manifold_vertices", non_manifold_vertices);
+    field("vertices_added_by_split", vertices_added_by_split);
+    field("faces_flipped", faces_flipped);
+    field("shells", shells);
+    field("closed_shells", closed_shells);
+    field("shells_flipped", shells_flipped);
+    field("enclosed_shells_removed", enclosed_shells_removed);
+    field("faces_in_removed_shells", faces_in_removed_shells);
+    field("boundary_loops", boundary_loops);
+    field("output_vertices", output_vertices);
+    field("output_faces", output_faces);
+    s << "  \"flipped_by_user\": " << (flipped_by_user ? "true" : "false") << ",\n  \"notes\": [";
+    for (size_t i = 0; i < notes.size(); ++i) {
+        s << (i ? ", " : "") << '"';
+        for (char c : notes[i]) {
+            if (c == '"' || c == '\\') s << '\\';
+            s << c;
+        }
+        s << '"';
+    }
+    s << "]\n}\n";
+    return s.str();
+}
+
+namespace detail {
+
+void validate_soup(const PolygonSoup& soup, const std::string& what)
+{
+    if (soup.points.empty() || soup.num_faces() == 0) {
+        throw InvalidGeometry(what + ": the mesh is empty (" + std::to_string(soup.points.size()) + " vertices, " +
+                              std::to_string(soup.num_faces()) + " faces); a scalp needs at least one face");
+    }
+    for (size_t i = 0; i < soup.points.size(); ++i) {
+        if (!isfinite(soup.points[i])) {
+            throw InvalidGeometry(what + ": vertex " + std::to_string(i + 1) + " has a non-finite coordinate (NaN or inf)");
+        }
+    }
+    if (soup.face_offsets.empty() || soup.face_offsets.front() != 0 ||
+        soup.face_offsets.back() != static_cast<int64_t>(soup.face_indices.size())) {
+        throw InvalidGeometry(what + ": face offsets do not match the index list");
+    }
+    const int64_t n = static_cast<int64_t>(soup.points.size());
+    for (size_t f = 0; f < soup.num_faces(); ++f) {
+        if (soup.face_offsets[f + 1] < soup.face_offsets[f]) throw InvalidGeometry(what + ": face offsets decrease at face " + std::to_string(f + 1));
+        for (int32_t i : soup.face(f)) {
+            if (i < 0 || i >= n) {
+                throw InvalidGeometry(what + ": face " + std::to_string(f + 1) + " uses vertex index " + std::to_string(i) +
+                                      ", out of range (" + std::to_string(n) + " vertices)");
+            }
+        }
+    }
+}
+
+namespace {
+
+struct UnionFind {
+    std::vector<size_t> parent;
+    explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), size_t(0)); }
+    size_t find(size_t x)
+    {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    void unite(size_t a, size_t b) { parent[find(a)] = find(b); }
+};
+
+/// Counts what CGAL's orientation did, through its visitor concept.
+struct OrientVisitor : PMP::Default_orientation_visitor {
+    int64_t* nm_edges;
+    int64_t* nm_vertices;
+    int64_t* duplicated;
+    std::vector<char>* reversed;
+    void non_manifold_edge(std::size_t, std::size_t, std::size_t) { ++*nm_edges; }
+    void non_manifold_vertex(std::size_t, std::size_t) { ++*nm_vertices; }
+    void duplicated_vertex(std::size_t, std::size_t) { ++*duplicated; }
+    void polygon_orientation_reversed(std::size_t p) { (*reversed)[p] ^= 1; }
+};
+
+inline K::Vector_3 tri_cross(const std::vector<Point>& pts, const Polygon& t)
+{
+    return CGAL::cross_product(pts[t[1]] - pts[t[0]], pts[t[2]] - pts[t[0]]);
+}
+
+/// Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom & Strackee 1983).
+double solid_angle(const K::Vector_3& a, const K::Vector_3& b, const K::Vector_3& c)
+{
+    const double la = std::sqrt(a.squared_length()), lb = std::sqrt(b.squared_length()), lc = std::sqrt(c.squared_length());
+    const double det = CGAL::determinant(a, b, c);
+    const double den = la * lb * lc + (a * b) * lc + (a * c) * lb + (b * c) * la;
+    return 2.0 * std::atan2(det, den);
+}
+
+/// Triangulates polygon `poly` (4+ vertices) into `out`, wound like the polygon. Quads split along
+/// the shorter diagonal; larger polygons through CGAL's minimal-area hole triangulation (works for
+/// non-planar polygons), fanned if that fails.
+void triangulate_polygon(const std::vector<Point>& pts, const Polygon& poly, std::vector<Polygon>& out)
+{
+    const size_t n = poly.size();
+    if (n == 4) {
+        const double d02 = CGAL::squared_distance(pts[poly[0]], pts[poly[2]]);
+        const double d13 = CGAL::squared_distance(pts[poly[1]], pts[poly[3]]);
+        if (d02 <= d13) {
+            out.push_back({poly[0], poly[1], poly[2]});
+            out.push_back({poly[0], poly[2], poly[3]});
+        }
+        else {
+            out.push_back({poly[1], poly[2], poly[3]});
+            out.push_back({poly[1], poly[3], poly[0]});
+        }
+        return;
+    }
+    // Newell normal gives the polygon's winding even when it is not planar.
+    K::Vector_3 newell(0, 0, 0);
+    for (size_t i = 0; i < n; ++i) {
+        const Point& a = pts[poly[i]];
+        const Point& b = pts[poly[(i + 1) % n]];
+        newell = newell + K::Vector_3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+                                      (a.x() - b.x()) * (a.y() + b.y()));
+    }
+    std::vector<Point> polyline;
+    for (size_t i : poly) polyline.push_back(pts[i]);
+    std::vector<CGAL::Triple<int, int, int>> patch;
+    PMP::triangulate_hole_polyline(polyline, std::back_inserter(patch));
+    if (patch.size() != n - 2) {
+        for (size_t i = 1; i + 1 < n; ++i) out.push_back({poly[0], poly[i], poly[i + 1]});
+        return;
+    }
+    for (const auto& t : patch) {
+        Polygon tri{poly[t.first], poly[t.second], poly[t.third]};
+        if (tri_cross(pts, tri) * newell < 0) std::swap(tri[1], tri[2]);
+        out.push_back(std::move(tri));
+    }
+}
+
+}  // namespace
+
+TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, RepairReport& report, Progress* progress)
+{
+    validate_soup(soup, options.what);
+    ProgressStep step(progress, "repair mesh", 6);
+    report = RepairReport{};
+    report.input_vertices = static_cast<int64_t>(soup.points.size());
+    report.input_faces = static_cast<int64_t>(soup.num_faces());
+    report.flipped_by_user = options.flip;
+
+    std::vector<Point> pts;
+    pts.reserve(soup.points.size());
+    for (const float3& p : soup.points) pts.emplace_back(p.x, p.y, p.z);
+    std::vector<Polygon> polys(soup.num_faces());
+    for (size_t f = 0; f < soup.num_faces(); ++f) {
+        const auto idx = soup.face(f);
+        polys[f].assign(idx.begin(), idx.end());
+    }
+
+    // Soup clean-up: the steps of PMP::repair_polygon_soup one by one (three live in PMP::internal in
+    // CGAL 5.5) so each can be counted.
+    const size_t polys_in = polys.size();
+    report.duplicate_vertices_merged = static_cast<int64_t>(PMP::merge_duplicate_points_in_polygon_soup(pts, polys));
+    PMP::internal::simplify_polygons_in_polygon_soup<K>(pts, polys, K());
+    report.pinched_faces_split = static_cast<int64_t>(PMP::internal::split_pinched_polygons_in_polygon_soup<K>(pts, polys, K()));
+    const size_t invalid = PMP::internal::remove_invalid_polygons_in_polygon_soup(pts, polys);
+    report.duplicate_faces_removed = static_cast<int64_t>(PMP::merge_duplicate_polygons_in_polygon_soup(pts, polys));
+    report.isolated_vertices_removed = static_cast<int64_t>(PMP::remove_isolated_points_in_polygon_soup(pts, polys));
+    (void)polys_in;
+    step.advance(1);
+
+    // Triangulate, then drop zero-area triangles (collinear vertices): they carry no surface and
+    // have no normal to sign a distance with.
+    CGAL::Bbox_3 box;
+    for (const Point& p : pts) box += p.bbox();
+    const double diag2 = CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin());
+    const double min_area2 = diag2 * diag2 * 1e-24;  // (area * 2)^2 below (1e-12 diag^2)^2
+    std::vector<Polygon> tris;
+    tris.reserve(polys.size() * 2);
+    int64_t degenerate = static_cast<int64_t>(invalid);
+    for (const Polygon& poly : polys) {
+        const size_t first = tris.size();
+        if (poly.size() == 3) {
+            tris.push_back(poly);
+        }
+        else {
+            ++report.ngons_triangulated;
+            triangulate_polygon(pts, poly, tris);
+            report.triangles_from_ngons += static_cast<int64_t>(tris.size() - first);
+        }
+        for (size_t t = first; t < tris.size();) {
+            if (tri_cross(pts, tris[t]).squared_length() <= min_area2) {
+                tris.erase(tris.begin() + static_cast<std::ptrdiff_t>(t));
+                ++degenerate;
+            }
+            else {
+                ++t;
+            }
+        }
+    }
+    report.degenerate_faces_removed = degenerate;
+    report.isolated_vertices_removed += static_cast<int64_t>(PMP::remove_isolated_points_in_polygon_soup(pts, tris));
+    if (tris.empty()) {
+        throw InvalidGeometry(options.what + ": no face with a non-zero area is left after removing " +
+                              std::to_string(report.degenerate_faces_removed) + " degenerate faces");
+    }
+    step.advance(1);
+
+    // Consistent orientation per component; non-manifold vertices and edges are cut apart so the
+    // soup becomes a valid manifold mesh.
+    std::vector<char> reversed(tris.size(), 0);
+    OrientVisitor visitor;
+    visitor.nm_edges = &report.non_manifold_edges;
+    visitor.nm_vertices = &report.non_manifold_vertices;
+    visitor.duplicated = &report.vertices_added_by_split;
+    visitor.reversed = &reversed;
+    PMP::orient_polygon_soup(pts, tris, CGAL::parameters::visitor(visitor));
+    step.advance(1);
+
+    // Shells: components over shared vertices, each with its area, signed volume and boundary edges.
+    UnionFind uf(pts.size());
+    for (const Polygon& t : tris) {
+        uf.unite(t[0], t[1]);
+        uf.unite(t[0], t[2]);
+    }
+    std::unordered_map<size_t, int32_t> shell_of_root;
+    std::vector<int32_t> shell(tris.size());
+    for (size_t t = 0; t < tris.size(); ++t) {
+        auto [it, added] = shell_of_root.try_emplace(uf.find(tris[t][0]), int32_t(shell_of_root.size()));
+        shell[t] = it->second;
+    }
+    const size_t nshells = shell_of_root.size();
+    report.shells = static_cast<int64_t>(nshells);
+    struct Shell {
+        double area = 0, volume = 0, scale = 0;
+        K::Vector_3 centroid{0, 0, 0};
+        size_t vertex_count = 0, faces = 0, boundary_edges = 0;
+        CGAL::Bbox_3 box;
+        bool flip = false, removed = false;
+    };
+    std::vector<Shell> shells(nshells);
+    for (size_t t = 0; t < tris.size(); ++t) {
+        Shell& s = shells[shell[t]];
+        ++s.faces;
+        s.area += 0.5 * std::sqrt(tri_cross(pts, tris[t]).squared_length());
+        for (size_t v : tris[t]) {
+            s.centroid = s.centroid + (pts[v] - CGAL::ORIGIN);
+            ++s.vertex_count;
+            s.box += pts[v].bbox();
+        }
+    }
+    for (Shell& s : shells) s.centroid = s.centroid / double(s.vertex_count);
+    for (size_t t = 0; t < tris.size(); ++t) {
+        Shell& s = shells[shell[t]];
+        const Point c = CGAL::ORIGIN + s.centroid;
+        s.volume += CGAL::determinant(pts[tris[t][0]] - c, pts[tris[t][1]] - c, pts[tris[t][2]] - c) / 6.0;
+        for (size_t v : tris[t]) s.scale = std::max(s.scale, std::sqrt(CGAL::squared_distance(pts[v], c)));
+    }
+    {
+        // Boundary edges: undirected edges used by exactly one triangle.
+        std::unordered_map<uint64_t, int> uses;
+        uses.reserve(tris.size() * 3);
+        for (const Polygon& t : tris) {
+            for (int k = 0; k < 3; ++k) {
+                const uint64_t a = t[k], b = t[(k + 1) % 3];
+                ++uses[std::min(a, b) << 32 | std::max(a, b)];
+            }
+        }
+        UnionFind loops(pts.size());
+        std::vector<char> on_boundary(pts.size(), 0);
+        for (size_t t = 0; t < tris.size(); ++t) {
+            for (int k = 0; k < 3; ++k) {
+                const uint64_t a = tris[t][k], b = tris[t][(k + 1) % 3];
+                if (uses[std::min(a, b) << 32 | std::max(a, b)] == 1) {
+                    ++shells[shell[t]].boundary_edges;
+                    loops.unite(a, b);
+                    on_boundary[a] = on_boundary[b] = 1;
+                }
+            }
+        }
+        for (size_t v = 0; v < pts.size(); ++v) report.boundary_loops += (on_boundary[v] && loops.find(v) == v);
+    }
+    for (const Shell& s : shells) report.closed_shells += (s.boundary_edges == 0);
+
+    // Outward orientation. A closed shell is outward when its signed volume is positive. An open
+    // shell (a scalp patch, a bust open at the neck) is judged the same way when its volume about
+    // its centroid is decisive (a cap, a nearly closed head); a nearly flat patch keeps the winding
+    // most of its area had in the file.
+    if (options.orient_outward) {
+        std::vector<double> agree(nshells, 0.0);
+        for (size_t t = 0; t < tris.size(); ++t) {
+            const double a = std::sqrt(tri_cross(pts, tris[t]).squared_length());
+            agree[shell[t]] += reversed[t] ? -a : a;
+        }
+        for (size_t i = 0; i < nshells; ++i) {
+            Shell& s = shells[i];
+            const double decisive = 0.25 * s.area * s.scale / 3.0;
+            if (s.boundary_edges == 0 || std::fabs(s.volume) > decisive) s.flip = s.volume < 0.0;
+            else s.flip = agree[i] < 0.0;
+            report.shells_flipped += s.flip;
+        }
+    }
+
+    // Enclosed shells: a shell whose sampled vertices all have |winding number| > 1/2 with respect
+    // to a larger shell lies inside it (eyes and teeth in a head, joint helpers in a body). Hair
+    // never reaches them, and they would give the inside of the head a false outside.
+    std::vector<std::vector<size_t>> tris_of_shell(nshells);
+    for (size_t t = 0; t < tris.size(); ++t) tris_of_shell[shell[t]].push_back(t);
+    if (options.remove_enclosed && nshells > 1) {
+        std::vector<size_t> order(nshells);
+        std::iota(order.begin(), order.end(), size_t(0));
+        std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shells[a].area > shells[b].area; });
+        auto contains = [](const CGAL::Bbox_3& o, const CGAL::Bbox_3& i) {
+            return o.xmin() <= i.xmin() && o.ymin() <= i.ymin() && o.zmin() <= i.zmin() && o.xmax() >= i.xmax() &&
+                   o.ymax() >= i.ymax() && o.zmax() >= i.zmax();
+        };
+        size_t biggest_host = order[0];
+        for (size_t ai = 1; ai < nshells; ++ai) {
+            const size_t a = order[ai];
+            const auto& ta = tris_of_shell[a];
+            const size_t samples[3] = {tris[ta.front()][0], tris[ta[ta.size() / 2]][1], tris[ta.back()][2]};
+            for (size_t bi = 0; bi < ai && !shells[a].removed; ++bi) {
+                const size_t b = order[bi];
+                if (shells[b].removed || !contains(shells[b].box, shells[a].box)) continue;
+                bool inside = true;
+                for (size_t v : samples) {
+                    double w = 0.0;
+                    for (size_t t : tris_of_shell[b]) {
+                        w += solid_angle(pts[tris[t][0]] - pts[v], pts[tris[t][1]] - pts[v], pts[tris[t][2]] - pts[v]);
+                    }
+                    if (std::fabs(w) / (4.0 * M_PI) <= 0.5) {
+                        inside = false;
+                        break;
+                    }
+                }
+                if (inside) {
+                    shells[a].removed = true;
+                    biggest_host = b;
+                    ++report.enclosed_shells_removed;
+                    report.faces_in_removed_shells += static_cast<int64_t>(shells[a].faces);
+                }
+            }
+        }
+        if (report.enclosed_shells_removed > 0) {
+            report.notes.push_back("removed " + std::to_string(report.enclosed_shells_removed) + " shells (" +
+                                   std::to_string(report.faces_in_removed_shells) +
+                                   " faces) lying entirely inside a larger shell (e.g. one of " +
+                                   std::to_string(shells[biggest_host].faces) +
+                                   " faces): eyes, teeth or helpers inside a head would make its inside read as outside");
+        }
+    }
+    step.advance(1);
+
+    std::vector<Polygon> kept;
+    kept.reserve(tris.size());
+    for (size_t t = 0; t < tris.size(); ++t) {
+        const Shell& s = shells[shell[t]];
+        if (s.removed) continue;
+        Polygon tri = tris[t];
+        const bool net = (reversed[t] != 0) != s.flip;
+        report.faces_flipped += net;
+        if (s.flip != options.flip) std::swap(tri[1], tri[2]);
+        kept.push_back(std::move(tri));
+    }
+    PMP::remove_isolated_points_in_polygon_soup(pts, kept);
+    if (!PMP::is_polygon_soup_a_polygon_mesh(kept)) {
+        throw InvalidGeometry(options.what + ": repair could not make a manifold mesh (CGAL orient_polygon_soup left a "
+                              "non-manifold configuration); please report this mesh");
+    }
+    TriMesh mesh;
+    PMP::polygon_soup_to_polygon_mesh(pts, kept, mesh);
+    report.output_vertices = static_cast<int64_t>(mesh.n_vertices());
+    report.output_faces = static_cast<int64_t>(mesh.n_faces());
+    step.advance(2);
+    return mesh;
+}
+
+}  // namespace detail
+}  // namespace groom

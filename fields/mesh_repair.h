@@ -1,0 +1,41 @@
+// Mesh repair report: what `build_scalp` did to a user's mesh before converting it, in counts.
+// Nothing is dropped silently: every removed face, merged vertex and removed shell is counted here,
+// printed by `groom scalp` on stderr and written by `--report FILE.json`.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace groom {
+
+struct RepairReport {
+    int64_t input_vertices = 0, input_faces = 0;
+    int64_t duplicate_vertices_merged = 0;   ///< vertices at exactly the position of another, welded
+    int64_t degenerate_faces_removed = 0;    ///< < 3 distinct vertices, or zero area
+    int64_t duplicate_faces_removed = 0;     ///< the same vertex set as another face
+    int64_t pinched_faces_split = 0;         ///< polygons that visit one position twice, split in two
+    int64_t isolated_vertices_removed = 0;   ///< vertices used by no face
+    int64_t ngons_triangulated = 0;          ///< faces with 4+ vertices
+    int64_t triangles_from_ngons = 0;        ///< triangles those became
+    int64_t non_manifold_edges = 0;          ///< edges with 3+ faces (or inconsistent), cut apart
+    int64_t non_manifold_vertices = 0;       ///< vertices whose faces form several fans, split
+    int64_t vertices_added_by_split = 0;     ///< vertex copies made to split them
+    int64_t faces_flipped = 0;               ///< faces whose winding was reversed (net, vs. the input)
+    int64_t shells = 0;                      ///< connected components after repair (before removal)
+    int64_t closed_shells = 0;               ///< of which closed (no boundary edge)
+    int64_t shells_flipped = 0;              ///< shells turned so their normals face outwards
+    int64_t enclosed_shells_removed = 0;     ///< shells entirely inside a larger shell (eyes, teeth, helpers)
+    int64_t faces_in_removed_shells = 0;
+    int64_t boundary_loops = 0;              ///< holes / open rims left in the result
+    int64_t output_vertices = 0, output_faces = 0;
+    bool flipped_by_user = false;            ///< --flip was given
+    std::vector<std::string> notes;          ///< sentences for the user (why a shell went, etc.)
+
+    /// One line per non-zero count, for stderr.
+    std::string summary() const;
+    /// The whole report as a JSON object.
+    std::string to_json() const;
+};
+
+}  // namespace groom

@@ -1,0 +1,303 @@
+// Building, writing and reading the scalp level set. The distance is computed unsigned by OpenVDB's
+// meshToVolume, which also returns each voxel's closest polygon; we then sign every band voxel by the
+// angle-weighted pseudo-normal of its closest feature. Unlike flood-fill signing this is right for
+// open scalp patches and busts open at the neck, where the inside "leaks" to the outside.
+#include "fields/scalp_impl.h"
+
+#include "kernel/error.h"
+
+#include <openvdb/io/File.h>
+#include <openvdb/tools/LevelSetUtil.h>
+#include <openvdb/tools/MeshToVolume.h>
+#include <openvdb/tools/SignedFloodFill.h>
+#include <openvdb/tools/VolumeToMesh.h>
+#include <openvdb/tree/LeafManager.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <sstream>
+#include <unistd.h>
+
+namespace groom {
+
+namespace {
+
+void init_openvdb()
+{
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+std::string fmt(double v)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+
+std::string lower_ext(const std::string& path)
+{
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace
+
+void ScalpBuildParams::validate() const
+{
+    if (!(voxel_size >= 0.0f) || !std::isfinite(voxel_size)) {
+        throw InvalidParam("scalp: --voxel must be > 0 (got " + fmt(voxel_size) + "); omit it for an automatic size");
+    }
+    if (!(band_voxels >= 1.0f && band_voxels <= 64.0f)) {
+        throw InvalidParam("scalp: --band must be in [1, 64] voxels (got " + fmt(band_voxels) + ")");
+    }
+    if (memory_budget == 0) throw InvalidParam("scalp: memory budget must be > 0 bytes");
+}
+
+void ScalpField::Impl::finish_grids(const std::string& what)
+{
+    const openvdb::math::Transform& xf = sdf->transform();
+    const openvdb::Vec3d o = xf.indexToWorld(openvdb::Vec3d(0, 0, 0));
+    const double h = xf.voxelSize()[0];
+    const openvdb::Vec3d probe = xf.indexToWorld(openvdb::Vec3d(1, 2, 3));
+    const openvdb::Vec3d expect = o + openvdb::Vec3d(1, 2, 3) * h;
+    if (!xf.isLinear() || !xf.hasUniformScale() || !(h > 0.0) || (probe - expect).length() > 1e-6 * h * 4.0) {
+        throw ParseError(what + ": grid 'scalp' has a rotated, sheared or non-uniform transform; groom needs cubic, "
+                                "axis-aligned voxels (resample it, e.g. with vdb_tool -resample)");
+    }
+    voxel = static_cast<float>(h);
+    inv_voxel = static_cast<float>(1.0 / h);
+    origin = float3(float(o.x()), float(o.y()), float(o.z()));
+    band = static_cast<float>(sdf->background() / h);
+
+    // Gradient by central differences where both neighbours are in the band, one-sided at its edge.
+    gradient = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    gradient->setTransform(sdf->transform().copy());
+    gradient->tree().topologyUnion(sdf->tree());
+    openvdb::tree::LeafManager<openvdb::Vec3STree> leaves(gradient->tree());
+    const float inv2h = 0.5f * inv_voxel;
+    const openvdb::FloatTree& dist = sdf->tree();
+    leaves.foreach([&](openvdb::Vec3STree::LeafNodeType& leaf, size_t) {
+        openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> acc(dist);
+        for (auto it = leaf.beginValueOn(); it; ++it) {
+            const openvdb::Coord c = it.getCoord();
+            float v0 = 0.0f;
+            acc.probeValue(c, v0);
+            openvdb::Vec3s g(0.0f);
+            for (int axis = 0; axis < 3; ++axis) {
+                openvdb::Coord lo = c, hi = c;
+                lo[axis] -= 1;
+                hi[axis] += 1;
+                float vl = 0.0f, vh = 0.0f;
+                const bool l = acc.probeValue(lo, vl), r = acc.probeValue(hi, vh);
+                if (l && r) g[axis] = (vh - vl) * inv2h;
+                else if (r) g[axis] = (vh - v0) * 2.0f * inv2h;
+                else if (l) g[axis] = (v0 - vl) * 2.0f * inv2h;
+            }
+            it.setValue(g);
+        }
+    });
+}
+
+ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, RepairReport* report_out, Progress* progress)
+{
+    params.validate();
+    init_openvdb();
+    detail::RepairOptions options;
+    options.flip = params.flip;
+    options.remove_enclosed = params.remove_enclosed_shells;
+    RepairReport report;
+    const TriMesh mesh = detail::repair_soup(soup, options, report, progress);
+    if (report_out) *report_out = report;
+
+    ScalpField field;
+    ScalpField::Impl& im = field.impl();
+    im.geometry.compute(mesh);
+    const detail::MeshGeometry& geo = im.geometry;
+    const float diag = length(geo.bounds_hi - geo.bounds_lo);
+    if (!(diag > 0.0f)) throw InvalidGeometry("scalp: the mesh has no extent (all vertices at one point)");
+    const double h = params.voxel_size > 0.0f ? params.voxel_size : diag / 256.0;
+
+    // Memory estimate before allocating anything: the band holds about area / h^2 * 2 * band voxels,
+    // each costing the distance, its polygon index, the gradient and meshToVolume's temporaries
+    // (~48 bytes measured on the heads in ../shared/datasets, with leaf-node slack).
+    double area = 0.0;
+    for (double a : geo.face_areas) area += a;
+    const double band = params.band_voxels;
+    const double voxels = area / (h * h) * 2.0 * (band + 0.5) + 512.0 * double(geo.tris.size()) / 64.0;
+    const double bytes = voxels * 48.0;
+    const double extent_voxels = diag / h;
+    if (bytes > double(params.memory_budget) || extent_voxels > 1.0e6) {
+        const double suggest = h * std::sqrt(std::max(bytes / double(params.memory_budget), 1.0)) * 1.1;
+        const double suggest2 = std::max(suggest, diag / 1.0e6 * 1.1);
+        throw LimitExceeded("scalp: voxel size " + fmt(h) + " needs about " + fmt(bytes / double(1ull << 30)) +
+                            " GiB for the level set (" + fmt(voxels) + " voxels), over the " +
+                            fmt(double(params.memory_budget) / double(1ull << 30)) + " GiB budget; use --voxel " +
+                            fmt(suggest2) + " or larger (the mesh is " + fmt(diag) + " units across)");
+    }
+
+    ProgressStep step(progress, "signed distance", 3);
+    std::vector<openvdb::Vec3s> points(geo.points.size());
+    for (size_t i = 0; i < points.size(); ++i) points[i] = openvdb::Vec3s(geo.points[i].x, geo.points[i].y, geo.points[i].z);
+    std::vector<openvdb::Vec3I> tris(geo.tris.size());
+    for (size_t i = 0; i < tris.size(); ++i) tris[i] = openvdb::Vec3I(geo.tris[i][0], geo.tris[i][1], geo.tris[i][2]);
+    const openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(h);
+    const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(points, tris);
+    openvdb::Int32Grid index_grid(0);
+    openvdb::util::NullInterrupter interrupter;
+    openvdb::FloatGrid::Ptr sdf = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
+        interrupter, adapter, *xform, float(band), float(band), openvdb::tools::UNSIGNED_DISTANCE_FIELD, &index_grid);
+    step.advance(1);
+
+    // Sign (and recompute exactly) every band voxel from its closest polygon's pseudo-normal.
+    openvdb::tree::LeafManager<openvdb::FloatTree> leaves(sdf->tree());
+    const openvdb::Int32Tree& index_tree = index_grid.tree();
+    leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, size_t) {
+        openvdb::tree::ValueAccessor<const openvdb::Int32Tree, false> idx(index_tree);
+        for (auto it = leaf.beginValueOn(); it; ++it) {
+            const openvdb::Coord c = it.getCoord();
+            const int32_t f = idx.getValue(c);
+            if (f < 0 || size_t(f) >= geo.tris.size()) continue;
+            const float3 p(float(c.x() * h), float(c.y() * h), float(c.z() * h));
+            float3 closest;
+            it.setValue(geo.signed_distance_to_face(p, f, closest));
+        }
+    });
+    // Inactive tiles and voxels take the sign of their active neighbours (inside = -band * h), as
+    // viewers expect of a level set; queries never trust them (they fall back to the mesh).
+    openvdb::tools::signedFloodFill(sdf->tree());
+    step.advance(1);
+    sdf->setName("scalp");
+    sdf->setGridClass(openvdb::GRID_LEVEL_SET);
+    sdf->insertMeta("creator", openvdb::StringMetadata("groom scalp " GROOM_VERSION));
+    sdf->insertMeta("groom_band_voxels", openvdb::FloatMetadata(float(band)));
+    im.sdf = sdf;
+    im.finish_grids("scalp");
+    im.mesh_exact = true;
+    im.query = std::make_unique<detail::MeshQuery>(im.geometry);
+    step.advance(1);
+    return field;
+}
+
+void write_scalp(const ScalpField& scalp, const std::string& path)
+{
+    init_openvdb();
+    const ScalpField::Impl& im = scalp.impl();
+    if (!im.sdf) throw InvalidParam("write_scalp: the scalp field is empty");
+    // OpenVDB writes by file name: write a temporary beside the target, then rename (atomic).
+    const std::filesystem::path target(path);
+    const std::filesystem::path temp =
+        target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
+    try {
+        openvdb::io::File file(temp.string());
+        openvdb::GridPtrVec grids{im.sdf};
+        file.write(grids);
+        file.close();
+        std::filesystem::rename(temp, target);
+    }
+    catch (const openvdb::Exception& e) {
+        std::error_code ec;
+        std::filesystem::remove(temp, ec);
+        throw IoError(path + ": cannot write the level set (" + e.what() + ")");
+    }
+    catch (const std::filesystem::filesystem_error& e) {
+        std::error_code ec;
+        std::filesystem::remove(temp, ec);
+        throw IoError(path + ": cannot write the level set (" + e.what() + ")");
+    }
+}
+
+ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
+{
+    init_openvdb();
+    if (!std::filesystem::exists(path)) throw IoError(path + ": no such file");
+    openvdb::GridBase::Ptr base;
+    std::string names;
+    try {
+        openvdb::io::File file(path);
+        file.open();
+        for (auto it = file.beginName(); it != file.endName(); ++it) names += (names.empty() ? "" : ", ") + it.gridName();
+        if (file.hasGrid("scalp")) base = file.readGrid("scalp");
+        file.close();
+    }
+    catch (const openvdb::Exception& e) {
+        throw ParseError(path + ": not a readable .vdb file (" + e.what() + ")");
+    }
+    if (!base) {
+        throw ParseError(path + ": no grid named 'scalp' (found: " + (names.empty() ? std::string("no grids") : names) +
+                         "); make one with `groom scalp MESH -o " + std::filesystem::path(path).filename().string() + "`");
+    }
+    openvdb::FloatGrid::Ptr sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    if (!sdf) throw ParseError(path + ": grid 'scalp' holds " + base->valueType() + " values; expected a float level set");
+    if (sdf->getGridClass() != openvdb::GRID_LEVEL_SET) {
+        throw ParseError(path + ": grid 'scalp' is not a level set (class '" + openvdb::GridBase::gridClassToString(sdf->getGridClass()) +
+                         "'); expected a signed distance field from `groom scalp`");
+    }
+    if (sdf->activeVoxelCount() == 0) throw ParseError(path + ": grid 'scalp' has no active voxels");
+
+    ProgressStep step(progress, "load scalp", 2);
+    ScalpField field;
+    ScalpField::Impl& im = field.impl();
+    im.sdf = sdf;
+    im.finish_grids(path);
+    step.advance(1);
+
+    // The mesh for far queries and sampling: the zero crossing, each face turned to agree with the
+    // gradient. A sign flip with large |d| on both sides is the seam an open surface's sign makes
+    // beyond its rim, not surface: such faces (gradient magnitude > 1.5) are dropped.
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> tris;
+    std::vector<openvdb::Vec4I> quads;
+    openvdb::tools::volumeToMesh(*sdf, points, tris, quads, 0.0, 0.0);
+    PolygonSoup soup;
+    soup.points.reserve(points.size());
+    for (const auto& p : points) soup.points.emplace_back(p.x(), p.y(), p.z());
+    auto add = [&](std::initializer_list<int32_t> idx) {
+        std::vector<int32_t> f(idx);
+        const float3 &a = soup.points[f[0]], &b = soup.points[f[1]], &c = soup.points[f[2]];
+        const float3 centroid = (a + b + c) / 3.0f;
+        float d = 0.0f;
+        float3 g;
+        const float3 n = normalize(cross(b - a, c - a));
+        if (im.sample(centroid, d, g)) {
+            float dl = 0.0f, dh = 0.0f;
+            float3 gl, gh;
+            const float3 step_n = normalize(g) * (0.5f * im.voxel);
+            if (im.sample(centroid - step_n, dl, gl) && im.sample(centroid + step_n, dh, gh) && (dh - dl) / im.voxel > 1.5f) return;
+            if (dot(n, g) < 0.0f) std::reverse(f.begin(), f.end());
+        }
+        soup.add_face(f);
+    };
+    for (const auto& t : tris) add({int32_t(t[0]), int32_t(t[1]), int32_t(t[2])});
+    for (const auto& q : quads) {
+        add({int32_t(q[0]), int32_t(q[1]), int32_t(q[2])});
+        add({int32_t(q[0]), int32_t(q[2]), int32_t(q[3])});
+    }
+    if (soup.num_faces() == 0) throw ParseError(path + ": grid 'scalp' has no zero crossing (no surface inside its band)");
+    detail::RepairOptions options;
+    options.orient_outward = false;
+    options.remove_enclosed = false;
+    options.what = path;
+    RepairReport report;
+    const TriMesh mesh = detail::repair_soup(soup, options, report, nullptr);
+    im.geometry.compute(mesh);
+    im.mesh_exact = false;
+    im.query = std::make_unique<detail::MeshQuery>(im.geometry);
+    step.advance(1);
+    return field;
+}
+
+std::unique_ptr<ScalpField> load_scalp(const std::string& path, const ScalpBuildParams& params, Progress* progress)
+{
+    if (lower_ext(path) == ".vdb") return std::make_unique<ScalpField>(read_scalp_vdb(path, progress));
+    if (!is_mesh_path(path)) {
+        throw InvalidParam("--scalp " + path + ": expected a .vdb level set from `groom scalp` or a mesh (.obj .ply .off .stl)");
+    }
+    return std::make_unique<ScalpField>(build_scalp(read_mesh(path), params, nullptr, progress));
+}
+
+}  // namespace groom

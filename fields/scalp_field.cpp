@@ -1,0 +1,215 @@
+// ScalpField queries: trilinear reads of the level set and its gradient inside the narrow band,
+// exact mesh answers outside it, and area-uniform sampling of roots.
+#include "fields/scalp_impl.h"
+
+#include "kernel/error.h"
+#include "kernel/parallel.h"
+#include "kernel/rng.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace groom {
+
+ScalpField::ScalpField() : impl_(std::make_unique<Impl>()) {}
+ScalpField::~ScalpField() = default;
+ScalpField::ScalpField(ScalpField&&) noexcept = default;
+ScalpField& ScalpField::operator=(ScalpField&&) noexcept = default;
+
+bool ScalpField::Impl::sample(const float3& p, float& d, float3& grad) const
+{
+    const float x = (p.x - origin.x) * inv_voxel, y = (p.y - origin.y) * inv_voxel, z = (p.z - origin.z) * inv_voxel;
+    if (!(std::fabs(x) < 1e9f && std::fabs(y) < 1e9f && std::fabs(z) < 1e9f)) return false;  // also rejects NaN
+    const float fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
+    const float tx = x - fx, ty = y - fy, tz = z - fz;
+    const openvdb::Coord c0{int(fx), int(fy), int(fz)};
+    // Unregistered accessors: cheap to make per call and never shared between threads.
+    openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> dacc(sdf->tree());
+    openvdb::tree::ValueAccessor<const openvdb::Vec3STree, false> gacc(gradient->tree());
+    float v[8];
+    openvdb::Vec3s g[8];
+    for (int n = 0; n < 8; ++n) {
+        const openvdb::Coord c(c0.x() + (n & 1), c0.y() + ((n >> 1) & 1), c0.z() + ((n >> 2) & 1));
+        if (!dacc.probeValue(c, v[n])) return false;
+        g[n] = gacc.getValue(c);
+    }
+    const float wx[2] = {1.0f - tx, tx}, wy[2] = {1.0f - ty, ty}, wz[2] = {1.0f - tz, tz};
+    float dsum = 0.0f;
+    openvdb::Vec3s gsum(0.0f);
+    for (int n = 0; n < 8; ++n) {
+        const float w = wx[n & 1] * wy[(n >> 1) & 1] * wz[(n >> 2) & 1];
+        dsum += w * v[n];
+        gsum += g[n] * w;
+    }
+    d = dsum;
+    grad = float3(gsum.x(), gsum.y(), gsum.z());
+    return true;
+}
+
+float ScalpField::query(const float3& p, float3& n, float3& closest) const
+{
+    const Impl& im = *impl_;
+    float d = 0.0f;
+    float3 g;
+    if (im.sample(p, d, g) && length_squared(g) > 0.25f) {
+        n = normalize(g);
+        // Projection along the normal, then Newton steps on the zero crossing: each removes the
+        // remaining distance along the local normal (quadratic convergence for a smooth field).
+        float3 q = p - n * d;
+        for (int it = 0; it < 2; ++it) {
+            float dq = 0.0f;
+            float3 gq;
+            if (!im.sample(q, dq, gq) || length_squared(gq) <= 0.25f) break;
+            q -= normalize(gq) * dq;
+            if (std::fabs(dq) < 1e-4f * im.voxel) break;
+        }
+        closest = q;
+        return d;
+    }
+    int32_t face = -1;
+    const float sd = im.query->signed_distance(p, closest, face);
+    const float3 delta = p - closest;
+    const float len = length(delta);
+    n = len > 1e-6f * im.voxel ? delta / (sd < 0.0f ? -len : len) : im.geometry.face_normals[face];
+    return sd;
+}
+
+float ScalpField::distance(const float3& p) const
+{
+    float d = 0.0f;
+    float3 g;
+    if (impl_->sample(p, d, g)) return d;
+    float3 closest;
+    int32_t face = -1;
+    return impl_->query->signed_distance(p, closest, face);
+}
+
+float3 ScalpField::normal(const float3& p) const
+{
+    float d = 0.0f;
+    float3 g;
+    if (impl_->sample(p, d, g) && length_squared(g) > 0.25f) return normalize(g);
+    float3 n, c;
+    query(p, n, c);
+    return n;
+}
+
+float3 ScalpField::closest_point(const float3& p) const
+{
+    float3 n, c;
+    query(p, n, c);
+    return c;
+}
+
+float ScalpField::voxel_size() const { return impl_->voxel; }
+float ScalpField::band_voxels() const { return impl_->band; }
+bool ScalpField::has_source_mesh() const { return impl_->mesh_exact; }
+int64_t ScalpField::num_faces() const { return static_cast<int64_t>(impl_->geometry.tris.size()); }
+
+Bounds3 ScalpField::bounds() const
+{
+    Bounds3 b;
+    if (!impl_->geometry.points.empty()) {
+        b.extend(impl_->geometry.bounds_lo);
+        b.extend(impl_->geometry.bounds_hi);
+    }
+    return b;
+}
+
+PolygonSoup ScalpField::mesh() const
+{
+    PolygonSoup soup;
+    soup.points = impl_->geometry.points;
+    for (const auto& t : impl_->geometry.tris) soup.add_face(t);
+    return soup;
+}
+
+namespace {
+
+constexpr uint64_t kSampleStream = 0x5ca1b;
+
+/// Draws `count` samples over the faces listed in `faces` with cumulative areas `cdf`, keeping only
+/// points accepted by `keep` (up to 64 tries each, so a ball that clips faces still fills).
+template <class Keep>
+std::vector<SurfaceSample> sample_area(const ScalpField& field, const std::vector<int32_t>& faces, const std::vector<double>& cdf,
+                                       int64_t count, uint64_t seed, Keep&& keep)
+{
+    std::vector<SurfaceSample> out;
+    if (faces.empty() || count <= 0 || !(cdf.back() > 0.0)) return out;
+    const detail::MeshGeometry& geo = field.impl().geometry;
+    out.resize(static_cast<size_t>(count));
+    std::vector<char> ok(out.size(), 0);
+    parallel_for(count, 256, [&](int64_t begin, int64_t end) {
+        for (int64_t i = begin; i < end; ++i) {
+            Rng rng(seed, static_cast<uint64_t>(i), kSampleStream);
+            for (int attempt = 0; attempt < 64; ++attempt) {
+                const double u = rng.uniform_double() * cdf.back();
+                const size_t k = std::min(size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()), faces.size() - 1);
+                const int32_t f = faces[k];
+                // Uniform point in a triangle: sqrt warp of the first coordinate.
+                const float r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
+                const float3 &a = geo.points[geo.tris[f][0]], &b = geo.points[geo.tris[f][1]], &c = geo.points[geo.tris[f][2]];
+                const float3 p = a * (1.0f - r1) + b * (r1 * (1.0f - r2)) + c * (r1 * r2);
+                if (!keep(p)) continue;
+                SurfaceSample& s = out[size_t(i)];
+                s.position = p;
+                s.face = f;
+                s.normal = field.normal(p);
+                if (!(length_squared(s.normal) > 0.5f)) s.normal = geo.face_normals[f];
+                ok[size_t(i)] = 1;
+                break;
+            }
+        }
+    });
+    // Samples that found no accepted point (a ball grazing the surface) are dropped, in order.
+    size_t w = 0;
+    for (size_t i = 0; i < out.size(); ++i)
+        if (ok[i]) out[w++] = out[i];
+    out.resize(w);
+    return out;
+}
+
+}  // namespace
+
+std::vector<SurfaceSample> ScalpField::sample_ball(const float3& center, float radius, int64_t count, uint64_t seed) const
+{
+    const detail::MeshGeometry& geo = impl_->geometry;
+    std::vector<int32_t> faces;
+    std::vector<double> cdf;
+    double total = 0.0;
+    const float r2 = radius * radius;
+    for (size_t f = 0; f < geo.tris.size(); ++f) {
+        if (radius > 0.0f) {
+            detail::Feature feature;
+            const float3 c = detail::closest_on_triangle(center, geo.points[geo.tris[f][0]], geo.points[geo.tris[f][1]],
+                                                         geo.points[geo.tris[f][2]], feature);
+            if (length_squared(c - center) > r2) continue;
+        }
+        total += geo.face_areas[f];
+        faces.push_back(int32_t(f));
+        cdf.push_back(total);
+    }
+    return sample_area(*this, faces, cdf, count, seed,
+                       [&](const float3& p) { return radius <= 0.0f || length_squared(p - center) <= r2; });
+}
+
+std::vector<SurfaceSample> ScalpField::sample_faces(std::span<const uint8_t> mask, int64_t count, uint64_t seed) const
+{
+    const detail::MeshGeometry& geo = impl_->geometry;
+    if (mask.size() != geo.tris.size()) {
+        throw InvalidParam("sample_faces: face mask has " + std::to_string(mask.size()) + " entries, the scalp has " +
+                           std::to_string(geo.tris.size()) + " faces");
+    }
+    std::vector<int32_t> faces;
+    std::vector<double> cdf;
+    double total = 0.0;
+    for (size_t f = 0; f < mask.size(); ++f) {
+        if (!mask[f]) continue;
+        total += geo.face_areas[f];
+        faces.push_back(int32_t(f));
+        cdf.push_back(total);
+    }
+    return sample_area(*this, faces, cdf, count, seed, [](const float3&) { return true; });
+}
+
+}  // namespace groom

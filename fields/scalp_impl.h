@@ -1,0 +1,91 @@
+// Internals of ScalpField shared by the fields/*.cpp that build, load and query it. Includes
+// OpenVDB, OpenMesh and CGAL: never include this outside fields/.
+#pragma once
+
+#include "fields/mesh_repair.h"
+#include "fields/scalp_field.h"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <openvdb/openvdb.h>
+
+#include <array>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace groom {
+
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+namespace detail {
+
+/// Which part of a triangle a closest point lies on: the face interior, edge k (v_k -> v_k+1) or vertex k.
+enum class Feature : uint8_t { Face, Edge0, Edge1, Edge2, Vertex0, Vertex1, Vertex2 };
+
+/// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5) and the
+/// feature it lies on, which selects the pseudo-normal that signs the distance.
+float3 closest_on_triangle(const float3& p, const float3& a, const float3& b, const float3& c, Feature& feature);
+
+/// Flat, cache-friendly copy of the repaired mesh with angle-weighted pseudo-normals
+/// (Baerentzen & Aanaes 2005): the sign of the distance to the closest point c on feature F is
+/// sign(dot(p - c, N_F)), exact for closed and open oriented meshes alike.
+struct MeshGeometry {
+    std::vector<float3> points;
+    std::vector<std::array<int32_t, 3>> tris;
+    std::vector<float3> face_normals;    ///< unit, per face
+    std::vector<float3> edge_normals;    ///< unit, per face * 3 + k (edge v_k -> v_k+1)
+    std::vector<float3> vertex_normals;  ///< unit, angle weighted
+    std::vector<double> face_areas;
+    float3 bounds_lo, bounds_hi;
+
+    void compute(const TriMesh& mesh);
+    float3 pseudo_normal(int32_t face, Feature feature) const;
+    /// Signed distance and closest point to face `f`.
+    float signed_distance_to_face(const float3& p, int32_t f, float3& closest) const;
+};
+
+/// Exact queries against the mesh (CGAL AABB tree), for points outside the narrow band.
+class MeshQuery {
+public:
+    explicit MeshQuery(const MeshGeometry& geometry);
+    ~MeshQuery();
+    /// Signed distance; writes the closest point and its face.
+    float signed_distance(const float3& p, float3& closest, int32_t& face) const;
+
+private:
+    struct Tree;
+    const MeshGeometry& geometry_;
+    std::unique_ptr<Tree> tree_;
+};
+
+/// Repairs a soup into an oriented, manifold triangle mesh (fields/mesh_repair.cpp).
+struct RepairOptions {
+    bool orient_outward = true;   ///< closed shells: normals outwards (signed volume)
+    bool remove_enclosed = true;  ///< drop shells entirely inside another shell
+    bool flip = false;            ///< reverse everything at the end
+    std::string what = "mesh";    ///< names the input in messages
+};
+TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, RepairReport& report, Progress* progress);
+
+/// Throws unless every coordinate is finite and every index in range.
+void validate_soup(const PolygonSoup& soup, const std::string& what);
+
+}  // namespace detail
+
+struct ScalpField::Impl {
+    openvdb::FloatGrid::Ptr sdf;         ///< "scalp": signed distance, GRID_LEVEL_SET
+    openvdb::Vec3SGrid::Ptr gradient;    ///< central differences of sdf on the same active voxels
+    float voxel = 0.0f, inv_voxel = 0.0f;
+    float3 origin;                       ///< world position of index (0,0,0)
+    float band = 3.0f;                   ///< half width in voxels
+    detail::MeshGeometry geometry;
+    std::unique_ptr<detail::MeshQuery> query;
+    bool mesh_exact = true;              ///< false when the mesh was extracted from a loaded .vdb
+
+    /// Trilinear distance and gradient at p when all 8 surrounding voxels are in the band.
+    bool sample(const float3& p, float& d, float3& grad) const;
+    /// Fills `gradient` from `sdf`, and the world <-> index mapping. Throws for unsupported transforms.
+    void finish_grids(const std::string& what);
+};
+
+}  // namespace groom

@@ -1,0 +1,30 @@
+// Analytic test meshes: triangulated spheres and spherical caps whose exact surface is known, so
+// tests of the scalp field (and of every op that takes a scalp) can compare against AnalyticSphere.
+// Faces are wound counter-clockwise seen from outside (normals point away from the centre).
+#pragma once
+
+#include "kernel/io/mesh_io.h"
+#include "kernel/math/vec.h"
+
+namespace groom {
+
+/// Latitude-longitude sphere: `rings` >= 2 latitude bands, `segments` >= 3 longitude slices. Poles
+/// are single vertices (triangle fans); other bands are quads split into two triangles each.
+/// Vertices lie exactly on the sphere. Throws InvalidParam for radius <= 0 or too few rings/segments.
+PolygonSoup uv_sphere(const float3& center, float radius, int rings, int segments);
+
+/// Geodesic sphere: an icosahedron subdivided `subdivisions` times (0..8), each new vertex pushed
+/// onto the sphere: 20 * 4^subdivisions triangles. Throws InvalidParam.
+PolygonSoup icosphere(const float3& center, float radius, int subdivisions);
+
+/// Open spherical cap around the axis `axis` (unit, the cap's pole direction): the part of the sphere
+/// within `half_angle_deg` (0 < a < 180) of the pole, `rings` bands by `segments` slices. Its
+/// boundary is the circle at the cap's rim. Throws InvalidParam.
+PolygonSoup sphere_cap(const float3& center, float radius, const float3& axis, float half_angle_deg, int rings, int segments);
+
+/// Largest distance between the flat triangles of `soup` and the sphere its vertices lie on: the
+/// chordal (sagitta) error, radius - min over faces of the distance from the centre to the face's
+/// plane-clipped disc. Tests subtract it from what a scalp field built from the mesh can achieve.
+float sphere_chordal_error(const PolygonSoup& soup, const float3& center, float radius);
+
+}  // namespace groom

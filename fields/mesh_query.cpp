@@ -86,6 +86,14 @@ void MeshGeometry::compute(const TriMesh& mesh)
         }
     }
     for (float3& n : vertex_normals) n = normalize(n);
+    vertex_face_offsets.assign(nv + 1, 0);
+    for (const auto& t : tris)
+        for (int32_t v : t) ++vertex_face_offsets[v + 1];
+    for (size_t v = 0; v < nv; ++v) vertex_face_offsets[v + 1] += vertex_face_offsets[v];
+    vertex_faces.resize(nf * 3);
+    std::vector<int32_t> fill(vertex_face_offsets.begin(), vertex_face_offsets.end() - 1);
+    for (size_t f = 0; f < nf; ++f)
+        for (int32_t v : tris[f]) vertex_faces[fill[v]++] = int32_t(f);
     // Edge pseudo-normals: the sum of the two faces' normals (one face on a boundary edge).
     for (size_t f = 0; f < nf; ++f) {
         for (int k = 0; k < 3; ++k) {
@@ -99,6 +107,32 @@ void MeshGeometry::compute(const TriMesh& mesh)
             edge_normals[f * 3 + k] = normalize(n, face_normals[f]);
         }
     }
+}
+
+int32_t MeshGeometry::refine_closest_face(const float3& p, int32_t face) const
+{
+    auto dist2 = [&](int32_t f) {
+        Feature feature;
+        return length_squared(p - closest_on_triangle(p, points[tris[f][0]], points[tris[f][1]], points[tris[f][2]], feature));
+    };
+    float best = dist2(face);
+    for (int iter = 0; iter < 16; ++iter) {
+        const int32_t start = face;
+        for (int k = 0; k < 3; ++k) {
+            const int32_t v = tris[start][k];
+            for (int32_t i = vertex_face_offsets[v]; i < vertex_face_offsets[v + 1]; ++i) {
+                const int32_t g = vertex_faces[i];
+                if (g == start) continue;
+                const float d = dist2(g);
+                if (d < best) {
+                    best = d;
+                    face = g;
+                }
+            }
+        }
+        if (face == start) break;
+    }
+    return face;
 }
 
 float3 MeshGeometry::pseudo_normal(int32_t face, Feature feature) const

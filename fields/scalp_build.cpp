@@ -142,12 +142,16 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
 
     ProgressStep step(progress, "signed distance", 3);
     std::vector<openvdb::Vec3s> points(geo.points.size());
-    for (size_t i = 0; i < points.size(); ++i) points[i] = openvdb::Vec3s(geo.points[i].x, geo.points[i].y, geo.points[i].z);
+    // meshToVolume takes the mesh in index space (voxel units).
+    const float inv_h = float(1.0 / h);
+    for (size_t i = 0; i < points.size(); ++i) {
+        points[i] = openvdb::Vec3s(geo.points[i].x * inv_h, geo.points[i].y * inv_h, geo.points[i].z * inv_h);
+    }
     std::vector<openvdb::Vec3I> tris(geo.tris.size());
     for (size_t i = 0; i < tris.size(); ++i) tris[i] = openvdb::Vec3I(geo.tris[i][0], geo.tris[i][1], geo.tris[i][2]);
     const openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(h);
     const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(points, tris);
-    openvdb::Int32Grid index_grid(0);
+    openvdb::Int32Grid index_grid(openvdb::Int32(openvdb::util::INVALID_IDX));  // as meshToVolume expects
     openvdb::util::NullInterrupter interrupter;
     openvdb::FloatGrid::Ptr sdf = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
         interrupter, adapter, *xform, float(band), float(band), openvdb::tools::UNSIGNED_DISTANCE_FIELD, &index_grid);
@@ -160,9 +164,10 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         openvdb::tree::ValueAccessor<const openvdb::Int32Tree, false> idx(index_tree);
         for (auto it = leaf.beginValueOn(); it; ++it) {
             const openvdb::Coord c = it.getCoord();
-            const int32_t f = idx.getValue(c);
+            int32_t f = idx.getValue(c);
             if (f < 0 || size_t(f) >= geo.tris.size()) continue;
             const float3 p(float(c.x() * h), float(c.y() * h), float(c.z() * h));
+            f = geo.refine_closest_face(p, f);
             float3 closest;
             it.setValue(geo.signed_distance_to_face(p, f, closest));
         }

@@ -39,7 +39,14 @@ struct MeshGeometry {
     float3 bounds_lo, bounds_hi;
 
     void compute(const TriMesh& mesh);
+    std::vector<int32_t> vertex_face_offsets;  ///< #vertices+1: faces around vertex v are
+    std::vector<int32_t> vertex_faces;         ///< vertex_faces[vertex_face_offsets[v] .. [v+1])
+
     float3 pseudo_normal(int32_t face, Feature feature) const;
+    /// From a face near p's closest face, walks to neighbouring faces (sharing a vertex) while they
+    /// are closer; returns the local closest face. meshToVolume's polygon index is only near-exact at
+    /// the band's edge; this makes every voxel exact.
+    int32_t refine_closest_face(const float3& p, int32_t face) const;
     /// Signed distance and closest point to face `f`.
     float signed_distance_to_face(const float3& p, int32_t f, float3& closest) const;
 };

@@ -1,6 +1,7 @@
 // `groom curl`: curl each input curve around its own centreline (talk, Sec. 3.1).
 #include "cli/command.h"
 #include "cli/curl_options.h"
+#include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
 #include "ops/curl.h"
 
@@ -8,7 +9,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
-    std::string input, output;
+    std::string input, output, scalp;
     CurlOptions curl;
 };
 
@@ -18,6 +19,7 @@ void setup(CommandContext& ctx)
     CLI::App* app = ctx.app;
     app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = stdin)")->required();
     app->add_option("-o,--output", args->output, "Output curves")->required();
+    app->add_option("--scalp", args->scalp, "Scalp (.vdb from `groom scalp`, or a mesh): no curled point ends inside it");
     add_curl_options(app, args->curl);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
@@ -25,7 +27,9 @@ void setup(CommandContext& ctx)
         const CurlParams params = curl_params_from(args->curl);
         const CurveSet in = read_curves(args->input);
         const auto progress = make_progress(common);
-        const CurveSet out = curl(in, params, nullptr, progress.get());
+        std::unique_ptr<ScalpField> scalp;
+        if (!args->scalp.empty()) scalp = load_scalp(args->scalp, {}, progress.get());
+        const CurveSet out = curl(in, params, scalp.get(), progress.get());
         write_curves(out, args->output);
         note(common, "curl: " + std::to_string(out.num_curves()) + " curves, " + std::to_string(out.num_points()) + " points (type " +
                          params.hair_type + ") -> " + args->output);

@@ -1,10 +1,13 @@
 // `groom curl` end to end: files in, files out, exit codes and messages.
 #include "test_support.h"
 
+#include "fields/sphere_mesh.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/mesh_io.h"
 #include "kernel/math/polyline.h"
 
 #include <filesystem>
+#include <numbers>
 
 using namespace groom;
 using groom::test::run_groom;
@@ -110,4 +113,49 @@ TEST(CurlCli, RefusesToOverwriteItsInputAndReportsMissingFiles)
     r = run_groom({"curl", dir.file("missing.obj"), "-o", dir.file("x.usda")});
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
+}
+
+// --scalp: curls over a sphere mesh dip into it without the scalp and stay outside with it.
+TEST(CurlCli, NoCurledPointInsideTheScalpMesh)
+{
+    TempDir dir;
+    const float3 centre(0.0f, 0.0f, 0.0f);
+    const float radius = 5.0f;
+    const PolygonSoup sphere = icosphere(centre, radius, 4);
+    const float chord = sphere_chordal_error(sphere, centre, radius);
+    const std::string mesh = dir.file("sphere.obj"), guides = dir.file("guides.obj");
+    write_mesh(sphere, mesh);
+    // Guides 0.2 above the sphere, running over its top from the pole towards the equator.
+    std::string obj, lines;
+    int v = 0;
+    for (int c = 0; c < 12; ++c) {
+        const float az = 2.0f * std::numbers::pi_v<float> * float(c) / 12.0f;
+        lines += "l";
+        for (int i = 0; i < 12; ++i) {
+            const float polar = 0.15f + 1.2f * float(i) / 11.0f;
+            const float r = radius + 0.2f;
+            obj += "v " + std::to_string(r * std::sin(polar) * std::cos(az)) + " " + std::to_string(r * std::cos(polar)) + " " +
+                   std::to_string(r * std::sin(polar) * std::sin(az)) + "\n";
+            lines += " " + std::to_string(++v);
+        }
+        lines += "\n";
+    }
+    groom::test::write_text(guides, obj + lines);
+    const std::vector<std::string> common = {"--amplitude", "0.6", "--frequency", "0.5", "--root-ramp", "0"};
+    auto min_radius = [&](const std::string& out) {
+        float m = INFINITY;
+        for (const float3& p : read_curves(out).positions()) m = std::min(m, length(p - centre));
+        return m;
+    };
+    std::vector<std::string> args = {"curl", guides, "-o", dir.file("free.usda")};
+    args.insert(args.end(), common.begin(), common.end());
+    auto r = run_groom(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_LT(min_radius(dir.file("free.usda")), radius - 0.3f) << "the curls must dip into the sphere, or the check below is vacuous";
+    args = {"curl", guides, "-o", dir.file("scalp.usda"), "--scalp", mesh};
+    args.insert(args.end(), common.begin(), common.end());
+    r = run_groom(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // Outside the mesh means outside the sphere less the mesh's chordal error (and float slack).
+    EXPECT_GE(min_radius(dir.file("scalp.usda")), radius - chord - 1e-3f * radius);
 }

@@ -86,7 +86,7 @@ if have cornrow-guides; then
     fi
     tails="$out/alisha_tails.usda"
     if have populate; then
-        step "populate tails" groom populate "$tails" -o "$out/alisha_tail_hairs.usda" --count 40 --radius 0.3
+        step "populate tails" groom populate "$tails" -o "$out/alisha_tail_hairs.usda" --count 60 --radius 0.45
         tails="$out/alisha_tail_hairs.usda"
     else
         skip "groom populate (hairs around each tail) is not in this build"
@@ -103,9 +103,11 @@ izzy=()
 if have puff; then
     # Left and right of the crown; each puff's sphere sits above and outside its root patch.
     step "puff left" groom puff --scalp "$scalp" -o "$out/izzy_puff_left.usda" \
-        --center -4.5,10,-1 --radius 3.2 --sphere-center -7,14.5,-1 --sphere-radius 5.5 --rows 6 --cols 6 --hairs 8000 --type 4a --seed 1
+        --center -4.8,9.5,-1.5 --radius 4.2 --sphere-center -7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 \
+        --hairs 6000 --type 4a --seed 1
     step "puff right" groom puff --scalp "$scalp" -o "$out/izzy_puff_right.usda" \
-        --center 4.5,10,-1 --radius 3.2 --sphere-center 7,14.5,-1 --sphere-radius 5.5 --rows 6 --cols 6 --hairs 8000 --type 4a --seed 2
+        --center 4.8,9.5,-1.5 --radius 4.2 --sphere-center 7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 \
+        --hairs 6000 --type 4a --seed 2
     izzy+=("$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda")
 else
     skip "groom puff is not in this build"

@@ -136,10 +136,11 @@ int classify_side(const float3& offset, const float3& normal, const float3& left
     const float3 in_plane = offset - normal * along_normal;
     const float plane2 = length_squared(in_plane);
     if (!(plane2 > 0.0f)) return -1;
-    // cos 60 deg = 0.5, compared squared to avoid square roots.
+    // Compared squared to avoid square roots: cos^2 60 deg = 0.25 out of the plane, cos^2 45 deg =
+    // 0.5 from the lateral axis.
     if (plane2 < 0.25f * length_squared(offset)) return -1;
     const float lateral = dot(in_plane, left);
-    if (lateral * lateral < 0.25f * plane2) return -1;
+    if (lateral * lateral < 0.5f * plane2) return -1;
     return lateral > 0.0f ? 0 : 1;
 }
 
@@ -290,7 +291,7 @@ std::vector<AdjacentGuides> find_adjacent_guides(const CurveSet& guides, const S
                     }
                 }
                 if (won) *won = best_votes;
-                return pick;
+                return best_votes >= kAdjacencyMinVotes ? pick : -1;
             };
             int won_left = 0, won_right = 0;
             int32_t left = best(0, -1, &won_left), right = best(1, -1, &won_right);

@@ -50,7 +50,8 @@ private:
 /// `left` = unit normal x tangent (the left hand looking from root to tip with the normal up).
 /// Returns 0 (left), 1 (right) or -1 when the offset is not beside the source: when it points more
 /// than 60 degrees out of the tangent plane (through the head: a guide on the far side of the skull)
-/// or more than 60 degrees from the lateral axis (a guide ahead of or behind the source).
+/// or more than 45 degrees from the lateral axis (a guide ahead of or behind the source; the nearest
+/// point of a guide running beside is square to the source, up to half its point spacing).
 int classify_side(const float3& offset, const float3& normal, const float3& left);
 
 /// The points of every guide in one kd-tree, each tagged with its curve, for finding the nearest
@@ -109,13 +110,17 @@ struct AdjacentGuides {
 
 /// Sample stations along each guide used to vote for its neighbours.
 inline constexpr int kAdjacencyStations = 32;
+/// Stations a guide must be the nearest on a side at to be the neighbour there: a guide that only
+/// comes near the source at one end (guides crossing or meeting near the nape) is not beside it.
+inline constexpr int kAdjacencyMinVotes = kAdjacencyStations / 4;
 
 /// @brief The closest guide on either side of every guide (talk, Sec. 2.2: "the closest adjacent
 /// curves on either side").
 /// At kAdjacencyStations points spread evenly in arc length along each guide, the nearest other
 /// guide on each side is found (GuidePointIndex::nearest_on_sides, tangent from the polyline, normal
 /// from `scalp`); per side the guide nearest at the most stations wins (ties: smaller summed
-/// distance, then lower index). A guide at the edge of the groom gets -1 on its open side.
+/// distance, then lower index) if it is nearest at kAdjacencyMinVotes stations or more. A guide at
+/// the edge of the groom gets -1 on its open side.
 /// @param max_gap  scene units; > 0 ignores guides farther than this; 0 = automatic, kAutoGapFactor
 ///                 times typical_guide_gap() (no limit when that is 0)
 /// @return one entry per guide, in guide order (guides with < 2 points get none on either side)

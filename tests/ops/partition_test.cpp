@@ -193,6 +193,24 @@ TEST(Adjacency, AutomaticGapIgnoresAGuideFarOffTheLayout)
     EXPECT_EQ(adj[3].right, 2);
 }
 
+TEST(Adjacency, AGuideCrossingNearTheTipIsNotANeighbour)
+{
+    // Guide 0 runs along +Z; guide 1 lies beside it on the left (+X); guide 2 is short and crosses
+    // guide 0 just before its tip, so it is nearest on the right only at the last few stations.
+    std::vector<int64_t> counts = {5, 5, 2};
+    CurveSet guides = CurveSet::from_counts(counts);
+    auto P = guides.positions();
+    for (int i = 0; i < 5; ++i) {
+        P[i] = float3(0, 0.2f, float(i));
+        P[5 + i] = float3(1, 0.2f, float(i));
+    }
+    P[10] = float3(-0.3f, 0.2f, 3.8f);
+    P[11] = float3(0.3f, 0.2f, 4.2f);
+    const auto adj = find_adjacent_guides(guides, AnalyticPlane({0, 0, 0}, {0, 1, 0}));
+    EXPECT_EQ(adj[0].left, 1);
+    EXPECT_EQ(adj[0].right, -1);  // guide 2 is nearest there at < kAdjacencyMinVotes stations
+}
+
 TEST(Adjacency, ClassifySideUsesTheTangentPlane)
 {
     const float3 n(0, 1, 0), left(1, 0, 0);

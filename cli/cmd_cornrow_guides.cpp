@@ -1,0 +1,70 @@
+// `groom cornrow-guides`: procedural front-to-back cornrow guides over a scalp (ops/cornrow_guides.h).
+#include "cli/command.h"
+#include "fields/scalp_field.h"
+#include "kernel/io/curve_io.h"
+#include "ops/cornrow_guides.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace groom::cli {
+namespace {
+
+struct Args {
+    std::string scalp, output, tails_out, center;
+    CornrowGuidesParams params;
+};
+
+void setup(CommandContext& ctx)
+{
+    auto args = std::make_shared<Args>();
+    CLI::App* app = ctx.app;
+    app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh")->required();
+    app->add_option("-o,--output", args->output, "Output guides (.usda .obj .ply .hair)")->required();
+    auto* tails = app->add_option("--tails-out", args->tails_out, "Also write a free tail per guide past the nape here");
+    CornrowGuidesParams& p = args->params;
+    app->add_option("--count", p.count, "Guides (rows), [1, 256]")->capture_default_str();
+    app->add_option("--center", args->center, "Centre X,Y,Z of the sphere the rows are laid on (default: the default head's cranium, 0,3,-1)");
+    app->add_option("--radius", p.radius, "Radius of that sphere, scene units")->capture_default_str();
+    app->add_option("--pivot", p.pivot, "Depth of the rows' fan axis below the centre, scene units, [0, radius)")->capture_default_str();
+    app->add_option("--spread", p.spread, "How far the outermost rows lean from vertical, degrees, [0, 90)")->capture_default_str();
+    app->add_option("--front-angle", p.front_angle, "Where the middle row starts above the front horizontal, degrees")->capture_default_str();
+    app->add_option("--hairline-curve", p.hairline_curve, "How much further back the outermost rows start, degrees")->capture_default_str();
+    app->add_option("--back-angle", p.back_angle, "Where rows end at the nape (negative = below the horizontal), degrees")
+        ->capture_default_str();
+    app->add_option("--samples", p.samples, "Points per guide, >= 2")->capture_default_str();
+    app->add_option("--offset", p.offset, "Height of the guides above the scalp, scene units")->capture_default_str();
+    app->add_option("--tail-length", p.tail_length, "Length of each tail past the nape, scene units (needs --tails-out)")
+        ->capture_default_str()
+        ->needs(tails);
+    app->add_option("--tail-samples", p.tail_samples, "Points per tail, >= 2")->capture_default_str();
+    const CommonOptions& common = *ctx.common;
+    ctx.run = [args, &common] {
+        Args& a = *args;
+        check_output(a.output, {a.scalp}, common);
+        if (!a.tails_out.empty()) {
+            check_output(a.tails_out, {a.scalp, a.output}, common);
+            if (a.params.tail_length <= 0.0f) a.params.tail_length = 12.0f;
+        }
+        if (!a.center.empty()) {
+            const std::vector<float> c = parse_floats("--center", a.center, 3, 3);
+            a.params.center = {c[0], c[1], c[2]};
+        }
+        a.params.validate();
+        const auto start = std::chrono::steady_clock::now();
+        auto progress = make_progress(common);
+        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, {}, progress.get());
+        const CornrowGuides g = cornrow_guides(*scalp, a.params);
+        write_curves(g.guides, a.output);
+        if (!a.tails_out.empty()) write_curves(g.tails, a.tails_out);
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        char line[256];
+        std::snprintf(line, sizeof line, "cornrow-guides: %zu guides x %d points, %.2f s -> ", g.guides.num_curves(), a.params.samples, secs);
+        note(common, line + a.output + (a.tails_out.empty() ? std::string() : " (tails -> " + a.tails_out + ")"));
+    };
+}
+
+const Registrar reg({"cornrow-guides", "Make front-to-back cornrow guide curves over a scalp", 190, setup});
+
+}  // namespace
+}  // namespace groom::cli

@@ -37,6 +37,7 @@ struct Plan {
     float3 root, end;
 };
 
+constexpr double kMaxOutputPoints = 2e9;   // output points refused beyond this (about 24 GB of positions)
 constexpr uint64_t kJitterStream = 0x9a27;  // Rng stream for station jitter (per side: + side)
 
 }  // namespace
@@ -132,6 +133,24 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
         }
     });
 
+    // Refuse before allocating anything when the options would make an absurd number of segments
+    // (a --spacing in the wrong units, say).
+    auto station_count = [&](double length) {
+        return params.count > 0 ? double(params.count) : std::max(1.0, std::floor(length / params.spacing));
+    };
+    double planned = 0.0;
+    for (size_t c = 0; c < nc; ++c) {
+        if (!listed[c]) continue;
+        const IndexRange r = guides.points_of(c);
+        const double length = polyline_length(P.subspan(r.begin, r.size()));
+        planned += station_count(length) * ((adjacent[c].left >= 0) + (adjacent[c].right >= 0));
+    }
+    if (planned * params.samples > kMaxOutputPoints) {
+        throw LimitExceeded("partition: the options ask for " + num(float(planned)) + " segments of " + std::to_string(params.samples) +
+                            " points, more than " + num(float(kMaxOutputPoints)) +
+                            " points in all; raise --spacing or lower --count / --samples");
+    }
+
     const std::vector<int64_t> ids = guides.curve_ids();
     std::vector<std::vector<Plan>> plans(nc);
     {
@@ -146,7 +165,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                 const double length = cum.back();
                 if (!(length > 0.0)) continue;
                 // Stations: n of them `step` apart, centred on the source.
-                const int n = params.count > 0 ? params.count : std::max(1, int(std::floor(length / params.spacing)));
+                const int n = int(station_count(length));  // bounded by the check above
                 const double spacing = params.count > 0 ? length / n : double(params.spacing);
                 const double start = 0.5 * (length - (n - 1) * spacing);
                 // Centroids along this source as arc-length fractions, sorted.

@@ -88,7 +88,8 @@ struct PartitionParams {
 /// guide, then side, then station.
 /// Deterministic for any thread count.
 /// @throws InvalidParam from params.validate(), or for a guide index out of range in
-///         params.adjacent / params.centroid_points.
+///         params.adjacent / params.centroid_points; LimitExceeded when the output would exceed
+///         2e9 points (checked before anything is allocated).
 CurveSet partition(const CurveSet& guides, const Surface& scalp, const PartitionParams& params, Progress* progress = nullptr);
 
 }  // namespace groom

@@ -598,6 +598,20 @@ void expect_rejected(const std::function<void(PartitionParams&)>& edit, const st
 }
 }  // namespace
 
+TEST(Partition, RefusesAbsurdOutputBeforeAllocating)
+{
+    PartitionParams params;
+    params.count = 0;
+    params.spacing = 1e-9f;  // 4-unit guides: 4e9 segments a side
+    try {
+        partition(straight_guides({0.0f, 1.0f}), AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
+        ADD_FAILURE() << "accepted";
+    }
+    catch (const LimitExceeded& e) {
+        EXPECT_NE(std::string(e.what()).find("raise --spacing"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Partition, RejectsEachInvalidOption)
 {
     expect_rejected([](auto& p) { p.mediate = -0.1f; }, "--mediate must be in [0, 1] (got -0.1)");

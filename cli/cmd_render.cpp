@@ -1,5 +1,6 @@
 // `groom render`: preview pictures of curves on a scalp mesh (ops/render.h), written as PNG.
 #include "cli/command.h"
+#include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
@@ -75,7 +76,7 @@ void setup(CommandContext& ctx)
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
     app->add_option("FILES", args->inputs, "Curve files to draw (.usda .obj .ply .hair), each a layer");
-    app->add_option("--scalp", args->scalp, "Mesh to draw under the curves (.obj .ply .off .stl)");
+    app->add_option("--scalp", args->scalp, "Scalp to draw under the curves: a mesh (.obj .ply .off .stl) or a .vdb from `groom scalp`");
     app->add_option("-o,--output", args->output, "Output picture (.png)")->required();
     auto* view = app->add_option("--view", args->view, "front|back|left|right|top|three-quarter (default front)");
     auto* views = app->add_option("--views", args->views, "Several views on one labelled sheet, e.g. front,left,top");
@@ -106,10 +107,6 @@ void setup(CommandContext& ctx)
         if (!ends_with(a.output, ".png")) throw InvalidParam("render: -o must name a .png file (got '" + a.output + "')");
         for (const std::string& in : a.inputs) check_output(a.output, {in}, common);
         check_output(a.output, {a.scalp}, common);
-        if (!a.scalp.empty() && ends_with(a.scalp, ".vdb")) {
-            throw InvalidParam("render: --scalp needs a mesh (.obj .ply .off .stl), not a .vdb level set ('" + a.scalp +
-                               "'); pass the mesh the scalp was made from");
-        }
         parse_size(a.size, a.params.width, a.params.height);
         a.params.color_by = parse_color_by(a.color_by);
         if (!a.color.empty()) a.params.color = parse_color("--color", a.color);
@@ -147,7 +144,8 @@ void setup(CommandContext& ctx)
             }
         }
         std::optional<PolygonSoup> mesh;
-        if (!a.scalp.empty()) mesh = read_mesh(a.scalp);
+        // A mesh is drawn as it is; a .vdb from `groom scalp` is drawn as the surface extracted from it.
+        if (!a.scalp.empty()) mesh = ends_with(a.scalp, ".vdb") ? load_scalp(a.scalp)->mesh() : read_mesh(a.scalp);
         RenderScene scene;
         for (const CurveSet& c : layers) scene.curves.push_back(&c);
         if (mesh) scene.mesh = &*mesh;

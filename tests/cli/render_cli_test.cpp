@@ -1,3 +1,4 @@
+#include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
 #include "kernel/io/png.h"
@@ -100,4 +101,31 @@ TEST(RenderCli, HeadRejectsBadOptions)
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--resolution must be in [8, 1024] (got 2)"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("h.obj")));
+}
+
+TEST(RenderCli, AScalpVdbIsDrawnLikeItsMesh)
+{
+    // The same head from its mesh and from the .vdb level set made of it: the silhouettes agree to
+    // within a couple of pixels (the extracted surface is exact to about a voxel).
+    test::TempDir dir;
+    ASSERT_EQ(run_groom({"head", "-o", dir.file("head.obj"), "--resolution", "32"}).exit_code, 0);
+    write_scalp(build_scalp(read_mesh(dir.file("head.obj"))), dir.file("head.vdb"));
+    for (const char* name : {"head.obj", "head.vdb"}) {
+        const auto r = run_groom({"render", "--scalp", dir.file(name), "-o", dir.file(std::string(name) + ".png"), "--size", "80",
+                                  "--view", "left"});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    const RgbImage a = read_png(dir.file("head.obj.png")), b = read_png(dir.file("head.vdb.png"));
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    auto covered = [](const RgbImage& im, int x, int y) { return im.at(x, y)[0] < 200; };  // background is ~240
+    int area_a = 0, area_b = 0, differ = 0;
+    for (int y = 0; y < 80; ++y)
+        for (int x = 0; x < 80; ++x) {
+            area_a += covered(a, x, y);
+            area_b += covered(b, x, y);
+            differ += covered(a, x, y) != covered(b, x, y);
+        }
+    EXPECT_GT(area_a, 1000);
+    EXPECT_NEAR(area_b, area_a, 0.05 * area_a);
+    EXPECT_LT(differ, 0.08 * area_a);
 }

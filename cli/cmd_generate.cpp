@@ -1,0 +1,72 @@
+// `groom generate`: a full groom from a few guides (ops/generate.h): roots scattered area-uniformly
+// on the scalp, shapes interpolated from the nearest guides.
+#include "cli/command.h"
+#include "fields/scalp_field.h"
+#include "kernel/io/curve_io.h"
+#include "ops/generate.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace groom::cli {
+
+namespace {
+
+struct Args {
+    std::string input, scalp, output, region;
+    float voxel_size = 0.0f;
+    GenerateParams params;
+};
+
+void setup(CommandContext& ctx)
+{
+    auto args = std::make_shared<Args>();
+    CLI::App* app = ctx.app;
+    GenerateParams& p = args->params;
+    app->add_option("GUIDES", args->input, "Guide curves, root to tip (.usda .obj .ply .hair, - = stdin)")->required();
+    app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh (.obj .ply .off .stl)")->required();
+    app->add_option("-o,--output", args->output, "Output curves")->required();
+    app->add_option("--count", p.count, "Curves to generate, >= 1")->required();
+    app->add_option("--region", args->region,
+                    "X,Y,Z,R: root only inside this ball (scene units); default: the guides' footprint");
+    app->add_option("--footprint-scale", p.footprint_scale,
+                    "Without --region: roots lie within this many times the coarsest guide spacing of a guide root, > 0")
+        ->capture_default_str();
+    app->add_option("--neighbours", p.neighbours, "Guides blended per curve, >= 1")->capture_default_str();
+    app->add_option("--power", p.power, "Inverse-distance weight exponent, > 0")->capture_default_str();
+    app->add_option("--points", p.points, "Points per curve, >= 2 (default: the guides' own count)");
+    app->add_option("--clearance", p.clearance, "Points inside the scalp are pushed out to this distance, scene units, >= 0")
+        ->capture_default_str();
+    app->add_option("--first-id", p.first_id, "Curve ids start here, >= 0")->capture_default_str();
+    app->add_option("--seed", p.seed, "Random seed for the roots")->capture_default_str();
+    app->add_option("--voxel-size", args->voxel_size, "Voxel size when --scalp is a mesh, scene units (default: automatic)");
+    const CommonOptions& common = *ctx.common;
+    ctx.run = [args, &common] {
+        check_output(args->output, {args->input, args->scalp}, common);
+        if (!args->region.empty()) {
+            const std::vector<float> v = parse_floats("--region", args->region, 4, 4);
+            args->params.region_center = {v[0], v[1], v[2]};
+            args->params.region_radius = v[3];
+            if (!(v[3] > 0.0f)) throw InvalidParam("generate: --region radius must be > 0 (got " + std::to_string(v[3]) + ")");
+        }
+        args->params.validate();
+        const auto start = std::chrono::steady_clock::now();
+        const CurveSet guides = read_curves(args->input);
+        const auto progress = make_progress(common);
+        ScalpBuildParams sp;
+        sp.voxel_size = args->voxel_size;
+        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, sp, progress.get());
+        const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), args->params, progress.get());
+        write_curves(out, args->output);
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        char line[256];
+        std::snprintf(line, sizeof line, "generate: %zu curves from %zu guides, %zu points, %.2f s -> ", out.num_curves(),
+                      guides.num_curves(), out.num_points(), secs);
+        note(common, line + args->output);
+    };
+}
+
+const Registrar reg({"generate", "Grow a full groom from guides: area-uniform roots, shapes from the nearest guides", 400, setup});
+
+}  // namespace
+}  // namespace groom::cli

@@ -16,7 +16,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
-    std::string input, output, scalp, adjacent_file, write_adjacent, centroids;
+    std::string input, output, scalp, adjacent_file, write_adjacent, centroids, knot_density;
     float scalp_voxel = 0.0f, frequency = 0.0f, knot_length = 0.0f, knot_bias = 0.0f;
     PartitionParams params;
 };
@@ -145,8 +145,10 @@ void setup(CommandContext& ctx)
     auto* frequency = app->add_option("--frequency", args->frequency, "With --centroids knots: knots per guide, as in groom braid");
     auto* knot_length = app->add_option("--knot-length", args->knot_length, "With --centroids knots: arc length of one knot, scene units, as in groom braid");
     auto* knot_bias = app->add_option("--knot-bias", args->knot_bias, "With --centroids knots: knot distribution bias (-1, 1), as in groom braid");
+    auto* knot_density = app->add_option("--knot-density", args->knot_density,
+                                         "With --centroids knots: relative knot density spline v0,v1,... (> 0, root to tip), as in groom braid");
     const CommonOptions& common = *ctx.common;
-    ctx.run = [args, count, spacing, frequency, knot_length, knot_bias, &common] {
+    ctx.run = [args, count, spacing, frequency, knot_length, knot_bias, knot_density, &common] {
         PartitionParams& params = args->params;
         check_output(args->output, {args->input, args->scalp}, common);
         if (!args->write_adjacent.empty()) check_output(args->write_adjacent, {args->input, args->scalp, args->output}, common);
@@ -163,12 +165,15 @@ void setup(CommandContext& ctx)
             if (frequency->count()) params.knots.frequency = args->frequency;
             if (knot_length->count()) params.knots.knot_length = args->knot_length;
             params.knots.knot_bias = args->knot_bias;
+            if (!args->knot_density.empty()) {
+                params.knots.knot_density = parse_floats("partition: --knot-density", args->knot_density, 1, 1024);
+            }
         }
         else if (!spec.empty()) {
             params.centroids = CentroidMode::Points;
         }
         if (params.centroids != CentroidMode::Knots) {
-            for (const CLI::Option* o : {frequency, knot_length, knot_bias}) {
+            for (const CLI::Option* o : {frequency, knot_length, knot_bias, knot_density}) {
                 if (o->count()) throw InvalidParam("partition: " + o->get_name() + " applies only with --centroids knots");
             }
         }

@@ -141,6 +141,15 @@ TEST(PartitionCli, KnotCentroidsMeetTheBraidKnots)
         const float3 tip = cs.positions()[cs.points_of(c).end - 1];
         EXPECT_NEAR(std::asin(tip.y / 1.02f), -0.375f + 0.25f * group[c], 1e-3f);
     }
+    // A knot density rising towards the tip packs the knots there, as it does in groom braid: the
+    // first knot centre moves away from the root.
+    const std::string dense = dir.file("dense.usda");
+    ASSERT_EQ(run_groom({"partition", guides, "-o", dense, "--scalp", scalp, "--count", "8", "--centroids", "knots", "--frequency", "4",
+                         "--knot-density", "1,4"})
+                  .exit_code,
+              0);
+    const CurveSet d = read_curves(dense);
+    EXPECT_GT(std::asin(d.positions()[d.points_of(0).end - 1].y / 1.02f), -0.375f + 0.05f);
 }
 
 TEST(PartitionCli, CentroidFileGroupsSegments)
@@ -182,6 +191,8 @@ TEST(PartitionCli, RejectsBadOptionsAndFilesWithoutWritingOutput)
     expect_error({"--centroids", "every:0"}, 2, "every:K needs K >= 1 (got 0)");
     expect_error({"--frequency", "3"}, 2, "--frequency applies only with --centroids knots");
     expect_error({"--centroids", "knots", "--knot-length", "-1"}, 2, "--knot-length must be > 0 scene units (got -1)");
+    expect_error({"--knot-density", "1,2"}, 2, "--knot-density applies only with --centroids knots");
+    expect_error({"--centroids", "knots", "--knot-density", "1,x"}, 2, "partition: --knot-density: expected a comma-separated list of numbers");
     expect_error({"--centroids", "every:x"}, 2, "every:K needs an integer K >= 1 (got 'every:x')");
 
     const std::string bad = dir.file("bad.csv");

@@ -390,3 +390,22 @@ TEST(Render, SheetPlacesLabelledViewsSideBySide)
         EXPECT_GT(dark, 10) << "view " << v;
     }
 }
+
+TEST(Render, PerspectiveSkipsWhatIsBehindTheEye)
+{
+    // Eye inside the scene: a curve behind the eye must not be drawn (it would project mirrored),
+    // a segment crossing the eye plane is dropped, and what is in front is drawn.
+    const CurveSet behind = polyline({{-1, 0, -3}, {1, 0, -3}});
+    const CurveSet crossing = polyline({{0.2f, 0.2f, -3}, {0.2f, 0.2f, 3}});
+    const CurveSet in_front = polyline({{-1, -0.5f, 3}, {1, -0.5f, 3}});
+    Camera cam;
+    cam.eye = {0, 0, 0};
+    cam.target = {0, 0, 1};
+    cam.fov_degrees = 60.0f;
+    RenderParams p = small_params();
+    RenderScene scene;
+    scene.curves = {&behind, &crossing};
+    EXPECT_EQ(count_red(render(scene, cam, p)), 0);
+    scene.curves = {&behind, &crossing, &in_front};
+    EXPECT_GT(count_red(render(scene, cam, p)), 20);
+}

@@ -156,9 +156,14 @@ std::string_view attribute_of(ColorBy c)
 /// Everything drawn, projected for one camera. Points of all layers are concatenated.
 struct Prepared {
     int ws = 0, hs = 0;  // sample grid
-    // curve points
-    std::vector<float> px, py, pd, prad, pwrad;  // sample coords, depth, radius in samples, radius in scene units
-    std::vector<uint32_t> pcolor;
+    // Curve points, one record each: a tile draws segments of curves scattered over the whole groom,
+    // and one cache line per point instead of six (one per column) is what makes that fast.
+    struct Point {
+        float x, y, d;     // sample coordinates, depth
+        float rad, wrad;   // radius in samples, in scene units
+        uint32_t color;
+    };
+    std::vector<Point> pts;
     std::vector<uint32_t> segments;  // global index of each segment's first point
     float dmin = 0.0f, dmax = 0.0f;  // curve depth range, for the depth cue
     // mesh
@@ -220,12 +225,7 @@ Prepared prepare(const RenderScene& scene, const Camera& cam, const RenderParams
     if (total >= std::numeric_limits<uint32_t>::max()) {
         throw LimitExceeded("render: " + std::to_string(total) + " curve points in all; at most 4294967294 can be drawn at once");
     }
-    p.px.resize(total);
-    p.py.resize(total);
-    p.pd.resize(total);
-    p.prad.resize(total);
-    p.pwrad.resize(total);
-    p.pcolor.resize(total);
+    p.pts.resize(total);
     const float min_r = 0.5f * params.min_width_px * float(S);
     const float default_r = 0.5f * params.default_width_px * params.width_scale * float(S);
     size_t base = 0;
@@ -251,15 +251,16 @@ Prepared prepare(const RenderScene& scene, const Camera& cam, const RenderParams
                 for (int64_t i = r.begin; i < r.end; ++i) {
                     const size_t g = base + size_t(i);
                     float k = 0.0f;
-                    if (!proj.project(P[i], p.px[g], p.py[g], p.pd[g], k)) {
-                        p.px[g] = nan;
+                    Prepared::Point& q = p.pts[g];
+                    if (!proj.project(P[i], q.x, q.y, q.d, k)) {
+                        q.x = nan;
                         continue;
                     }
                     float rad = width.empty() ? default_r : 0.5f * width[i] * params.width_scale * k;
                     if (!(rad >= min_r)) rad = min_r;  // also catches NaN widths
-                    p.prad[g] = rad;
-                    p.pwrad[g] = rad / k;
-                    p.pcolor[g] = source.valid() && source.per_point ? pack(categorical_color(source.value(size_t(i)))) : curve_color;
+                    q.rad = rad;
+                    q.wrad = rad / k;
+                    q.color = source.valid() && source.per_point ? pack(categorical_color(source.value(size_t(i)))) : curve_color;
                 }
             }
         });
@@ -272,9 +273,9 @@ Prepared prepare(const RenderScene& scene, const Camera& cam, const RenderParams
     p.dmin = std::numeric_limits<float>::infinity();
     p.dmax = -p.dmin;
     for (size_t i = 0; i < total; ++i) {
-        if (std::isnan(p.px[i])) continue;
-        p.dmin = std::min(p.dmin, p.pd[i]);
-        p.dmax = std::max(p.dmax, p.pd[i]);
+        if (std::isnan(p.pts[i].x)) continue;
+        p.dmin = std::min(p.dmin, p.pts[i].d);
+        p.dmax = std::max(p.dmax, p.pts[i].d);
     }
     return p;
 }
@@ -330,9 +331,10 @@ void draw_triangle(const Prepared& p, const std::array<int32_t, 3>& t, const Rec
 
 void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
 {
-    const uint32_t j = i + 1;
-    const float ax = p.px[i], ay = p.py[i], bx = p.px[j], by = p.py[j];
-    const float r0 = p.prad[i], r1 = p.prad[j];
+    const Prepared::Point& A = p.pts[i];
+    const Prepared::Point& B = p.pts[i + 1];
+    const float ax = A.x, ay = A.y, bx = B.x, by = B.y;
+    const float r0 = A.rad, r1 = B.rad;
     const float rmax = std::max(r0, r1);
     int x0, x1, y0, y1;
     sample_range(std::min(ax, bx) - rmax, std::max(ax, bx) + rmax, tile.x0, tile.x1, x0, x1);
@@ -343,8 +345,8 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
     const float inv_len2 = len2 > 1e-12f ? 1.0f / len2 : 0.0f;
     // View-space tangent (scene units) for the hair highlight (Kajiya-Kay): a strand lights up where
     // its tangent is perpendicular to the half vector, so crossings in a braid catch the light differently.
-    const float k = p.prad[i] / std::max(p.pwrad[i], 1e-30f);  // samples per scene unit here
-    const float3 tangent = normalize(float3(ex / k, -ey / k, p.pd[j] - p.pd[i]), float3(1, 0, 0));
+    const float k = A.rad / std::max(A.wrad, 1e-30f);  // samples per scene unit here
+    const float3 tangent = normalize(float3(ex / k, -ey / k, B.d - A.d), float3(1, 0, 0));
     const float3 half = normalize(kKey + kViewer);
     const float th = dot(tangent, half);
     const float sin_th = std::sqrt(std::max(0.0f, 1.0f - th * th));
@@ -360,11 +362,11 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
     const float slope = steep ? ex / ey : 0.0f;
     const float half_band = steep ? rmax * len / std::fabs(ey) : 0.0f;
     // Everything that does not vary per sample, hoisted out of the loop.
-    const float d0 = p.pd[i], dd = p.pd[j] - p.pd[i];
-    const float rw0 = p.pwrad[i], drw = p.pwrad[j] - p.pwrad[i];
+    const float d0 = A.d, dd = B.d - A.d;
+    const float rw0 = A.wrad, drw = B.wrad - A.wrad;
     const float dr = r1 - r0;
     const float cue_scale = drange > 0.0f ? 0.35f / drange : 0.0f;
-    const float3 base0 = unpack(p.pcolor[i]), base1 = unpack(p.pcolor[j]);
+    const float3 base0 = unpack(A.color), base1 = unpack(B.color);
     const float light0 = 0.30f + 0.30f * kay_diffuse;
     for (int y = y0; y <= y1; ++y) {
         const float sy = float(y) + 0.5f;
@@ -387,9 +389,12 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
             if (dist2 > r2) continue;
             // A tube: its front surface is nearer than the centreline by the radius times cos(angle),
             // so curves lying on the scalp win the depth test and braided strands occlude correctly.
-            const float cosv = std::sqrt(std::max(0.0f, 1.0f - dist2 / r2));
             const float centre_depth = d0 + dd * t;
-            const float d = centre_depth - (rw0 + drw * t) * cosv;
+            const float rw = rw0 + drw * t;
+            // Hidden even at the tube's nearest point: most samples of a dense groom end here.
+            if (!(centre_depth - rw < depth_row[x])) continue;
+            const float cosv = std::sqrt(std::max(0.0f, 1.0f - dist2 / r2));
+            const float d = centre_depth - rw * cosv;
             if (!(d < depth_row[x])) continue;
             const float cue = 1.0f - cue_scale * (centre_depth - p.dmin);
             const float light = (light0 + 0.50f * cosv) * cue;
@@ -642,12 +647,14 @@ RgbImage render(const RenderScene& scene, const Camera& camera_in, const RenderP
         }
         else {
             const uint32_t i = p.segments[item - num_tris];
-            if (std::isnan(p.px[i]) || std::isnan(p.px[i + 1])) return false;
-            const float r = std::max(p.prad[i], p.prad[i + 1]);
-            xlo = std::min(p.px[i], p.px[i + 1]) - r;
-            xhi = std::max(p.px[i], p.px[i + 1]) + r;
-            ylo = std::min(p.py[i], p.py[i + 1]) - r;
-            yhi = std::max(p.py[i], p.py[i + 1]) + r;
+            const Prepared::Point& A = p.pts[i];
+            const Prepared::Point& B = p.pts[i + 1];
+            if (std::isnan(A.x) || std::isnan(B.x)) return false;
+            const float r = std::max(A.rad, B.rad);
+            xlo = std::min(A.x, B.x) - r;
+            xhi = std::max(A.x, B.x) + r;
+            ylo = std::min(A.y, B.y) - r;
+            yhi = std::max(A.y, B.y) + r;
         }
         if (!(xhi >= 0.0f && yhi >= 0.0f && xlo < float(p.ws) && ylo < float(p.hs))) return false;
         tx0 = std::max(0, int(xlo) / kTile);
@@ -664,14 +671,18 @@ RgbImage render(const RenderScene& scene, const Camera& camera_in, const RenderP
             for (int tx = tx0; tx <= tx1; ++tx) ++tile_offsets[size_t(ty) * tiles_x + tx + 1];
     }
     for (size_t t = 0; t < num_tiles; ++t) tile_offsets[t + 1] += tile_offsets[t];
-    std::vector<uint32_t> tile_items(tile_offsets.back());
+    // Each entry is what the draw needs without another lookup: a triangle index with the top bit set,
+    // or a segment's first point index.
+    constexpr uint64_t kTriangleBit = uint64_t(1) << 63;
+    std::vector<uint64_t> tile_items(tile_offsets.back());
     {
         std::vector<uint64_t> cursor(tile_offsets.begin(), tile_offsets.end() - 1);
         for (size_t item = 0; item < num_items; ++item) {
             int tx0, tx1, ty0, ty1;
             if (!item_tiles(item, tx0, tx1, ty0, ty1)) continue;
+            const uint64_t entry = item < num_tris ? (uint64_t(item) | kTriangleBit) : uint64_t(p.segments[item - num_tris]);
             for (int ty = ty0; ty <= ty1; ++ty)
-                for (int tx = tx0; tx <= tx1; ++tx) tile_items[cursor[size_t(ty) * tiles_x + tx]++] = static_cast<uint32_t>(item);
+                for (int tx = tx0; tx <= tx1; ++tx) tile_items[cursor[size_t(ty) * tiles_x + tx]++] = entry;
         }
     }
 
@@ -684,10 +695,14 @@ RgbImage render(const RenderScene& scene, const Camera& camera_in, const RenderP
         for (int64_t t = tb; t < te; ++t) {
             const int tx = int(t % tiles_x), ty = int(t / tiles_x);
             const Rect rect{tx * kTile, ty * kTile, std::min(p.ws, (tx + 1) * kTile), std::min(p.hs, (ty + 1) * kTile)};
-            for (uint64_t k = tile_offsets[t]; k < tile_offsets[t + 1]; ++k) {
-                const uint32_t item = tile_items[k];
-                if (item < num_tris) draw_triangle(p, p.tris[item], rect, params, buf);
-                else draw_segment(p, p.segments[item - num_tris], rect, buf);
+            const uint64_t end = tile_offsets[t + 1];
+            for (uint64_t k = tile_offsets[t]; k < end; ++k) {
+                // Segments of a tile come from curves all over the groom: fetch the point records a
+                // few items ahead so the memory latency overlaps the drawing.
+                if (k + 8 < end && !(tile_items[k + 8] & kTriangleBit)) __builtin_prefetch(&p.pts[tile_items[k + 8]]);
+                const uint64_t entry = tile_items[k];
+                if (entry & kTriangleBit) draw_triangle(p, p.tris[entry & ~kTriangleBit], rect, params, buf);
+                else draw_segment(p, static_cast<uint32_t>(entry), rect, buf);
             }
             step.advance(1);
         }

@@ -5,6 +5,7 @@
 // op, which is the reference cost every curled groom pays, shows in the same run.
 #include "fields/scalp_field.h"
 #include "kernel/io/mesh_io.h"
+#include "ops/curl.h"
 #include "ops/generate.h"
 #include "ops/head.h"
 #include "ops/puff.h"
@@ -106,6 +107,50 @@ void BM_TwoPuffsCentrelinesOnly(benchmark::State& state)
     state.SetItemsProcessed(int64_t(state.iterations()) * 2 * kHairsPerPuff);
 }
 
+// The curl step alone on the two puffs' centrelines, two ways to keep hairs out of the head: the
+// curl op's own scalp check (every point queried; the reference) against what puff does (curl
+// freely, then push_out_of_scalp, which skips points provably outside).
+const std::vector<CurveSet>& centrelines()
+{
+    static const std::vector<CurveSet> c = [] {
+        const Scene& s = scene();
+        std::vector<CurveSet> out;
+        for (const PuffParams* p : {&s.left, &s.right}) {
+            GenerateParams g;
+            g.count = p->hairs;
+            g.points = p->hair_points;
+            g.region_center = s.scalp->closest_point(p->center);
+            g.region_radius = p->radius;
+            out.push_back(generate(puff_guides(*s.scalp, *p), *s.scalp, scalp_root_sampler(*s.scalp), g));
+        }
+        return out;
+    }();
+    return c;
+}
+
+void curl_step(benchmark::State& state, bool op_checks_scalp)
+{
+    const Scene& s = scene();
+    const std::vector<CurveSet>& c = centrelines();
+    size_t points = 0;
+    for (auto _ : state) {
+        points = 0;
+        for (int k = 0; k < 2; ++k) {
+            CurlParams p = (k == 0 ? s.left : s.right).curl;
+            p.preserve_length = false;
+            CurveSet out = curl(c[k], p, op_checks_scalp ? s.scalp.get() : nullptr);
+            if (!op_checks_scalp) push_out_of_scalp(out, *s.scalp);
+            points += out.num_points();
+            benchmark::DoNotOptimize(out.positions().data());
+        }
+    }
+    state.SetLabel(s.head);
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(points));
+}
+
+void BM_CurlStepOpScalpCheck(benchmark::State& state) { curl_step(state, true); }
+void BM_CurlStepThenPushOut(benchmark::State& state) { curl_step(state, false); }
+
 void BM_TwoPuffsGuidesOnly(benchmark::State& state)
 {
     const Scene& s = scene();
@@ -119,5 +164,7 @@ void BM_TwoPuffsGuidesOnly(benchmark::State& state)
 
 BENCHMARK(BM_TwoPuffs)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_TwoPuffsCentrelinesOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CurlStepOpScalpCheck)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CurlStepThenPushOut)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_TwoPuffsGuidesOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

@@ -356,10 +356,18 @@ int64_t push_out_of_scalp(CurveSet& curves, const Surface& scalp, float clearanc
     parallel_for(nc, 256, [&](int64_t b, int64_t e) {
         for (int64_t c = b; c < e; ++c) {
             const IndexRange r = curves.points_of(c);
+            // A signed distance changes by at most the distance moved, so a point whose predecessor
+            // was far enough out cannot be inside: skip its query (far from the scalp, past the
+            // level set's narrow band, each query is an exact mesh search).
+            float lower = -INFINITY;
             for (int64_t p = r.begin + 1; p < r.end; ++p) {
+                lower -= distance(P[p], P[p - 1]);
+                if (lower > clearance) continue;
                 const float d = scalp.distance(P[p]);
+                lower = d;
                 if (d >= clearance) continue;
                 P[p] = scalp.closest_point(P[p]) + scalp.normal(P[p]) * clearance;
+                lower = clearance;
                 ++moved[c];
             }
         }

@@ -78,7 +78,8 @@ struct PuffResult {
 /// from curl.seed); each hair's centreline is interpolated from its nearest guides by
 /// generate_at_roots() (so it follows them), its tip is then moved onto the sphere along the
 /// direction from the sphere centre (a smooth warp, p += (tip' - tip) s^2 for arc-length fraction
-/// s, which keeps the root and the root direction), and it is curled by curl() with the scalp.
+/// s, which keeps the root and the root direction), and it is curled by curl(); curled points that
+/// fall inside the scalp are then pushed out along its normal (push_out_of_scalp).
 /// A curl moves points at most curl_reach(curl) off the centreline, so every hair tip lies within
 /// that distance of the sphere.
 /// Hairs: point P (+ the curl op's point `shape`, `cycle`), curve `id` (after the guides' ids),

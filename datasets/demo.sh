@@ -103,10 +103,10 @@ izzy=()
 if have puff; then
     # Left and right of the crown; each puff's sphere sits above and outside its root patch.
     step "puff left" groom puff --scalp "$scalp" -o "$out/izzy_puff_left.usda" \
-        --center -4.8,9.5,-1.5 --radius 4.2 --sphere-center -7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 \
+        --center -4.8,9.5,-1.5 --radius 4.2 --sphere-center -7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
         --hairs 6000 --type 4a --seed 1
     step "puff right" groom puff --scalp "$scalp" -o "$out/izzy_puff_right.usda" \
-        --center 4.8,9.5,-1.5 --radius 4.2 --sphere-center 7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 \
+        --center 4.8,9.5,-1.5 --radius 4.2 --sphere-center 7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
         --hairs 6000 --type 4a --seed 2
     izzy+=("$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda")
 else

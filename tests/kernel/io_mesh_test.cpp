@@ -184,3 +184,33 @@ TEST(MeshIoPly, WriteReadRoundTripKeepsNgons)
                                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n3 0 0 5\n",
                       "face 0 uses vertex 5, out of range (1 vertices)");
 }
+
+TEST(MeshIoReal, HeadsMatchTheDatasetReadme)
+{
+    // Figures from ../shared/datasets/README.md, written by whoever gathered the data.
+    struct Expect {
+        const char* file;
+        int64_t vertices, duplicates, non_manifold, shells;  // -1 = not stated there
+        bool closed;
+    };
+    const Expect cases[] = {
+        {"ict_facekit/generic_neutral_mesh.obj", 26719, 345, 103, -1, false},
+        {"makehuman/base.obj", 19158, -1, -1, 154, false},
+        {"lee_perry_smith/LeePerrySmith.obj", 8838, -1, -1, -1, true},
+        {"nefertiti_scan/nefertiti-lowres.obj", 35002, -1, -1, -1, true},
+        {"sintel_frostbitten/sintel-collider.obj", 341, -1, -1, 1, true},
+        {"sintel_frostbitten/sintel.obj", 3046, -1, -1, -1, false},
+    };
+    for (const Expect& e : cases) {
+        GROOM_REQUIRE_SHARED(path, e.file);
+        const PolygonSoup s = read_mesh(path);
+        EXPECT_EQ(s.num_faces(), count_lines_starting(path, "f ")) << e.file;
+        const MeshStats st = mesh_stats(s);
+        EXPECT_EQ(st.vertices, e.vertices) << e.file;
+        if (e.duplicates >= 0) EXPECT_EQ(st.duplicate_vertices, e.duplicates) << e.file;
+        if (e.non_manifold >= 0) EXPECT_EQ(st.non_manifold_edges, e.non_manifold) << e.file;
+        if (e.shells >= 0) EXPECT_EQ(st.shells, e.shells) << e.file;
+        if (e.closed) EXPECT_EQ(st.boundary_edges, 0) << e.file;
+        else EXPECT_GT(st.boundary_edges, 0) << e.file;
+    }
+}

@@ -32,6 +32,9 @@ void setup(CommandContext& ctx)
     app->add_option("--footprint-scale", p.footprint_scale,
                     "Without --region: roots lie within this many times the coarsest guide spacing of a guide root, > 0")
         ->capture_default_str();
+    app->add_option("--max-angle", p.max_angle,
+                    "Skip roots whose scalp normal is more than this many degrees from their nearest guide's, (0, 180]")
+        ->capture_default_str();
     app->add_option("--neighbours", p.neighbours, "Guides blended per curve, >= 1")->capture_default_str();
     app->add_option("--power", p.power, "Inverse-distance weight exponent, > 0")->capture_default_str();
     app->add_option("--points", p.points, "Points per curve, >= 2 (default: the guides' own count)");

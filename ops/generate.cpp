@@ -185,18 +185,25 @@ void GenerateParams::validate() const
     if (!(footprint_scale > 0.0f) || !std::isfinite(footprint_scale)) {
         throw InvalidParam("generate: --footprint-scale must be a finite number > 0 (got " + str(footprint_scale) + ")");
     }
+    if (!(max_angle > 0.0f && max_angle <= 180.0f)) {
+        throw InvalidParam("generate: --max-angle must be in (0, 180] degrees (got " + str(max_angle) + ")");
+    }
     if (!(clearance >= 0.0f) || !std::isfinite(clearance)) {
         throw InvalidParam("generate: --clearance must be finite and >= 0 (got " + str(clearance) + ")");
     }
     if (first_id < 0) throw InvalidParam("generate: --first-id must be >= 0 (got " + std::to_string(first_id) + ")");
 }
 
-std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const RootSampler& sample, const GenerateParams& params)
+std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& scalp, const RootSampler& sample,
+                                         const GenerateParams& params)
 {
     params.validate();
     if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
     const std::vector<float3> roots = guide_roots(guides);
     const GuideIndex index(roots);
+    std::vector<float3> guide_normals(roots.size());
+    for (size_t g = 0; g < roots.size(); ++g) guide_normals[g] = scalp.normal(roots[g]);
+    const float min_cos = params.max_angle >= 180.0f ? -2.0f : float(std::cos(double(params.max_angle) * 3.14159265358979 / 180.0));
 
     // The ball handed to the sampler, and the exact test each sample must pass.
     float3 center = params.region_center;
@@ -219,10 +226,11 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const RootSampl
         center = box.center();
         radius = 0.5f * length(box.size()) + float(footprint);
     }
-    auto accept = [&](const float3& p, std::vector<GuideIndex::Hit>& hits) {
-        if (!use_footprint) return double(distance(p, center)) <= double(radius);
-        index.nearest(p, 1, hits);
-        return hits.front().distance <= footprint;
+    auto accept = [&](const SurfaceSample& s, std::vector<GuideIndex::Hit>& hits) {
+        if (!use_footprint && !(double(distance(s.position, center)) <= double(radius))) return false;
+        index.nearest(s.position, 1, hits);
+        if (use_footprint && !(hits.front().distance <= footprint)) return false;
+        return min_cos < -1.0f || dot(normalize(s.normal), guide_normals[hits.front().guide]) >= min_cos;
     };
 
     // Rejection from an area-uniform superset stays area-uniform; batches use fresh seeds so the
@@ -236,7 +244,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const RootSampl
             throw LimitExceeded("generate: found only " + std::to_string(out.size()) + " of " +
                                 std::to_string(params.count) + " roots on the scalp inside the " +
                                 (use_footprint ? std::string("guides' footprint") : std::string("--region ball")) +
-                                " after 64 rounds of sampling; is the region on the scalp?");
+                                " after 64 rounds of sampling; is the region on the scalp, facing the way the guides' roots do (--max-angle)?");
         }
         const int64_t want = params.count - int64_t(out.size());
         const int64_t ask = std::min<int64_t>(int64_t(std::ceil(double(want) * 1.1 / std::max(rate, 0.02))) + 16,
@@ -245,7 +253,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const RootSampl
         int64_t kept = 0;
         for (const SurfaceSample& p : got) {
             if (int64_t(out.size()) == params.count) break;
-            if (accept(p.position, hits)) {
+            if (accept(p, hits)) {
                 out.push_back(p);
                 ++kept;
             }
@@ -339,7 +347,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
 CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
                   Progress* progress)
 {
-    const std::vector<SurfaceSample> samples = scatter_roots(guides, sample, params);
+    const std::vector<SurfaceSample> samples = scatter_roots(guides, scalp, sample, params);
     std::vector<float3> roots(samples.size()), normals(samples.size());
     for (size_t i = 0; i < samples.size(); ++i) {
         roots[i] = samples[i].position;

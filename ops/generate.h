@@ -46,6 +46,11 @@ struct GenerateParams {
     float3 region_center{};
     float region_radius = 0.0f;     ///< scene units; 0 = use the footprint
     float footprint_scale = 1.0f;   ///< > 0 (--footprint-scale)
+    /// Roots whose scalp normal is more than this many degrees from their nearest guide's root
+    /// normal are not used (ears, the underside of a fold: scalp the guides do not describe, where a
+    /// shape turned through so large an angle would point anywhere); (0, 180], 180 = keep all
+    /// (--max-angle).
+    float max_angle = 75.0f;
     float clearance = 0.0f;   ///< points found inside the scalp are pushed out to this distance, scene units, >= 0
     uint64_t seed = 0;        ///< root scattering (--seed)
     int64_t first_id = 0;     ///< curve ids are first_id, first_id+1, ..., in root order (--first-id), >= 0
@@ -68,8 +73,10 @@ CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSample
                   Progress* progress = nullptr);
 
 /// The roots generate() would use: params.count samples, area-uniform inside the region (or
-/// footprint), in a deterministic order for params.seed.
-std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const RootSampler& sample, const GenerateParams& params);
+/// footprint) among those within params.max_angle of their nearest guide's root normal (taken from
+/// `scalp`), in a deterministic order for params.seed.
+std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& scalp, const RootSampler& sample,
+                                         const GenerateParams& params);
 
 /// @brief One curve per root, shaped from the K = params.neighbours guides whose roots are nearest
 /// (CGAL kd-tree search).

@@ -164,7 +164,7 @@ TEST(Generate, RootsAreaUniformInsideRegion)
     params.region_radius = 4.0f;
     params.seed = 11;
     const CurveSet guides = pole_guides();
-    const std::vector<SurfaceSample> roots = scatter_roots(guides, test::sphere_cap_sampler(kC, kR), params);
+    const std::vector<SurfaceSample> roots = scatter_roots(guides, head, test::sphere_cap_sampler(kC, kR), params);
     ASSERT_EQ(roots.size(), 20000u);
     // The ball cuts the cap cos(theta) >= 1 - r^2 / (2 R^2).
     const double cos_max = 1.0 - 16.0 / 200.0;
@@ -206,18 +206,19 @@ TEST(Generate, RootsAreaUniformInsideRegion)
         }
         return out;
     };
-    stats(scatter_roots(guides, biased, params), bands, sectors);
+    stats(scatter_roots(guides, head, biased, params), bands, sectors);
     EXPECT_GT(bands, 27.88);
 
     // generate() grows its curves from exactly these roots.
     params.count = 500;
     const CurveSet out = generate(guides, head, test::sphere_cap_sampler(kC, kR), params);
-    const std::vector<SurfaceSample> first = scatter_roots(guides, test::sphere_cap_sampler(kC, kR), params);
+    const std::vector<SurfaceSample> first = scatter_roots(guides, head, test::sphere_cap_sampler(kC, kR), params);
     for (size_t c = 0; c < out.num_curves(); ++c) ASSERT_EQ(curve(out, c)[0], first[c].position);
 }
 
 TEST(Generate, FootprintKeepsRootsNearGuides)
 {
+    const AnalyticSphere head(kC, kR);
     const CurveSet guides = pole_guides();
     GenerateParams params;
     params.count = 3000;
@@ -225,7 +226,7 @@ TEST(Generate, FootprintKeepsRootsNearGuides)
     for (size_t g = 0; g < guides.num_curves(); ++g) groots.push_back(curve(guides, g)[0]);
     // The coarsest spacing: each outer guide's nearest is the pole guide, 2 R sin(0.125) away.
     const float D = 2.0f * kR * std::sin(0.125f);
-    const std::vector<SurfaceSample> roots = scatter_roots(guides, test::sphere_cap_sampler(kC, kR, 1.0), params);
+    const std::vector<SurfaceSample> roots = scatter_roots(guides, head, test::sphere_cap_sampler(kC, kR, 1.0), params);
     float farthest = 0;
     for (const SurfaceSample& s : roots) {
         const float3 p = s.position;
@@ -236,12 +237,39 @@ TEST(Generate, FootprintKeepsRootsNearGuides)
     }
     EXPECT_GT(farthest, 0.9f * D);  // the footprint is filled out to its edge
     params.footprint_scale = 0.5f;
-    for (const SurfaceSample& s : scatter_roots(guides, test::sphere_cap_sampler(kC, kR, 1.0), params)) {
+    for (const SurfaceSample& s : scatter_roots(guides, head, test::sphere_cap_sampler(kC, kR, 1.0), params)) {
         const float3 p = s.position;
         float nearest = INFINITY;
         for (const float3& r : groots) nearest = std::min(nearest, distance(p, r));
         ASSERT_LE(nearest, 0.5f * D * (1 + 1e-5f));
     }
+}
+
+TEST(Generate, RootsFacingAwayFromTheGuidesAreNotUsed)
+{
+    // Guides around the pole; a region reaching 80 degrees down the sphere. Sphere normals are the
+    // directions from the centre, so the angle to the nearest guide's normal is known exactly.
+    const AnalyticSphere head(kC, kR);
+    const CurveSet guides = pole_guides();
+    GenerateParams params;
+    params.count = 4000;
+    params.region_center = on_sphere(0, 0);
+    params.region_radius = 2.0f * kR * std::sin(0.5f * 80.0f * 3.14159265f / 180.0f);
+    auto worst = [&](float max_angle) {
+        params.max_angle = max_angle;
+        float widest = 0;
+        for (const SurfaceSample& s : scatter_roots(guides, head, test::sphere_cap_sampler(kC, kR, 1.0), params)) {
+            size_t nearest = 0;  // by root distance, as the op decides
+            for (size_t g = 1; g < guides.num_curves(); ++g)
+                if (distance(s.position, curve(guides, g)[0]) < distance(s.position, curve(guides, nearest)[0])) nearest = g;
+            const float best = dot(normalize(s.position), normalize(curve(guides, nearest)[0]));
+            widest = std::max(widest, std::acos(std::clamp(best, -1.0f, 1.0f)) * 180.0f / 3.14159265f);
+        }
+        return widest;
+    };
+    EXPECT_LE(worst(30.0f), 30.0f + 1e-3f);
+    EXPECT_GT(worst(30.0f), 25.0f);   // the allowed band is filled
+    EXPECT_GT(worst(180.0f), 60.0f);  // without the limit roots reach the region's rim
 }
 
 TEST(Generate, NoPointInsideScalp)
@@ -369,6 +397,9 @@ TEST(Generate, RejectsInvalidParams)
     p.footprint_scale = 0;
     EXPECT_NE(message(p).find("--footprint-scale"), std::string::npos) << message(p);
     p = {};
+    p.max_angle = 0;
+    EXPECT_NE(message(p).find("--max-angle must be in (0, 180]"), std::string::npos) << message(p);
+    p = {};
     p.clearance = -1;
     EXPECT_NE(message(p).find("--clearance"), std::string::npos) << message(p);
     p = {};
@@ -379,7 +410,7 @@ TEST(Generate, RejectsInvalidParams)
     const AnalyticSphere head(kC, kR);
     std::vector<std::vector<float3>> one;
     add_guide(one, on_sphere(0, 0), float3(1, 0, 0), 2.0f, 4);
-    EXPECT_THROW(scatter_roots(to_curves(one), test::sphere_cap_sampler(kC, kR), {}), InvalidParam);
+    EXPECT_THROW(scatter_roots(to_curves(one), head, test::sphere_cap_sampler(kC, kR), {}), InvalidParam);
     one.push_back({on_sphere(0.1, 0)});
     const std::vector<float3> roots{on_sphere(0, 0)};
     EXPECT_THROW(generate_at_roots(to_curves(one), head, roots, {}, {}), InvalidGeometry);
@@ -388,12 +419,13 @@ TEST(Generate, RejectsInvalidParams)
 
 TEST(Generate, RegionOffTheScalpIsRefused)
 {
+    const AnalyticSphere head(kC, kR);
     GenerateParams params;
     params.count = 10;
     params.region_center = float3(0, 50, 0);
     params.region_radius = 1.0f;
     try {
-        scatter_roots(pole_guides(), test::sphere_cap_sampler(kC, kR), params);
+        scatter_roots(pole_guides(), head, test::sphere_cap_sampler(kC, kR), params);
         FAIL() << "expected LimitExceeded";
     }
     catch (const LimitExceeded& e) {

@@ -94,16 +94,24 @@ void MeshGeometry::compute(const TriMesh& mesh)
     std::vector<int32_t> fill(vertex_face_offsets.begin(), vertex_face_offsets.end() - 1);
     for (size_t f = 0; f < nf; ++f)
         for (int32_t v : tris[f]) vertex_faces[fill[v]++] = int32_t(f);
+    boundary_edge.assign(nf * 3, 0);
+    boundary_vertex.assign(nv, 0);
+    for (size_t v = 0; v < nv; ++v) boundary_vertex[v] = mesh.is_boundary(TriMesh::VertexHandle{int(v)});
     // Edge pseudo-normals: the sum of the two faces' normals (one face on a boundary edge).
     for (size_t f = 0; f < nf; ++f) {
         for (int k = 0; k < 3; ++k) {
             const auto vh = TriMesh::VertexHandle(tris[f][k]), wh = TriMesh::VertexHandle(tris[f][(k + 1) % 3]);
             const auto he = mesh.find_halfedge(vh, wh);
             float3 n = face_normals[f];
+            bool boundary = true;
             if (he.is_valid()) {
                 const auto opp = mesh.opposite_face_handle(he);
-                if (opp.is_valid()) n += face_normals[opp.idx()];
+                if (opp.is_valid()) {
+                    n += face_normals[opp.idx()];
+                    boundary = false;
+                }
             }
+            boundary_edge[f * 3 + k] = boundary;
             edge_normals[f * 3 + k] = normalize(n, face_normals[f]);
         }
     }
@@ -149,10 +157,21 @@ float3 MeshGeometry::pseudo_normal(int32_t face, Feature feature) const
     return face_normals[face];
 }
 
-float MeshGeometry::signed_distance_to_face(const float3& p, int32_t f, float3& closest) const
+float MeshGeometry::signed_distance_to_face(const float3& p, int32_t f, float3& closest, bool* on_boundary) const
 {
     Feature feature;
     closest = closest_on_triangle(p, points[tris[f][0]], points[tris[f][1]], points[tris[f][2]], feature);
+    if (on_boundary) {
+        switch (feature) {
+        case Feature::Face: *on_boundary = false; break;
+        case Feature::Edge0: *on_boundary = boundary_edge[f * 3 + 0]; break;
+        case Feature::Edge1: *on_boundary = boundary_edge[f * 3 + 1]; break;
+        case Feature::Edge2: *on_boundary = boundary_edge[f * 3 + 2]; break;
+        case Feature::Vertex0: *on_boundary = boundary_vertex[tris[f][0]]; break;
+        case Feature::Vertex1: *on_boundary = boundary_vertex[tris[f][1]]; break;
+        case Feature::Vertex2: *on_boundary = boundary_vertex[tris[f][2]]; break;
+        }
+    }
     const float3 d = p - closest;
     const float dist = length(d);
     return dot(d, pseudo_normal(f, feature)) < 0.0f ? -dist : dist;
@@ -186,7 +205,31 @@ float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face
     const auto hit = tree_->tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
     face = static_cast<int32_t>(hit.second - tree_->triangles.cbegin());
     // The AABB tree finds the face; the pseudo-normal of the feature hit gives the sign.
-    return geometry_.signed_distance_to_face(p, face, closest);
+    bool boundary = false;
+    const float d = geometry_.signed_distance_to_face(p, face, closest, &boundary);
+    return sign_fixed(p, d, boundary, 0.0f);
+}
+
+bool MeshQuery::inside_by_rays(const float3& p) const
+{
+    // Fixed, irrational-ish directions so rays rarely graze edges of axis-aligned models.
+    static const float3 dirs[7] = {normalize(float3(0.31f, 0.93f, 0.19f)),   normalize(float3(-0.71f, 0.12f, 0.69f)),
+                                   normalize(float3(0.05f, -0.97f, 0.23f)),  normalize(float3(0.88f, -0.21f, -0.43f)),
+                                   normalize(float3(-0.37f, -0.41f, -0.83f)), normalize(float3(-0.91f, 0.33f, -0.24f)),
+                                   normalize(float3(0.27f, 0.36f, -0.89f))};
+    int votes = 0;
+    const K::Point_3 o(p.x, p.y, p.z);
+    for (const float3& d : dirs) {
+        const size_t hits = tree_->tree.number_of_intersected_primitives(K::Ray_3(o, K::Vector_3(d.x, d.y, d.z)));
+        votes += int(hits & 1);
+    }
+    return votes >= 4;
+}
+
+float MeshQuery::sign_fixed(const float3& p, float d, bool on_boundary, float local) const
+{
+    if (!on_boundary || std::fabs(d) <= local) return d;
+    return inside_by_rays(p) ? -std::fabs(d) : std::fabs(d);
 }
 
 }  // namespace groom::detail

@@ -6,6 +6,9 @@
 
 #include "kernel/error.h"
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -88,7 +91,15 @@ std::string RepairReport::to_json() const
         }
         s << '"';
     }
-    s << "]\n}\n";
+    s << "],\n  \"shell_list\": [";
+    for (size_t i = 0; i < shell_list.size(); ++i) {
+        const Shell& sh = shell_list[i];
+        s << (i ? ",\n    " : "\n    ") << "{\"faces\": " << sh.faces << ", \"area\": " << sh.area << ", \"closed\": " << (sh.closed ? "true" : "false")
+          << ", \"flipped\": " << (sh.flipped ? "true" : "false") << ", \"removed\": " << (sh.removed ? "true" : "false")
+          << ", \"winding\": " << sh.winding << ", \"bbox\": [" << sh.lo[0] << ", " << sh.lo[1] << ", " << sh.lo[2] << ", " << sh.hi[0]
+          << ", " << sh.hi[1] << ", " << sh.hi[2] << "]}";
+    }
+    s << "\n  ]\n}\n";
     return s.str();
 }
 
@@ -302,6 +313,7 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         size_t vertex_count = 0, faces = 0, boundary_edges = 0;
         CGAL::Bbox_3 box;
         bool flip = false, removed = false;
+        double winding = 0.0;
     };
     std::vector<Shell> shells(nshells);
     for (size_t t = 0; t < tris.size(); ++t) {
@@ -357,11 +369,40 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
             const double a = std::sqrt(tri_cross(pts, tris[t]).squared_length());
             agree[shell[t]] += reversed[t] ? -a : a;
         }
+        // Open shells: which side of the shell can the world see? Rays from sample faces along +n and
+        // -n that escape without hitting any geometry (ambient visibility) decide: an eye socket or a
+        // bowl-shaped patch faces where its opening is, which no local rule can tell.
+        std::vector<K::Triangle_3> all;
+        all.reserve(tris.size());
+        for (const Polygon& t : tris) all.emplace_back(pts[t[0]], pts[t[1]], pts[t[2]]);
+        using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<K::Triangle_3>::const_iterator>;
+        CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree(all.cbegin(), all.cend());
+        std::vector<std::vector<size_t>> faces_of(nshells);
+        for (size_t t = 0; t < tris.size(); ++t) faces_of[shell[t]].push_back(t);
+        const double eps = 1e-5 * std::sqrt(diag2);
         for (size_t i = 0; i < nshells; ++i) {
             Shell& s = shells[i];
             const double decisive = 0.25 * s.area * s.scale / 3.0;
-            if (s.boundary_edges == 0 || std::fabs(s.volume) > decisive) s.flip = s.volume < 0.0;
-            else s.flip = agree[i] < 0.0;
+            if (s.boundary_edges == 0) {
+                s.flip = s.volume < 0.0;
+            }
+            else {
+                const auto& fs = faces_of[i];
+                const size_t samples = std::min<size_t>(fs.size(), 64);
+                int escape_out = 0, escape_in = 0;
+                for (size_t k = 0; k < samples; ++k) {
+                    const size_t t = fs[k * fs.size() / samples];
+                    const K::Vector_3 n = tri_cross(pts, tris[t]);
+                    const K::Vector_3 u = n / std::sqrt(n.squared_length());
+                    const Point c = CGAL::centroid(pts[tris[t][0]], pts[tris[t][1]], pts[tris[t][2]]);
+                    escape_out += !tree.do_intersect(K::Ray_3(c + u * eps, u));
+                    escape_in += !tree.do_intersect(K::Ray_3(c - u * eps, -u));
+                }
+                // n here is the winding after PMP's orientation: reversed[t] says how it relates to the file.
+                if (std::abs(escape_out - escape_in) >= std::max<int>(2, int(samples) / 10)) s.flip = escape_in > escape_out;
+                else if (std::fabs(s.volume) > decisive) s.flip = s.volume < 0.0;
+                else s.flip = agree[i] < 0.0;
+            }
             report.shells_flipped += s.flip;
         }
     }
@@ -388,16 +429,19 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
                 const size_t b = order[bi];
                 if (shells[b].removed || !contains(shells[b].box, shells[a].box)) continue;
                 bool inside = true;
+                double wmin = 1e30;
                 for (size_t v : samples) {
                     double w = 0.0;
                     for (size_t t : tris_of_shell[b]) {
                         w += solid_angle(pts[tris[t][0]] - pts[v], pts[tris[t][1]] - pts[v], pts[tris[t][2]] - pts[v]);
                     }
-                    if (std::fabs(w) / (4.0 * M_PI) <= 0.5) {
+                    wmin = std::min(wmin, std::fabs(w) / (4.0 * M_PI));
+                    if (wmin <= 0.5) {
                         inside = false;
                         break;
                     }
                 }
+                shells[a].winding = std::max(shells[a].winding, wmin);
                 if (inside) {
                     shells[a].removed = true;
                     biggest_host = b;
@@ -416,6 +460,24 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
     }
     step.advance(1);
 
+    {
+        std::vector<size_t> order(nshells);
+        std::iota(order.begin(), order.end(), size_t(0));
+        std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shells[a].area > shells[b].area; });
+        for (size_t i : order) {
+            const Shell& s = shells[i];
+            RepairReport::Shell out;
+            out.faces = static_cast<int64_t>(s.faces);
+            out.area = s.area;
+            out.lo[0] = float(s.box.xmin()), out.lo[1] = float(s.box.ymin()), out.lo[2] = float(s.box.zmin());
+            out.hi[0] = float(s.box.xmax()), out.hi[1] = float(s.box.ymax()), out.hi[2] = float(s.box.zmax());
+            out.closed = s.boundary_edges == 0;
+            out.flipped = s.flip;
+            out.removed = s.removed;
+            out.winding = s.winding;
+            report.shell_list.push_back(out);
+        }
+    }
     std::vector<Polygon> kept;
     kept.reserve(tris.size());
     for (size_t t = 0; t < tris.size(); ++t) {

@@ -32,6 +32,16 @@ struct RepairReport {
     bool flipped_by_user = false;            ///< --flip was given
     std::vector<std::string> notes;          ///< sentences for the user (why a shell went, etc.)
 
+    /// Every shell after repair, largest area first.
+    struct Shell {
+        int64_t faces = 0;
+        double area = 0.0;           ///< scene units^2
+        float lo[3]{}, hi[3]{};      ///< bounding box
+        bool closed = false, flipped = false, removed = false;
+        double winding = 0.0;        ///< largest |winding number| of its samples w.r.t. a larger shell
+    };
+    std::vector<Shell> shell_list;
+
     /// One line per non-zero count, for stderr.
     std::string summary() const;
     /// The whole report as a JSON object.

@@ -157,7 +157,10 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         interrupter, adapter, *xform, float(band), float(band), openvdb::tools::UNSIGNED_DISTANCE_FIELD, &index_grid);
     step.advance(1);
 
-    // Sign (and recompute exactly) every band voxel from its closest polygon's pseudo-normal.
+    // Sign (and recompute exactly) every band voxel from its closest polygon's pseudo-normal, or, where
+    // the closest feature is an open boundary (a hole's rim), by a ray vote.
+    im.query = std::make_unique<detail::MeshQuery>(im.geometry);
+    const detail::MeshQuery& query = *im.query;
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(sdf->tree());
     const openvdb::Int32Tree& index_tree = index_grid.tree();
     leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, size_t) {
@@ -169,7 +172,9 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
             const float3 p(float(c.x() * h), float(c.y() * h), float(c.z() * h));
             f = geo.refine_closest_face(p, f);
             float3 closest;
-            it.setValue(geo.signed_distance_to_face(p, f, closest));
+            bool boundary = false;
+            const float d = geo.signed_distance_to_face(p, f, closest, &boundary);
+            it.setValue(query.sign_fixed(p, d, boundary, 0.0f));
         }
     });
     // Inactive tiles and voxels take the sign of their active neighbours (inside = -band * h), as
@@ -183,7 +188,6 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     im.sdf = sdf;
     im.finish_grids("scalp");
     im.mesh_exact = true;
-    im.query = std::make_unique<detail::MeshQuery>(im.geometry);
     step.advance(1);
     return field;
 }

@@ -36,6 +36,8 @@ struct MeshGeometry {
     std::vector<float3> edge_normals;    ///< unit, per face * 3 + k (edge v_k -> v_k+1)
     std::vector<float3> vertex_normals;  ///< unit, angle weighted
     std::vector<double> face_areas;
+    std::vector<uint8_t> boundary_edge;    ///< per face * 3 + k: edge has no second face
+    std::vector<uint8_t> boundary_vertex;  ///< per vertex: on a hole's or rim's boundary
     float3 bounds_lo, bounds_hi;
 
     void compute(const TriMesh& mesh);
@@ -47,8 +49,9 @@ struct MeshGeometry {
     /// are closer; returns the local closest face. meshToVolume's polygon index is only near-exact at
     /// the band's edge; this makes every voxel exact.
     int32_t refine_closest_face(const float3& p, int32_t face) const;
-    /// Signed distance and closest point to face `f`.
-    float signed_distance_to_face(const float3& p, int32_t f, float3& closest) const;
+    /// Signed distance and closest point to face `f`; `on_boundary` tells whether the closest
+    /// feature is a boundary edge or vertex, where the pseudo-normal sign is only local.
+    float signed_distance_to_face(const float3& p, int32_t f, float3& closest, bool* on_boundary = nullptr) const;
 };
 
 /// Exact queries against the mesh (CGAL AABB tree), for points outside the narrow band.
@@ -58,6 +61,12 @@ public:
     ~MeshQuery();
     /// Signed distance; writes the closest point and its face.
     float signed_distance(const float3& p, float3& closest, int32_t& face) const;
+    /// Inside test by ray parity, majority over 7 fixed directions: robust through the holes of a
+    /// nearly closed head (eye sockets, mouth, neck), where a rim's pseudo-normal points anywhere.
+    bool inside_by_rays(const float3& p) const;
+    /// Pseudo-normal sign, replaced by the ray vote when the closest feature is a boundary and p is
+    /// more than `local` away from it.
+    float sign_fixed(const float3& p, float d, bool on_boundary, float local) const;
 
 private:
     struct Tree;

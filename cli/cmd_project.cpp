@@ -1,0 +1,50 @@
+// `groom project`: move curves onto the scalp (ops/project.h).
+#include "cli/command.h"
+#include "fields/scalp_field.h"
+#include "kernel/io/curve_io.h"
+#include "ops/project.h"
+
+#include <cstdio>
+
+namespace groom::cli {
+namespace {
+
+struct Args {
+    std::string input, scalp, output, mode = "root";
+    ProjectParams params;
+};
+
+void setup(CommandContext& ctx)
+{
+    auto args = std::make_shared<Args>();
+    CLI::App* app = ctx.app;
+    app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = stdin)")->required();
+    app->add_option("--scalp", args->scalp, "Scalp: .vdb from `groom scalp`, or a mesh")->required();
+    app->add_option("-o,--output", args->output, "Output curves")->required();
+    app->add_option("--mode", args->mode, "root: move each curve rigidly so its root is on the surface; all: every point onto the surface")
+        ->check(CLI::IsMember({"root", "all"}))
+        ->capture_default_str();
+    app->add_option("--offset", args->params.offset, "Distance above the surface along its normal, scene units")->capture_default_str();
+    const CommonOptions& common = *ctx.common;
+    ctx.run = [args, &common] {
+        Args& a = *args;
+        check_output(a.output, {a.input, a.scalp}, common);
+        a.params.mode = a.mode == "all" ? ProjectMode::All : ProjectMode::Root;
+        a.params.validate();
+        const CurveSet curves = read_curves(a.input);
+        auto progress = make_progress(common);
+        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, {}, progress.get());
+        ProjectStats stats;
+        const CurveSet out = project(curves, *scalp, a.params, &stats);
+        write_curves(out, a.output);
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "project (%s): %lld curves, %lld points moved (at most %.4g) -> %s", a.mode.c_str(),
+                      static_cast<long long>(stats.curves), static_cast<long long>(stats.points_moved), stats.max_move, a.output.c_str());
+        note(common, buf);
+    };
+}
+
+const Registrar reg({"project", "Move curve roots (or whole curves) onto the scalp", 120, setup});
+
+}  // namespace
+}  // namespace groom::cli

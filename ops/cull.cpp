@@ -1,0 +1,127 @@
+#include "ops/cull.h"
+
+#include "kernel/error.h"
+#include "kernel/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace groom {
+
+void CullParams::validate() const
+{
+    if (!(clearance >= 0.0f) || !std::isfinite(clearance)) {
+        throw InvalidParam("cull: --clearance must be a finite distance >= 0 (got " + std::to_string(clearance) + ")");
+    }
+}
+
+CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& params, CullStats* stats)
+{
+    params.validate();
+    const auto P = src.positions();
+    const int64_t nc = static_cast<int64_t>(src.num_curves());
+    const float D = params.clearance;
+
+    if (params.mode == CullMode::Push) {
+        CurveSet dst = src;
+        const auto Q = dst.positions();
+        std::vector<int64_t> pushed(nc, 0);
+        parallel_for(nc, 64, [&](int64_t b, int64_t e) {
+            for (int64_t c = b; c < e; ++c) {
+                const IndexRange r = src.points_of(size_t(c));
+                for (int64_t i = r.begin + 1; i < r.end; ++i) {
+                    const float d = scalp.distance(P[i]);
+                    if (d >= D) continue;
+                    // Along the normal by the missing distance: exact for a locally flat surface; the
+                    // normal at p points from its closest surface point straight out.
+                    Q[i] = P[i] + scalp.normal(P[i]) * (D - d);
+                    ++pushed[c];
+                }
+            }
+        });
+        if (stats) {
+            *stats = CullStats{};
+            for (int64_t c = 0; c < nc; ++c) {
+                stats->points_pushed += pushed[c];
+                stats->curves_affected += pushed[c] > 0;
+            }
+        }
+        return dst;
+    }
+
+    // Trim / delete: count -> scan -> fill. keep[c] = points kept (0 = curve deleted); for trim,
+    // cut_t[c] places the new tip on segment (keep-2, keep-1) of the source.
+    std::vector<int64_t> keep(nc, 0);
+    std::vector<float> cut_t(nc, -1.0f);
+    std::vector<char> affected(nc, 0);
+    parallel_for(nc, 64, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = src.points_of(size_t(c));
+            keep[c] = r.size();
+            if (r.size() < 2) continue;
+            float prev = scalp.distance(P[r.begin]);
+            for (int64_t i = r.begin + 1; i < r.end; ++i) {
+                const float d = scalp.distance(P[i]);
+                if (d < D) {
+                    affected[c] = 1;
+                    if (params.mode == CullMode::Delete) {
+                        keep[c] = 0;
+                    }
+                    else {
+                        // Linear in distance along the segment; a root below the clearance cuts at the root.
+                        const float t = prev > D ? std::clamp((prev - D) / (prev - d), 0.0f, 1.0f) : 0.0f;
+                        const bool empty = (i == r.begin + 1 && t <= 0.0f);
+                        keep[c] = empty ? 0 : (i - r.begin) + 1;
+                        cut_t[c] = t;
+                    }
+                    break;
+                }
+                prev = d;
+            }
+        }
+    });
+    std::vector<int64_t> kept_curves;
+    kept_curves.reserve(size_t(nc));
+    std::vector<int64_t> counts;
+    for (int64_t c = 0; c < nc; ++c) {
+        if (keep[c] == 0 && src.points_in(size_t(c)) > 0) continue;
+        kept_curves.push_back(c);
+        counts.push_back(keep[c]);
+    }
+    CurveSet dst = CurveSet::from_counts(counts);
+    const auto Q = dst.positions();
+    std::vector<int64_t> src_point(dst.num_points());
+    parallel_for(int64_t(kept_curves.size()), 64, [&](int64_t b, int64_t e) {
+        for (int64_t k = b; k < e; ++k) {
+            const int64_t c = kept_curves[k];
+            const IndexRange r = src.points_of(size_t(c)), d = dst.points_of(size_t(k));
+            for (int64_t i = 0; i < d.size(); ++i) {
+                src_point[d.begin + i] = r.begin + i;
+                Q[d.begin + i] = P[r.begin + i];
+            }
+            if (cut_t[c] >= 0.0f && d.size() >= 2) {
+                // The last kept point is the source's first offending point: move it to the cut.
+                const int64_t inner = r.begin + d.size() - 1;
+                Q[d.end - 1] = lerp(P[inner - 1], P[inner], cut_t[c]);
+                src_point[d.end - 1] = inner - 1;
+            }
+        }
+    });
+    carry_curve_attributes(src, dst, kept_curves);
+    if (dst.find<int64_t>(Domain::Curve, attr::id).empty() && dst.find<int32_t>(Domain::Curve, attr::id).empty()) {
+        // Without an id column a curve's identity is its index, which deleting shifts: record it.
+        const auto id = dst.add<int64_t>(Domain::Curve, attr::id);
+        std::copy(kept_curves.begin(), kept_curves.end(), id.begin());
+    }
+    carry_point_attributes(src, dst, src_point, {attr::P});
+    if (stats) {
+        *stats = CullStats{};
+        for (int64_t c = 0; c < nc; ++c) stats->curves_affected += affected[c];
+        stats->curves_deleted = nc - int64_t(kept_curves.size());
+        stats->points_removed = int64_t(src.num_points()) - int64_t(dst.num_points());
+        for (int64_t c : kept_curves) stats->curves_trimmed += (cut_t[c] >= 0.0f);
+    }
+    return dst;
+}
+
+}  // namespace groom

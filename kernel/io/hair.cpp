@@ -61,6 +61,12 @@ CurveSet read_hair(const FileBytes& file)
                             std::to_string(d.size() - kHeader) + " follow; the file is truncated or corrupt");
     }
 
+    // Every strand has at least one point, so more strands than points is corrupt. Without a segment
+    // array (flags bit 1) nothing above bounds `strands`: check it before allocating per strand.
+    if (strands > points) {
+        throw LimitExceeded(file.name + ": byte 4: header claims " + std::to_string(strands) + " strands but only " +
+                            std::to_string(points) + " points; every strand has at least one point");
+    }
     std::vector<int64_t> counts(strands);
     size_t at = kHeader;
     int64_t total = 0;

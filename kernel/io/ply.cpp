@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -252,6 +253,16 @@ PlyData parse_ply(const FileBytes& file)
         }
     }
     return ply;
+}
+
+/// An index or count read from the file, as message text: exact for integers an int64 holds, "%g"
+/// otherwise. A corrupt file can hold 1e300, inf or NaN there, and casting those to int64 is UB.
+std::string number_text(double v)
+{
+    if (v == std::floor(v) && std::abs(v) < 9.0e18) return std::to_string(static_cast<int64_t>(v));
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
 }
 
 /// x, y, z of the vertex element as positions; NaN rejected naming the vertex.
@@ -551,7 +562,10 @@ CurveSet read_ply_curves(const FileBytes& file)
         const PlyProperty* pc = curve->find("point_count");
         int64_t total = 0;
         for (double n : pc->values) {
-            if (n < 0) fail_at_line(file.name, curve->line, "negative curve point_count " + std::to_string(n));
+            if (!(n >= 0 && n == std::floor(n) && n <= static_cast<double>(v->count))) {
+                fail_at_line(file.name, curve->line, "curve point_count " + number_text(n) + " is not a count of 0 to " +
+                                                         std::to_string(v->count) + " vertices");
+            }
             counts.push_back(static_cast<int64_t>(n));
             total += counts.back();
         }
@@ -573,9 +587,10 @@ CurveSet read_ply_curves(const FileBytes& file)
         std::vector<char> is_target(n, 0);
         for (size_t e = 0; e < edge->count; ++e) {
             const double fa = a->values[e], fb = b->values[e];
-            if (fa < 0 || fa >= n || fb < 0 || fb >= n) {
-                throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + std::to_string(int64_t(fa)) + " and " +
-                                 std::to_string(int64_t(fb)) + ": index out of range (" + std::to_string(n) + " vertices)");
+            // Written so NaN and fractions (float-typed index properties) fail too, before any cast.
+            if (!(fa >= 0 && fa < n && fa == std::floor(fa) && fb >= 0 && fb < n && fb == std::floor(fb))) {
+                throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + number_text(fa) + " and " + number_text(fb) +
+                                 ": index out of range (" + std::to_string(n) + " vertices)");
             }
             const int64_t ia = static_cast<int64_t>(fa), ib = static_cast<int64_t>(fb);
             if (ia == ib) throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + std::to_string(ia) + " to itself");
@@ -692,8 +707,8 @@ PolygonSoup read_ply_mesh(const FileBytes& file)
         face.clear();
         for (int64_t k = idx->list_offsets[r]; k < idx->list_offsets[r + 1]; ++k) {
             const double i = idx->values[k];
-            if (i < 0 || i >= static_cast<double>(soup.points.size())) {
-                throw ParseError(file.name + ": face " + std::to_string(r) + " uses vertex " + std::to_string(static_cast<int64_t>(i)) + ", out of range (" +
+            if (!(i >= 0 && i < static_cast<double>(soup.points.size()) && i == std::floor(i))) {  // NaN and fractions fail too
+                throw ParseError(file.name + ": face " + std::to_string(r) + " uses vertex " + number_text(i) + ", out of range (" +
                                  std::to_string(soup.points.size()) + " vertices)");
             }
             face.push_back(static_cast<int32_t>(i));

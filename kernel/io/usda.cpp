@@ -474,9 +474,24 @@ private:
         }
     }
 
+    /// Prims may nest this deep (scenes nest a few dozen levels). prim() and body() recurse, so
+    /// without a limit a file of nested `def`s overflows the stack instead of getting a message.
+    static constexpr int kMaxPrimDepth = 1000;
+    /// Every open prim holds its full path, so long names nested deep would cost memory quadratic
+    /// in the file size; real paths are well under this.
+    static constexpr size_t kMaxPathLength = 4096;
+
     void prim(const std::string& parent)
     {
+        struct DepthGuard {
+            int& depth;
+            ~DepthGuard() { --depth; }
+        } guard{++depth_};
         const Token spec = lex_.next();
+        if (depth_ > kMaxPrimDepth) {
+            throw LimitExceeded(lex_.name() + ":" + std::to_string(spec.line) + ": prims nested deeper than " +
+                                std::to_string(kMaxPrimDepth) + " levels; refusing to read further");
+        }
         if (spec.kind != Tok::Ident || (spec.text != "def" && spec.text != "over" && spec.text != "class")) {
             lex_.fail(spec, "expected a prim ('def', 'over' or 'class')");
         }
@@ -485,6 +500,10 @@ private:
         const Token name = lex_.next();
         if (name.kind != Tok::String) lex_.fail(name, "expected the prim's name as a quoted string");
         const std::string path = parent + "/" + decode_string(name);
+        if (path.size() > kMaxPathLength) {
+            throw LimitExceeded(lex_.name() + ":" + std::to_string(name.line) + ": prim path longer than " +
+                                std::to_string(kMaxPathLength) + " characters: " + describe_found(path));
+        }
         if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') metadata(nullptr);
         lex_.expect_punct('{', "opening the body of prim <" + path + ">");
         const bool curves = spec.text == "def" && type_name == "BasisCurves";
@@ -678,6 +697,7 @@ public:
 
 private:
     Lexer lex_;
+    int depth_ = 0;
     std::vector<CurvesPrim> found_;
     std::map<std::string, std::vector<int32_t>> indices_;
 };

@@ -390,7 +390,8 @@ TEST(Curl, NoCurledPointInsideTheScalp)
     p.frequency = {2.0f, 2.0f};
     p.root_ramp = 0.0f;
     int inside_without = 0;
-    for (const float3& q : curl(cs, p).positions()) inside_without += sphere.inside(q);
+    const CurveSet without = curl(cs, p);  // named: a range-for over a temporary's span reads freed memory
+    for (const float3& q : without.positions()) inside_without += sphere.inside(q);
     ASSERT_GT(inside_without, 100) << "the setup must push points inside, or the check below is vacuous";
     const CurveSet out = curl(cs, p, &sphere);
     int inside = 0;

@@ -153,11 +153,12 @@ over "Looks" { def Material "m" {} }
 
 void mesh_seeds()
 {
-    for (const auto& [name, soup] : {std::pair{"tetrahedron", tetrahedron()}, std::pair{"quad_triangle", quad_and_triangle()}}) {
-        const std::string n = std::string("writer_") + name;
+    for (const auto& sample : {std::pair{"tetrahedron", tetrahedron()}, std::pair{"quad_triangle", quad_and_triangle()}}) {
+        const std::string name = sample.first, n = "writer_" + name;
+        const PolygonSoup& soup = sample.second;
         seed_from("obj_mesh", n + ".obj", [&] { return io::write_obj_mesh(soup); });
         seed_from("ply_mesh", n + ".ply", [&] { return io::write_ply_mesh(soup); });
-        seed("stl", std::string(name) + "_binary.stl", binary_stl(soup));
+        seed("stl", name + "_binary.stl", binary_stl(soup));
     }
     seed("obj_mesh", "slashes.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\nf -3//1 -2//1 -1//1\n");
     seed("ply_mesh", "ascii.ply",

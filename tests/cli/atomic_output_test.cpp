@@ -1,0 +1,182 @@
+// Nothing lost on bad input or a failed write (issue 9): for every command that writes a file,
+//   - an error before or during the write leaves the previous output byte-for-byte untouched and
+//     no temporary file behind (writes go to a temporary and are renamed into place, atomic_file.h);
+//   - `-o` naming one of the command's inputs (by any path spelling) is refused unless --force.
+// "During the write" is real: the command runs with a file-size limit (RLIMIT_FSIZE) below its
+// output's size, so its write fails part-way exactly as on a full disk.
+#include "test_support.h"
+
+#include "kernel/io/curve_io.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+using namespace groom;
+using groom::test::run_groom;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kPrevious = "previous output: must survive every failed run\n";
+
+/// 60 straight guides of 8 points as .usda.
+std::string write_guides(const test::TempDir& dir, const std::string& name = "guides.usda")
+{
+    std::vector<int64_t> counts(60, 8);
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions();
+    for (size_t i = 0; i < P.size(); ++i) P[i] = {float(i / 8) * 0.5f, float(i % 8), 0.25f * float(i / 8 % 3)};
+    const std::string path = dir.file(name);
+    write_curves(cs, path);
+    return path;
+}
+
+/// Runs groom with a maximum file size of `limit` bytes for files it writes (SIGXFSZ ignored, so the
+/// write fails with EFBIG instead of killing the process). Returns the exit code.
+int run_groom_with_file_limit(const std::vector<std::string>& args, rlim_t limit, std::string& err)
+{
+    test::TempDir tmp;
+    const std::string err_path = tmp.file("stderr");
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        const int fe = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        ::dup2(fe, 2);
+        const int null_fd = ::open("/dev/null", O_RDWR);
+        ::dup2(null_fd, 0);
+        ::dup2(null_fd, 1);
+        ::signal(SIGXFSZ, SIG_IGN);
+        const rlimit rl{limit, limit};
+        ::setrlimit(RLIMIT_FSIZE, &rl);
+        std::vector<std::string> all{GROOM_BINARY};
+        all.insert(all.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (auto& a : all) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    err = test::read_bytes(err_path);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/// Files in `dir` whose name contains ".tmp." (AtomicOutput's temporaries).
+std::vector<std::string> temporaries(const test::TempDir& dir)
+{
+    std::vector<std::string> t;
+    for (const auto& e : fs::directory_iterator(dir.path()))
+        if (e.path().filename().string().find(".tmp.") != std::string::npos) t.push_back(e.path().filename().string());
+    return t;
+}
+
+struct Case {
+    const char* command;
+    const char* output_ext;
+    std::vector<std::string> args;  ///< "{in}" (curve input, if any) and "{out}" are replaced
+    bool has_input;
+};
+
+/// Every command that writes a file; a command joins when it lands on main.
+std::vector<Case> cases()
+{
+    return {
+        {"curl", "usda", {"curl", "{in}", "-o", "{out}", "--seed", "3"}, true},
+        {"head", "obj", {"head", "-o", "{out}", "--resolution", "48"}, false},
+        {"render", "png", {"render", "{in}", "-o", "{out}", "--size", "256x256"}, true},
+    };
+}
+
+std::vector<std::string> expand(const Case& c, const std::string& in, const std::string& out)
+{
+    std::vector<std::string> r;
+    for (const std::string& a : c.args) r.push_back(a == "{in}" ? in : a == "{out}" ? out : a);
+    return r;
+}
+
+}  // namespace
+
+TEST(AtomicOutput, AFailedWriteLeavesThePreviousOutputUntouched)
+{
+    test::TempDir dir;
+    const std::string guides = write_guides(dir);
+    for (const Case& c : cases()) {
+        const std::string out = dir.file(std::string("out_") + c.command + "." + c.output_ext);
+        // First the real size of the output, so the limit below is sure to cut the write part-way.
+        const auto ok = run_groom(expand(c, guides, out));
+        ASSERT_EQ(ok.exit_code, 0) << c.command << ": " << ok.err;
+        const auto full_size = fs::file_size(out);
+        ASSERT_GT(full_size, 2 * kPrevious.size()) << c.command;
+
+        test::write_text(out, kPrevious);
+        std::string err;
+        const int code = run_groom_with_file_limit(expand(c, guides, out), full_size / 2, err);
+        EXPECT_EQ(code, 1) << c.command << ": " << err;
+        EXPECT_NE(err.find("groom: error:"), std::string::npos) << c.command << ": " << err;
+        EXPECT_EQ(test::read_bytes(out), kPrevious) << c.command << ": the previous output was changed by a failed write";
+        EXPECT_TRUE(temporaries(dir).empty()) << c.command << " left " << temporaries(dir).front();
+    }
+}
+
+TEST(AtomicOutput, BadInputLeavesThePreviousOutputUntouched)
+{
+    test::TempDir dir;
+    // A .usda that starts well and breaks on its last line: the reader has done most of its work.
+    const std::string good = test::read_bytes(write_guides(dir));
+    const std::string bad = dir.file("broken.usda");
+    test::write_text(bad, good.substr(0, good.rfind('}')) + "    float[] primvars:oops = [1, 2,\n");
+    for (const Case& c : cases()) {
+        if (!c.has_input) continue;
+        const std::string out = dir.file(std::string("out_") + c.command + "." + c.output_ext);
+        test::write_text(out, kPrevious);
+        const auto r = run_groom(expand(c, bad, out));
+        EXPECT_EQ(r.exit_code, 1) << c.command << ": " << r.err;
+        EXPECT_NE(r.err.find("broken.usda:"), std::string::npos) << c.command << ": the message should name the file: " << r.err;
+        EXPECT_EQ(test::read_bytes(out), kPrevious) << c.command;
+        EXPECT_TRUE(temporaries(dir).empty()) << c.command;
+    }
+}
+
+TEST(AtomicOutput, OutputIntoAMissingFolderCreatesNothing)
+{
+    test::TempDir dir;
+    const std::string guides = write_guides(dir);
+    for (const Case& c : cases()) {
+        const std::string out = dir.file(std::string("missing/out.") + c.output_ext);
+        const auto r = run_groom(expand(c, guides, out));
+        EXPECT_EQ(r.exit_code, 1) << c.command << ": " << r.err;
+        EXPECT_NE(r.err.find("missing/out"), std::string::npos) << c.command << ": " << r.err;
+        EXPECT_FALSE(fs::exists(dir.file("missing"))) << c.command;
+    }
+}
+
+TEST(AtomicOutput, OutputOntoAnInputIsRefusedUnlessForced)
+{
+    for (const Case& c : cases()) {
+        if (!c.has_input) continue;
+        test::TempDir dir;
+        const std::string in = write_guides(dir, "in.usda");
+        const std::string before = test::read_bytes(in);
+        // -o names the input by another spelling: "./" for a .usda output, or a link with the
+        // output's extension for other formats. The check compares files, not strings.
+        const bool same_format = std::string(c.output_ext) == "usda";
+        const std::string alias = same_format ? (dir.path() / "." / "in.usda").string() : dir.file(std::string("link.") + c.output_ext);
+        if (!same_format) fs::create_symlink(in, alias);
+        const auto r = run_groom(expand(c, in, alias));
+        EXPECT_EQ(r.exit_code, 2) << c.command << ": " << r.err;
+        EXPECT_NE(r.err.find("--force"), std::string::npos) << c.command << ": " << r.err;
+        EXPECT_EQ(test::read_bytes(in), before) << c.command << ": the input was changed";
+        if (same_format) {
+            auto forced_args = expand(c, in, alias);
+            forced_args.push_back("--force");
+            const auto forced = run_groom(forced_args);
+            EXPECT_EQ(forced.exit_code, 0) << c.command << ": " << forced.err;
+            EXPECT_NE(test::read_bytes(in), before) << c.command << ": --force should have written over the input";
+        }
+    }
+}

@@ -86,6 +86,8 @@ struct Case {
 std::vector<Case> cases()
 {
     return {
+        {"convert", "hair", {"convert", "{in}", "-o", "{out}"}, true},
+        {"resample", "usda", {"resample", "{in}", "-o", "{out}", "--count", "20"}, true},
         {"curl", "usda", {"curl", "{in}", "-o", "{out}", "--seed", "3"}, true},
         {"head", "obj", {"head", "-o", "{out}", "--resolution", "48"}, false},
         {"render", "png", {"render", "{in}", "-o", "{out}", "--size", "256x256"}, true},

@@ -42,6 +42,8 @@ struct Case {
 std::vector<Case> cases()
 {
     return {
+        {"convert", "ply", {"convert", "{guides}", "-o", "{out}"}},
+        {"resample", "usda", {"resample", "{guides}", "-o", "{out}", "--segment-length", "0.37"}},
         {"curl", "usda", {"curl", "{guides}", "-o", "{out}", "--type", "3b", "--uniformity", "0.4", "--seed", "7"}},
         {"head", "obj", {"head", "-o", "{out}", "--resolution", "96"}},
         {"render", "png", {"render", "{guides}", "--scalp", "{head}", "-o", "{out}", "--size", "160x120", "--color-by", "strand"}},

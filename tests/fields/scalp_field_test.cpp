@@ -1,0 +1,285 @@
+// ScalpField beyond the clean closed sphere: open caps (sign on both sides), messy meshes repaired to
+// the same answers, far-field queries, sampling, .vdb round trip, the independent Sintel SDF and
+// every real head in ../shared/datasets.
+#include "fields/scalp_field.h"
+#include "fields/sphere_mesh.h"
+#include "kernel/error.h"
+#include "kernel/parallel.h"
+#include "kernel/rng.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+namespace groom {
+namespace {
+
+float3 random_direction(Rng& rng)
+{
+    float3 d;
+    do d = float3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    while (length(d) > 1.0f || length(d) < 0.1f);
+    return normalize(d);
+}
+
+TEST(ScalpCap, SignCorrectOnBothSidesOfAnOpenCap)
+{
+    const float3 c(1, 2, 3), axis = normalize(float3(0.3f, 1.0f, 0.2f));
+    const float R = 2.0f;
+    const ScalpField field = build_scalp(sphere_cap(c, R, axis, 60.0f, 40, 96), {R / 50, 3.0f});
+    const AnalyticSphere sphere(c, R);
+    const float h = field.voxel_size();
+    int checked = 0;
+    for (int i = 0; i < 4000; ++i) {
+        Rng rng(11, uint64_t(i));
+        const float3 dir = random_direction(rng);
+        // Points whose closest cap point is inside the cap (not on its rim), at 0.3h..2.5h either side,
+        // and further out (fallback path) up to R/2 outside and R/2 inside.
+        if (dot(dir, axis) < std::cos(55.0f * float(M_PI) / 180.0f)) continue;
+        const float s = (i % 2 ? 1.0f : -1.0f) * (i % 3 ? rng.uniform(0.3f * h, 2.5f * h) : rng.uniform(0.3f * h, R * 0.5f));
+        const float3 p = c + dir * (R + s);
+        ASSERT_EQ(field.distance(p) < 0.0f, sphere.distance(p) < 0.0f) << "s=" << s << " h=" << h;
+        ASSERT_LT(std::fabs(field.distance(p) - sphere.distance(p)), 0.01f * R);
+        ++checked;
+    }
+    EXPECT_GT(checked, 700);  // about 21% of directions lie within 55 degrees of the axis
+}
+
+/// The clean uv sphere, then the same surface as a user might bring it.
+PolygonSoup messy(const PolygonSoup& clean, int rings, int segments, const float3& center, float R)
+{
+    PolygonSoup m;
+    m.points = clean.points;
+    auto ring = [&](int i, int j) { return int32_t(1 + (i - 1) * segments + (j % segments)); };
+    std::vector<char> skip(clean.num_faces(), 0);
+    // Face numbering of uv_sphere: `segments` pole triangles, then 2 per quad per band.
+    auto band_face = [&](int i, int j, int k) { return size_t(segments + ((i - 1) * segments + j) * 2 + k); };
+    // Quads: band 3 as quads; n-gon: two quads of band 5 as one hexagon.
+    for (int j = 0; j < segments; ++j) {
+        skip[band_face(3, j, 0)] = skip[band_face(3, j, 1)] = 1;
+        const int32_t q[4] = {ring(3, j), ring(4, j), ring(4, j + 1), ring(3, j + 1)};
+        m.add_face(q);
+    }
+    for (int k = 0; k < 4; ++k) skip[band_face(5, 0 + k / 2, k % 2)] = 1;
+    const int32_t hex[6] = {ring(5, 0), ring(6, 0), ring(6, 1), ring(6, 2), ring(5, 2), ring(5, 1)};
+    m.add_face(hex);
+    // A hole: two faces of band 8 at j = 0 are simply missing.
+    skip[band_face(8, 0, 0)] = skip[band_face(8, 0, 1)] = 1;
+    for (size_t f = 0; f < clean.num_faces(); ++f) {
+        if (skip[f]) continue;
+        std::vector<int32_t> idx(clean.face(f).begin(), clean.face(f).end());
+        if (f % 3 == 0) {  // split seams: this face gets its own copies of its vertices
+            for (int32_t& v : idx) {
+                m.points.push_back(m.points[v]);
+                v = int32_t(m.points.size() - 1);
+            }
+        }
+        if (f % 7 == 0) std::reverse(idx.begin(), idx.end());  // flipped
+        m.add_face(idx);
+    }
+    // Degenerate triangles: a repeated vertex, and three collinear points.
+    const int32_t a = ring(10, 3), b = ring(10, 4);
+    m.points.push_back(lerp(m.points[a], m.points[b], 0.5f));
+    const int32_t deg1[3] = {a, a, b}, deg2[3] = {a, int32_t(m.points.size() - 1), b};
+    m.add_face(deg1);
+    m.add_face(deg2);
+    // A non-manifold fin: a third face on edge (a, b) reaching a little inside.
+    m.points.push_back(lerp(m.points[a], m.points[b], 0.5f) + (center - m.points[a]) * 0.02f);
+    const int32_t fin[3] = {a, b, int32_t(m.points.size() - 1)};
+    m.add_face(fin);
+    // A stray shell: a small closed sphere inside (an eye in a head).
+    const PolygonSoup eye = icosphere(center + float3(0.1f, 0.2f, 0.0f) * R, R * 0.2f, 2);
+    const int32_t base = int32_t(m.points.size());
+    m.points.insert(m.points.end(), eye.points.begin(), eye.points.end());
+    for (size_t f = 0; f < eye.num_faces(); ++f) {
+        std::vector<int32_t> idx(eye.face(f).begin(), eye.face(f).end());
+        for (int32_t& v : idx) v += base;
+        m.add_face(idx);
+    }
+    return m;
+}
+
+TEST(ScalpMessy, MessySphereGivesTheCleanAnswers)
+{
+    const float3 c(-1, 0.5f, 2);
+    const float R = 1.5f;
+    const int rings = 24, segments = 48;
+    const PolygonSoup clean = uv_sphere(c, R, rings, segments);
+    const PolygonSoup dirty = messy(clean, rings, segments, c, R);
+    const ScalpBuildParams params{R / 60, 3.0f};
+    RepairReport report;
+    const ScalpField a = build_scalp(clean, params);
+    const ScalpField b = build_scalp(dirty, params, &report);
+    EXPECT_GT(report.duplicate_vertices_merged, 0);
+    EXPECT_GT(report.faces_flipped, 0);
+    EXPECT_EQ(report.ngons_triangulated, segments + 1);
+    EXPECT_GE(report.degenerate_faces_removed, 2);
+    EXPECT_GT(report.non_manifold_edges + report.non_manifold_vertices, 0);
+    EXPECT_EQ(report.enclosed_shells_removed, 1);
+    EXPECT_EQ(report.boundary_loops, 2);  // the hole, and the fin's cut-off edges
+    const float h = params.voxel_size;
+    // Compare away from the hole and the fin (within 4h of them the surfaces really differ).
+    const float3 hole = lerp(clean.points[1 + 7 * segments], clean.points[1 + 8 * segments], 0.5f);
+    const float3 fin = clean.points[1 + 9 * segments + 3];
+    const float chord = sphere_chordal_error(clean, c, R);
+    int compared = 0;
+    for (int i = 0; i < 3000; ++i) {
+        Rng rng(5, uint64_t(i));
+        const float3 p = c + random_direction(rng) * (R + rng.uniform(-2.0f * h, 2.0f * h));
+        if (distance(p, hole) < 0.25f * R || distance(p, fin) < 0.15f * R) continue;
+        ASSERT_NEAR(a.distance(p), b.distance(p), chord + 0.02f * h) << i;
+        ASSERT_LT(distance(a.closest_point(p), b.closest_point(p)), 2.0f * chord + 0.05f * h) << i;
+        ASSERT_GT(dot(a.normal(p), b.normal(p)), std::cos(3.0f * float(M_PI) / 180.0f)) << i;
+        ++compared;
+    }
+    EXPECT_GT(compared, 2000);
+}
+
+TEST(ScalpField, FarQueriesAreExactFromTheMesh)
+{
+    const ScalpField field = build_scalp(icosphere({0, 0, 0}, 1.0f, 4), {0.02f, 3.0f});
+    const PolygonSoup soup = icosphere({0, 0, 0}, 1.0f, 4);
+    const float chord = sphere_chordal_error(soup, {0, 0, 0}, 1.0f);
+    for (const float3 p : {float3(10, 0, 0), float3(-3, 4, 0), float3(0, 0.3f, 0), float3(0.1f, -0.2f, 0.05f)}) {
+        EXPECT_NEAR(field.distance(p), length(p) - 1.0f, chord + 1e-5f);
+        EXPECT_NEAR(length(field.closest_point(p)), 1.0f, chord + 1e-5f);
+        EXPECT_GT(dot(field.normal(p), normalize(p)), 0.99f);
+    }
+}
+
+TEST(ScalpField, SampleBallIsAreaUniformDeterministicAndThreadIndependent)
+{
+    const ScalpField field = build_scalp(icosphere({0, 0, 0}, 1.0f, 4), {0.02f, 3.0f});
+    const float3 center(0, 1, 0);
+    std::vector<SurfaceSample> one, two;
+    {
+        ThreadLimit limit(1);
+        one = field.sample_ball(center, 0.5f, 4000, 42);
+    }
+    {
+        ThreadLimit limit(2);
+        two = field.sample_ball(center, 0.5f, 4000, 42);
+    }
+    ASSERT_EQ(one.size(), 4000u);
+    ASSERT_EQ(two.size(), one.size());
+    EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(SurfaceSample)));
+    // On the surface, inside the ball, normals outward; area-uniform: half the samples lie within the
+    // spherical cap of half the ball's cap area (cap area is linear in height on a sphere).
+    const float h_full = 0.125f;  // ball radius 0.5 around the pole cuts the unit sphere at y = 1 - 0.5^2/2
+    int upper = 0;
+    for (const SurfaceSample& s : one) {
+        EXPECT_LE(distance(s.position, center), 0.5f + 1e-5f);
+        EXPECT_NEAR(length(s.position), 1.0f, 0.01f);
+        EXPECT_GT(dot(s.normal, normalize(s.position)), 0.99f);
+        upper += s.position.y > 1.0f - h_full * 0.5f;
+    }
+    EXPECT_NEAR(double(upper) / one.size(), 0.5, 0.04);
+    EXPECT_TRUE(field.sample_ball(float3(5, 5, 5), 0.1f, 10, 1).empty());
+}
+
+TEST(ScalpField, VdbRoundTripGivesTheSameField)
+{
+    test::TempDir dir;
+    const ScalpField built = build_scalp(icosphere({0, 0, 0}, 1.0f, 4), {0.02f, 3.0f});
+    write_scalp(built, dir.file("s.vdb"));
+    const std::unique_ptr<ScalpField> loaded = load_scalp(dir.file("s.vdb"));
+    EXPECT_FALSE(loaded->has_source_mesh());
+    EXPECT_FLOAT_EQ(loaded->voxel_size(), 0.02f);
+    for (int i = 0; i < 500; ++i) {
+        Rng rng(3, uint64_t(i));
+        const float3 dir = random_direction(rng);
+        const float3 near = dir * (1.0f + rng.uniform(-0.03f, 0.03f));
+        EXPECT_FLOAT_EQ(loaded->distance(near), built.distance(near));
+        // Far from the band the loaded field answers from the extracted zero crossing (~ a voxel).
+        const float3 far = dir * rng.uniform(1.2f, 3.0f);
+        EXPECT_NEAR(loaded->distance(far), built.distance(far), 0.02f);
+    }
+}
+
+TEST(ScalpField, RejectsBadInput)
+{
+    PolygonSoup empty;
+    EXPECT_THROW(build_scalp(empty), InvalidGeometry);
+    PolygonSoup nan = icosphere({0, 0, 0}, 1, 1);
+    nan.points[3].y = NAN;
+    EXPECT_THROW(build_scalp(nan), InvalidGeometry);
+    PolygonSoup range = icosphere({0, 0, 0}, 1, 1);
+    range.face_indices[5] = 999;
+    EXPECT_THROW(build_scalp(range), InvalidGeometry);
+    EXPECT_THROW(build_scalp(icosphere({0, 0, 0}, 1, 1), {-1.0f, 3.0f}), InvalidParam);
+    EXPECT_THROW(build_scalp(icosphere({0, 0, 0}, 1, 1), {0.1f, 0.5f}), InvalidParam);
+    ScalpBuildParams huge{1e-5f, 3.0f};
+    try {
+        build_scalp(icosphere({0, 0, 0}, 1, 1), huge);
+        FAIL() << "expected LimitExceeded";
+    }
+    catch (const LimitExceeded& e) {
+        EXPECT_NE(std::string(e.what()).find("use --voxel"), std::string::npos) << e.what();
+    }
+}
+
+TEST(ScalpReal, SintelColliderMatchesIndependentSdf)
+{
+    GROOM_REQUIRE_SHARED(obj, "sintel_frostbitten/sintel-collider.obj");
+    GROOM_REQUIRE_SHARED(bin, "sintel_frostbitten/sintel-sdf.bin");
+    std::ifstream in(bin, std::ios::binary);
+    uint64_t n = 0;
+    float lo[3], hi[3];
+    in.read(reinterpret_cast<char*>(&n), 8);
+    in.read(reinterpret_cast<char*>(lo), 12);
+    in.read(reinterpret_cast<char*>(hi), 12);
+    ASSERT_TRUE(in && n > 0 && n <= 512);
+    std::vector<float> ref(n * n * n);
+    in.read(reinterpret_cast<char*>(ref.data()), std::streamsize(ref.size() * 4));
+    ASSERT_TRUE(in);
+    const ScalpField field = build_scalp(read_mesh(obj));
+    const float h = field.voxel_size();
+    double worst = 0, sum = 0;
+    int64_t count = 0, sign_errors = 0;
+    for (uint64_t k = 0; k < n; ++k)
+        for (uint64_t j = 0; j < n; ++j)
+            for (uint64_t i = 0; i < n; ++i) {
+                const float3 p(lo[0] + (float(i) + 0.5f) * (hi[0] - lo[0]) / float(n), lo[1] + (float(j) + 0.5f) * (hi[1] - lo[1]) / float(n),
+                               lo[2] + (float(k) + 0.5f) * (hi[2] - lo[2]) / float(n));
+                const float r = ref[(k * n + j) * n + i];
+                const float d = field.distance(p);
+                const double e = std::fabs(double(d) - double(r));
+                worst = std::max(worst, e);
+                sum += e;
+                ++count;
+                sign_errors += (std::fabs(r) > h) && ((d < 0) != (r < 0));
+            }
+    // The reference is an exact distance sampled at cell centres; ours is trilinear in the band
+    // (error ~ h^2 / curvature radius) and exact outside it.
+    EXPECT_EQ(sign_errors, 0);
+    EXPECT_LT(worst, 0.25 * h) << "mean " << sum / double(count) << " h " << h;
+}
+
+TEST(ScalpReal, EveryHeadConverts)
+{
+    const char* heads[] = {"amd_tressfx_ponytail/ponytail_head.obj", "demosthenes_scan/demosthenes-low-res.obj",
+                           "ict_facekit/generic_neutral_mesh.obj",   "lee_perry_smith/LeePerrySmith.obj",
+                           "makehuman/base.obj",                      "nefertiti_scan/nefertiti-lowres.obj",
+                           "ratboy_mohawk_tressfx/Ratboy_body.obj",   "sintel_frostbitten/sintel.obj"};
+    GROOM_REQUIRE_SHARED(first, heads[0]);
+    for (const char* head : heads) {
+        SCOPED_TRACE(head);
+        const std::string path = test::shared_file(head);
+        const PolygonSoup soup = read_mesh(path);
+        Bounds3 box;
+        for (const float3& p : soup.points) box.extend(p);
+        RepairReport report;
+        // Coarse voxels keep the test quick; the conversion path is the same at any size.
+        const ScalpField field = build_scalp(soup, {length(box.size()) / 96.0f, 3.0f}, &report);
+        EXPECT_GT(field.num_faces(), soup.num_faces() / 2);
+        // Well above the top of the head (+Y up in every file) is outside, by about the gap.
+        const float3 above = float3(box.center().x, box.hi.y, box.center().z) + float3(0, 0.5f * box.size().y, 0);
+        EXPECT_GT(field.distance(above), 0.4f * box.size().y);
+    }
+}
+
+}  // namespace
+}  // namespace groom

@@ -1,0 +1,124 @@
+// `groom braid`: N-strand braids and cornrows from hand-sculpted guides (talk, Sec. 2.1; ops/braid.h).
+#include "cli/command.h"
+#include "fields/scalp_field.h"
+#include "kernel/error.h"
+#include "kernel/io/curve_io.h"
+#include "ops/braid.h"
+
+#include <cstdio>
+
+namespace groom::cli {
+namespace {
+
+struct Args {
+    std::string input, output, scalp, orient = "frame", taper, knot_density, initial_normal;
+    float frequency = 0, knot_length = 0, width = 0, height = 0;
+    CLI::Option *frequency_opt = nullptr, *knot_length_opt = nullptr, *width_opt = nullptr, *height_opt = nullptr;
+    ScalpBuildParams scalp_params;
+    BraidParams params;
+};
+
+std::string fmt(double v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+
+BraidParams params_from(const Args& a)
+{
+    BraidParams p = a.params;
+    if (a.frequency_opt->count()) p.frequency = a.frequency;
+    if (a.knot_length_opt->count()) p.knot_length = a.knot_length;
+    if (a.width_opt->count()) p.width = a.width;
+    if (a.height_opt->count()) p.height = a.height;
+    if (a.orient == "frame") p.orient = BraidOrient::Frame;
+    else if (a.orient == "scalp") p.orient = BraidOrient::Scalp;
+    else throw InvalidParam("braid: --orient must be frame or scalp (got '" + a.orient + "')");
+    if (!a.taper.empty()) p.taper = parse_floats("braid: --taper", a.taper, 1, 1024);
+    if (!a.knot_density.empty()) p.knot_density = parse_floats("braid: --knot-density", a.knot_density, 1, 1024);
+    if (!a.initial_normal.empty()) {
+        const auto v = parse_floats("braid: --initial-normal", a.initial_normal, 3, 3);
+        p.initial_normal = {v[0], v[1], v[2]};
+    }
+    if (p.orient == BraidOrient::Scalp && a.scalp.empty()) {
+        throw InvalidParam("braid: --orient scalp needs a scalp (give --scalp SCALP)");
+    }
+    p.validate();
+    return p;
+}
+
+void setup(CommandContext& ctx)
+{
+    auto args = std::make_shared<Args>();
+    Args& a = *args;
+    const BraidParams d;
+    CLI::App* app = ctx.app;
+    app->add_option("GUIDES", a.input, "Guide curves, root to tip (.usda .obj .ply .hair, - = stdin)")->required();
+    app->add_option("-o,--output", a.output, "Output curves (strands, or fibers with --fibers)")->required();
+    app->add_option("--scalp", a.scalp, "Scalp: a .vdb from `groom scalp` or a mesh; keeps every point outside it");
+    app->add_option("--voxel-size", a.scalp_params.voxel_size, "Voxel size when --scalp is a mesh, scene units (0 = automatic)");
+    app->add_option("--strands", a.params.strands, "Strands per braid N, >= 2")->capture_default_str();
+    a.frequency_opt = app->add_option("--frequency", a.frequency,
+                                      "F: knots (full x cycles) over each whole guide, >= 0 (default " + fmt(d.kDefaultFrequency) + ")");
+    a.knot_length_opt = app->add_option("--knot-length", a.knot_length,
+                                        "L: length of one knot, scene units, > 0; F = guide length / L (exclusive with --frequency)");
+    a.width_opt = app->add_option("--width", a.width, "A: lateral amplitude, scene units, >= 0 (default: knot length / 3)");
+    a.height_opt = app->add_option("--height", a.height, "B: amplitude along the normal, scene units, >= 0 (default: A / 2)");
+    app->add_option("--samples", a.params.samples, "Points per strand N_cv, >= 2 (default: >= 16 per knot, >= the guide's points)");
+    app->add_option("--root-amplitude", a.params.root_amplitude, "Amplitude scale at the root, >= 0")->capture_default_str();
+    app->add_option("--tip-amplitude", a.params.tip_amplitude, "Amplitude scale at the tip, >= 0 (blended linearly from the root)")
+        ->capture_default_str();
+    app->add_option("--taper", a.taper, "Amplitude scale spline over the guide, v0,v1,... (>= 0, evenly spaced root to tip)");
+    app->add_option("--knot-bias", a.params.knot_bias, "Knot distribution, (-1, 1): > 0 packs knots toward the tip, < 0 toward the root")
+        ->capture_default_str();
+    app->add_option("--knot-density", a.knot_density, "Relative knot density spline over the guide, v0,v1,... (> 0, root to tip)");
+    app->add_option("--orient", a.orient, "frame: rotation-minimising frames; scalp: cornrows, normal = scalp normal (needs --scalp)")
+        ->capture_default_str();
+    app->add_option("--initial-normal", a.initial_normal,
+                    "x,y,z: frame normal at the root with --orient frame (default: scalp normal, else +Y, or +Z for vertical guides)");
+    app->add_option("--clearance", a.params.clearance, "With --scalp: least distance from any hair to the scalp, scene units, >= 0")
+        ->capture_default_str();
+    app->add_flag("--rest", a.params.rest, "With --scalp: also lower braids floating above the scalp until they rest on it");
+    app->add_option("--strand-width", a.params.strand_width, "Strand thickness, scene units (0 = 2 max(A, B) / N)")->capture_default_str();
+    app->add_option("--fibers", a.params.fibers, "Hair fibers per strand M (0 = strand centrelines only)")->capture_default_str();
+    app->add_option("--fiber-radius", a.params.fiber_radius, "Radius of each strand's fiber disc, scene units (0 = half the strand width)")
+        ->capture_default_str();
+    app->add_option("--fiber-width", a.params.fiber_width, "Fiber width, scene units (0 = 2 radius / sqrt(M))")->capture_default_str();
+    app->add_option("--seed", a.params.seed, "Random seed for the fibers")->capture_default_str();
+    const CommonOptions& common = *ctx.common;
+    ctx.run = [args, &common] {
+        const Args& a = *args;
+        check_output(a.output, {a.input, a.scalp}, common);
+        const BraidParams params = params_from(a);
+        a.scalp_params.validate();
+        const CurveSet guides = read_curves(a.input);
+        const auto progress = make_progress(common);
+        std::unique_ptr<ScalpField> scalp;
+        if (!a.scalp.empty()) scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
+        const BraidResult res = braid(guides, params, scalp.get(), progress.get());
+        write_curves(res.curves, a.output);
+        const BraidReport& r = res.report;
+        note(common, "braid: " + std::to_string(r.guides) + " guides -> " + std::to_string(r.strands) + " strands (" +
+                         std::to_string(params.strands) + " each)" +
+                         (params.fibers > 0 ? " x " + std::to_string(params.fibers) + " fibers" : std::string()) + " = " +
+                         std::to_string(r.curves) + " curves, " + std::to_string(r.points) + " points -> " + a.output);
+        if (r.skipped_guides > 0) {
+            note(common, "braid: warning: skipped " + std::to_string(r.skipped_guides) +
+                             " guides with fewer than 2 points or zero length");
+        }
+        if (scalp) {
+            note(common, "braid: scalp: lifted " + std::to_string(r.lifted_sections) + " cross-sections off the scalp (max " +
+                             fmt(r.max_lift) + ")" +
+                             (params.rest ? ", lowered " + std::to_string(r.lowered_sections) + " onto it (max " + fmt(r.max_lower) + ")"
+                                          : std::string()) +
+                             ", pushed " + std::to_string(r.pushed_points) + " single points out; clearance " +
+                             fmt(params.clearance));
+        }
+    };
+}
+
+const Registrar reg({"braid", "Braids and cornrows from guide curves (talk 2.1)", 200, setup});
+
+}  // namespace
+}  // namespace groom::cli

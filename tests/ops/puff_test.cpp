@@ -1,7 +1,10 @@
 #include "ops/puff.h"
 
+#include "fields/scalp_field.h"
 #include "kernel/error.h"
+#include "kernel/io/mesh_io.h"
 #include "kernel/parallel.h"
+#include "test_support.h"
 #include "ops/hair_types.h"
 #include "ops/sphere_cap_sampler.h"
 
@@ -463,5 +466,41 @@ TEST(Puff, RejectsInvalidHairParams)
     }
     catch (const InvalidParam& e) {
         EXPECT_NE(std::string(e.what()).find("--uniformity"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Puff, RealHeadSilhouetteAndNothingInside)
+{
+    GROOM_REQUIRE_SHARED(path, "lee_perry_smith/LeePerrySmith.obj");
+    const PolygonSoup soup = read_mesh(path);
+    const ScalpField scalp = build_scalp(soup);
+    Bounds3 box;
+    for (const float3& p : soup.points) box.extend(p);
+    const float3 size = box.size();
+    PuffParams p;
+    const float3 c0 = scalp.closest_point(float3(box.center().x - 0.22f * size.x, box.hi.y + 0.2f * size.y, box.center().z - 0.1f * size.z));
+    p.center = c0;
+    p.radius = 0.12f * size.x;
+    p.sphere_radius = 0.25f * size.x;
+    p.sphere_center = c0 + scalp.normal(c0) * (0.75f * p.sphere_radius);
+    p.cap_angle = 100.0f;
+    p.hairs = 2000;
+    p.curl.hair_type = "4a";
+    p.curl.units_per_cm = size.x / 16.0f;
+    const PuffResult r = puff(scalp, scalp_root_sampler(scalp), p);
+    // The guides cannot cross (puff_guides would have refused) and end on the sphere.
+    EXPECT_GT(min_curve_separation(r.guides), 0.0);
+    for (size_t c = 0; c < r.guides.num_curves(); ++c) {
+        EXPECT_LT(std::fabs(distance(curve(r.guides, c).back(), p.sphere_center) - p.sphere_radius), 1e-4f * p.sphere_radius);
+        EXPECT_LE(distance(curve(r.guides, c)[0], c0), p.radius);
+    }
+    // The level set's own accuracy: a small fraction of a voxel.
+    const float tol = 0.05f * scalp.voxel_size();
+    const float reach = curl_reach(p.curl);
+    for (size_t c = 0; c < r.hairs.num_curves(); ++c) {
+        const auto pts = curve(r.hairs, c);
+        EXPECT_LE(distance(pts[0], c0), p.radius * (1 + 1e-5f));
+        for (size_t i = 1; i < pts.size(); ++i) ASSERT_GE(scalp.distance(pts[i]), -tol) << "hair " << c << " point " << i;
+        EXPECT_LE(std::fabs(distance(pts.back(), p.sphere_center) - p.sphere_radius), reach + 1e-4f * p.sphere_radius) << c;
     }
 }

@@ -34,7 +34,9 @@ step() {
     fi
     t1=$(date +%s.%N)
     secs=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }')
-    msg=$(grep -v '^\s*$' "$out/.step.err" | tail -n 1 || true)
+    # The line naming the output file says what was made; else the last line.
+    msg=$(grep -- '->' "$out/.step.err" | tail -n 1 || true)
+    [[ -n $msg ]] || msg=$(grep -v '^\s*$' "$out/.step.err" | tail -n 1 || true)
     { echo "\$ $*"; cat "$out/.step.err"; } >>"$log"
     printf '  %-22s %7ss  %s\n' "$name" "$secs" "$msg"
     summary+=("$(printf '%-22s %7ss  %s' "$name" "$secs" "$msg")")

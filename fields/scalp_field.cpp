@@ -16,16 +16,15 @@ ScalpField::~ScalpField() = default;
 ScalpField::ScalpField(ScalpField&&) noexcept = default;
 ScalpField& ScalpField::operator=(ScalpField&&) noexcept = default;
 
-bool ScalpField::Impl::sample(const float3& p, float& d, float3& grad) const
+bool ScalpField::Impl::sample(Accessors& acc, const float3& p, float& d, float3& grad) const
 {
     const float x = (p.x - origin.x) * inv_voxel, y = (p.y - origin.y) * inv_voxel, z = (p.z - origin.z) * inv_voxel;
     if (!(std::fabs(x) < 1e9f && std::fabs(y) < 1e9f && std::fabs(z) < 1e9f)) return false;  // also rejects NaN
     const float fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
     const float tx = x - fx, ty = y - fy, tz = z - fz;
     const openvdb::Coord c0{int(fx), int(fy), int(fz)};
-    // Unregistered accessors: cheap to make per call and never shared between threads.
-    openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> dacc(sdf->tree());
-    openvdb::tree::ValueAccessor<const openvdb::Vec3STree, false> gacc(gradient->tree());
+    auto& dacc = acc.dist;
+    auto& gacc = acc.grad;
     float v[8];
     openvdb::Vec3s g[8];
     for (int n = 0; n < 8; ++n) {
@@ -49,9 +48,10 @@ bool ScalpField::Impl::sample(const float3& p, float& d, float3& grad) const
 float ScalpField::query(const float3& p, float3& n, float3& closest) const
 {
     const Impl& im = *impl_;
+    Impl::Accessors acc(im);
     float d = 0.0f;
     float3 g;
-    if (im.sample(p, d, g) && length_squared(g) > 0.25f) {
+    if (im.sample(acc, p, d, g) && length_squared(g) > 0.25f) {
         n = normalize(g);
         // Projection along the normal, then Newton steps on the zero crossing: each removes the
         // remaining distance along the local normal (quadratic convergence for a smooth field).
@@ -59,9 +59,9 @@ float ScalpField::query(const float3& p, float3& n, float3& closest) const
         for (int it = 0; it < 2; ++it) {
             float dq = 0.0f;
             float3 gq;
-            if (!im.sample(q, dq, gq) || length_squared(gq) <= 0.25f) break;
+            if (!im.sample(acc, q, dq, gq) || length_squared(gq) <= 0.25f) break;
             q -= normalize(gq) * dq;
-            if (std::fabs(dq) < 1e-4f * im.voxel) break;
+            if (std::fabs(dq) < 1e-3f * im.voxel) break;
         }
         closest = q;
         return d;

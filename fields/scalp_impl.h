@@ -98,8 +98,20 @@ struct ScalpField::Impl {
     std::unique_ptr<detail::MeshQuery> query;
     bool mesh_exact = true;              ///< false when the mesh was extracted from a loaded .vdb
 
+    /// Per-query accessors: unregistered (cheap to make, never shared between threads) and reused
+    /// across the Newton steps of one query so their leaf caches stay warm.
+    struct Accessors {
+        openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> dist;
+        openvdb::tree::ValueAccessor<const openvdb::Vec3STree, false> grad;
+        explicit Accessors(const Impl& im) : dist(im.sdf->tree()), grad(im.gradient->tree()) {}
+    };
     /// Trilinear distance and gradient at p when all 8 surrounding voxels are in the band.
-    bool sample(const float3& p, float& d, float3& grad) const;
+    bool sample(const float3& p, float& d, float3& grad) const
+    {
+        Accessors acc(*this);
+        return sample(acc, p, d, grad);
+    }
+    bool sample(Accessors& acc, const float3& p, float& d, float3& grad) const;
     /// Fills `gradient` from `sdf`, and the world <-> index mapping. Throws for unsupported transforms.
     void finish_grids(const std::string& what);
 };

@@ -206,6 +206,16 @@ void write_scalp(const ScalpField& scalp, const std::string& path)
         openvdb::GridPtrVec grids{im.sdf};
         file.write(grids);
         file.close();
+        // io::File writes through an ofstream whose errors it never checks: a full disk (or a file
+        // size limit) leaves a truncated file and no exception. Read it back before it replaces the
+        // target, so a failed write cannot pass for a level set.
+        openvdb::io::File check(temp.string());
+        check.open(false);
+        const openvdb::GridBase::Ptr back = check.readGrid(im.sdf->getName());
+        check.close();
+        if (!back || back->activeVoxelCount() != im.sdf->activeVoxelCount()) {
+            throw openvdb::IoError("the written file does not read back (disk full?)");
+        }
         std::filesystem::rename(temp, target);
     }
     catch (const openvdb::Exception& e) {

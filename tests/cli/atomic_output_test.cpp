@@ -6,7 +6,9 @@
 // output's size, so its write fails part-way exactly as on a full disk.
 #include "test_support.h"
 
+#include "fields/sphere_mesh.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/mesh_io.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -66,20 +68,21 @@ int run_groom_with_file_limit(const std::vector<std::string>& args, rlim_t limit
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-/// Files in `dir` whose name contains ".tmp." (AtomicOutput's temporaries).
+/// Files in `dir` whose name contains ".tmp" (AtomicOutput's and write_scalp's temporaries).
 std::vector<std::string> temporaries(const test::TempDir& dir)
 {
     std::vector<std::string> t;
     for (const auto& e : fs::directory_iterator(dir.path()))
-        if (e.path().filename().string().find(".tmp.") != std::string::npos) t.push_back(e.path().filename().string());
+        if (e.path().filename().string().find(".tmp") != std::string::npos) t.push_back(e.path().filename().string());
     return t;
 }
 
 struct Case {
     const char* command;
     const char* output_ext;
-    std::vector<std::string> args;  ///< "{in}" (curve input, if any) and "{out}" are replaced
-    bool has_input;
+    /// "{in}" (curve input), "{mesh}" (a sphere mesh), "{vdb}" (its level set) and "{out}" are replaced.
+    std::vector<std::string> args;
+    bool has_input;  ///< reads "{in}"
 };
 
 /// Every command that writes a file; a command joins when it lands on main.
@@ -91,13 +94,35 @@ std::vector<Case> cases()
         {"curl", "usda", {"curl", "{in}", "-o", "{out}", "--seed", "3"}, true},
         {"head", "obj", {"head", "-o", "{out}", "--resolution", "48"}, false},
         {"render", "png", {"render", "{in}", "-o", "{out}", "--size", "256x256"}, true},
+        {"scalp", "vdb", {"scalp", "{mesh}", "-o", "{out}"}, false},
+        {"project", "usda", {"project", "{in}", "--scalp", "{vdb}", "-o", "{out}", "--mode", "root"}, true},
+        {"cull", "usda", {"cull", "{in}", "--scalp", "{vdb}", "-o", "{out}", "--mode", "push"}, true},
     };
+}
+
+/// The sphere scalp every case may use, made once per test binary.
+struct Scalp {
+    test::TempDir dir;
+    std::string mesh = dir.file("sphere.obj"), vdb = dir.file("sphere.vdb");
+    Scalp()
+    {
+        write_mesh(icosphere(float3(0, 0, 0), 10.0f, 3), mesh);
+        const auto r = run_groom({"scalp", mesh, "-o", vdb});
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+    }
+};
+const Scalp& scalp()
+{
+    static const Scalp s;
+    return s;
 }
 
 std::vector<std::string> expand(const Case& c, const std::string& in, const std::string& out)
 {
     std::vector<std::string> r;
-    for (const std::string& a : c.args) r.push_back(a == "{in}" ? in : a == "{out}" ? out : a);
+    for (const std::string& a : c.args) {
+        r.push_back(a == "{in}" ? in : a == "{out}" ? out : a == "{mesh}" ? scalp().mesh : a == "{vdb}" ? scalp().vdb : a);
+    }
     return r;
 }
 
@@ -120,7 +145,7 @@ TEST(AtomicOutput, AFailedWriteLeavesThePreviousOutputUntouched)
         const int code = run_groom_with_file_limit(expand(c, guides, out), full_size / 2, err);
         EXPECT_EQ(code, 1) << c.command << ": " << err;
         EXPECT_NE(err.find("groom: error:"), std::string::npos) << c.command << ": " << err;
-        EXPECT_EQ(test::read_bytes(out), kPrevious) << c.command << ": the previous output was changed by a failed write";
+        EXPECT_TRUE(test::read_bytes(out) == kPrevious) << c.command << ": the previous output was changed by a failed write";
         EXPECT_TRUE(temporaries(dir).empty()) << c.command << " left " << temporaries(dir).front();
     }
 }

@@ -2,9 +2,12 @@
 // byte-identical files (the brief: "bitwise identical output for any thread count"). The inputs
 // are big enough (240 guides) that TBB really splits the work over both threads.
 // A command joins the table when it lands on main; a case whose command is not registered fails.
+// (`groom scalp` is not compared: OpenVDB stamps every .vdb file with a fresh UUID.)
 #include "test_support.h"
 
+#include "fields/sphere_mesh.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/mesh_io.h"
 
 #include <cmath>
 #include <filesystem>
@@ -33,15 +36,42 @@ std::string write_guides(const test::TempDir& dir)
     return path;
 }
 
+/// 120 straight guides of 10 points, rooted on the upper cap of the sphere of radius 10 at the
+/// origin and growing 4 units along its normal, on a golden-angle spiral.
+std::string write_sphere_guides(const test::TempDir& dir)
+{
+    const int n = 120, k = 10;
+    std::vector<int64_t> counts(n, k);
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions();
+    for (int c = 0; c < n; ++c) {
+        const float polar = 0.9f * std::sqrt((float(c) + 0.5f) / float(n)), az = 2.39996323f * float(c);
+        const float3 dir_out{std::sin(polar) * std::cos(az), std::cos(polar), std::sin(polar) * std::sin(az)};
+        for (int i = 0; i < k; ++i) P[c * k + i] = dir_out * (10.0f + 4.0f * float(i) / float(k - 1));
+    }
+    const std::string path = dir.file("sphere_guides.usda");
+    write_curves(cs, path);
+    return path;
+}
+
 struct Case {
     const char* command;
     const char* output_ext;
-    std::vector<std::string> args;  ///< "{guides}", "{head}" and "{out}" are replaced
+    /// "{guides}" (240 guides on a plane), "{head}" (head mesh), "{sguides}" (guides on the sphere),
+    /// "{sphere}" (the sphere's level set from `groom scalp`) and "{out}" are replaced.
+    std::vector<std::string> args;
 };
 
 std::vector<Case> cases()
 {
     return {
+        {"project", "usda", {"project", "{guides}", "--scalp", "{sphere}", "-o", "{out}", "--mode", "root", "--offset", "0.1"}},
+        {"cull", "usda", {"cull", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--mode", "push", "--clearance", "0.5"}},
+        {"cornrow-guides", "usda", {"cornrow-guides", "--scalp", "{head}", "-o", "{out}", "--count", "6"}},
+        {"partition", "usda", {"partition", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--count", "6", "--samples", "5"}},
+        {"generate", "usda", {"generate", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--count", "400", "--seed", "3"}},
+        {"puff", "usda", {"puff", "--scalp", "{sphere}", "-o", "{out}", "--center", "0,12,0", "--radius", "3", "--sphere-center", "0,15,0",
+                          "--sphere-radius", "6", "--rows", "5", "--cols", "4", "--hairs", "300", "--seed", "5"}},
         {"convert", "ply", {"convert", "{guides}", "-o", "{out}"}},
         {"resample", "usda", {"resample", "{guides}", "-o", "{out}", "--segment-length", "0.37"}},
         {"curl", "usda", {"curl", "{guides}", "-o", "{out}", "--type", "3b", "--uniformity", "0.4", "--seed", "7"}},
@@ -50,11 +80,17 @@ std::vector<Case> cases()
     };
 }
 
-std::vector<std::string> expand(const std::vector<std::string>& args, const std::string& guides, const std::string& head,
-                                const std::string& out)
+struct Inputs {
+    std::string guides, head, sguides, sphere;
+};
+
+std::vector<std::string> expand(const std::vector<std::string>& args, const Inputs& in, const std::string& out)
 {
     std::vector<std::string> r;
-    for (const std::string& a : args) r.push_back(a == "{guides}" ? guides : a == "{head}" ? head : a == "{out}" ? out : a);
+    for (const std::string& a : args) {
+        r.push_back(a == "{guides}" ? in.guides : a == "{head}" ? in.head : a == "{sguides}" ? in.sguides
+                    : a == "{sphere}" ? in.sphere : a == "{out}" ? out : a);
+    }
     return r;
 }
 
@@ -63,14 +99,17 @@ std::vector<std::string> expand(const std::vector<std::string>& args, const std:
 TEST(Determinism, EveryOpCommandWritesTheSameBytesWithOneAndTwoThreads)
 {
     test::TempDir dir;
-    const std::string guides = write_guides(dir), head = dir.file("head.obj");
-    const auto h = run_groom({"head", "-o", head, "--resolution", "24"});
+    Inputs in{write_guides(dir), dir.file("head.obj"), write_sphere_guides(dir), dir.file("sphere.vdb")};
+    const auto h = run_groom({"head", "-o", in.head, "--resolution", "24"});
     ASSERT_EQ(h.exit_code, 0) << h.err;
+    write_mesh(icosphere(float3(0, 0, 0), 10.0f, 4), dir.file("sphere.obj"));
+    const auto sc = run_groom({"scalp", dir.file("sphere.obj"), "-o", in.sphere});
+    ASSERT_EQ(sc.exit_code, 0) << sc.err;
     for (const Case& c : cases()) {
         std::string bytes[2];
         for (int threads : {1, 2}) {
             const std::string out = dir.file(std::string(c.command) + "_" + std::to_string(threads) + "." + c.output_ext);
-            std::vector<std::string> args = expand(c.args, guides, head, out);
+            std::vector<std::string> args = expand(c.args, in, out);
             args.insert(args.end(), {"--threads", std::to_string(threads), "--quiet"});
             const auto r = run_groom(args);
             ASSERT_EQ(r.exit_code, 0) << c.command << " --threads " << threads << ": " << r.err;

@@ -74,6 +74,8 @@ std::vector<Case> cases()
                           "--sphere-radius", "6", "--rows", "5", "--cols", "4", "--hairs", "300", "--seed", "5"}},
         {"convert", "ply", {"convert", "{guides}", "-o", "{out}"}},
         {"resample", "usda", {"resample", "{guides}", "-o", "{out}", "--segment-length", "0.37"}},
+        {"braid", "usda", {"braid", "{guides}", "-o", "{out}", "--strands", "3", "--frequency", "3", "--width", "0.5", "--fibers", "4"}},
+        {"populate", "usda", {"populate", "{guides}", "-o", "{out}", "--count", "8", "--radius", "0.3", "--seed", "2"}},
         {"curl", "usda", {"curl", "{guides}", "-o", "{out}", "--type", "3b", "--uniformity", "0.4", "--seed", "7"}},
         {"head", "obj", {"head", "-o", "{out}", "--resolution", "96"}},
         {"render", "png", {"render", "{guides}", "--scalp", "{head}", "-o", "{out}", "--size", "160x120", "--color-by", "strand"}},

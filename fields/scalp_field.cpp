@@ -27,10 +27,27 @@ bool ScalpField::Impl::sample(Accessors& acc, const float3& p, float& d, float3&
     auto& gacc = acc.grad;
     float v[8];
     openvdb::Vec3s g[8];
-    for (int n = 0; n < 8; ++n) {
-        const openvdb::Coord c(c0.x() + (n & 1), c0.y() + ((n >> 1) & 1), c0.z() + ((n >> 2) & 1));
-        if (!dacc.probeValue(c, v[n])) return false;
-        g[n] = gacc.getValue(c);
+    using DistLeaf = openvdb::FloatTree::LeafNodeType;
+    constexpr int kLast = DistLeaf::DIM - 1;
+    const int lx = c0.x() & kLast, ly = c0.y() & kLast, lz = c0.z() & kLast;
+    const DistLeaf* dleaf = (lx < kLast && ly < kLast && lz < kLast) ? dacc.probeConstLeaf(c0) : nullptr;
+    const openvdb::Vec3STree::LeafNodeType* gleaf = dleaf ? gacc.probeConstLeaf(c0) : nullptr;
+    if (dleaf && gleaf) {
+        // All 8 corners in one leaf (the common case): read its buffers directly.
+        const openvdb::Index base = DistLeaf::coordToOffset(c0);
+        for (int n = 0; n < 8; ++n) {
+            const openvdb::Index o = base + (n & 1) * (DistLeaf::DIM * DistLeaf::DIM) + ((n >> 1) & 1) * DistLeaf::DIM + ((n >> 2) & 1);
+            if (!dleaf->isValueOn(o)) return false;
+            v[n] = dleaf->getValue(o);
+            g[n] = gleaf->getValue(o);
+        }
+    }
+    else {
+        for (int n = 0; n < 8; ++n) {
+            const openvdb::Coord c(c0.x() + (n & 1), c0.y() + ((n >> 1) & 1), c0.z() + ((n >> 2) & 1));
+            if (!dacc.probeValue(c, v[n])) return false;
+            g[n] = gacc.getValue(c);
+        }
     }
     const float wx[2] = {1.0f - tx, tx}, wy[2] = {1.0f - ty, ty}, wz[2] = {1.0f - tz, tz};
     float dsum = 0.0f;

@@ -151,7 +151,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     for (size_t i = 0; i < tris.size(); ++i) tris[i] = openvdb::Vec3I(geo.tris[i][0], geo.tris[i][1], geo.tris[i][2]);
     const openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(h);
     const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(points, tris);
-    openvdb::Int32Grid index_grid(openvdb::Int32(openvdb::util::INVALID_IDX));  // as meshToVolume expects
+    openvdb::Int32Grid index_grid(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));  // as meshToVolume expects
     openvdb::util::NullInterrupter interrupter;
     openvdb::FloatGrid::Ptr sdf = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
         interrupter, adapter, *xform, float(band), float(band), openvdb::tools::UNSIGNED_DISTANCE_FIELD, &index_grid);

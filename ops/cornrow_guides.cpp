@@ -50,6 +50,14 @@ void CornrowGuidesParams::validate() const
             "--hairline-curve must be in [0, 90) degrees (got " + fmt(hairline_curve) + ")");
     require(std::isfinite(back_angle) && back_angle > -90.0f && back_angle < 90.0f,
             "--back-angle must be in (-90, 90) degrees (got " + fmt(back_angle) + ")");
+    // Every guide's plane contains the fan axis, so all rows meet where that axis pierces the sphere:
+    // at elevation -asin(pivot / radius) in the middle row's plane (the tilted rows reach it at a
+    // shallower angle). Rows ending below that point have crossed each other at the nape.
+    const float meet = -std::asin(pivot / radius) / kDeg;
+    require(back_angle > meet, "--back-angle " + fmt(back_angle) + " runs past the point where all rows meet (" + fmt(meet) +
+                                   " degrees for --pivot " + fmt(pivot) + " and --radius " + fmt(radius) +
+                                   "), so rows would cross at the nape; use a back angle above " + fmt(meet) +
+                                   " or a larger --pivot");
     require(samples >= 2 && samples <= 100000, "--samples must be in [2, 100000] (got " + std::to_string(samples) + ")");
     require(std::isfinite(offset) && offset >= 0.0f, "--offset must be >= 0 (got " + fmt(offset) + ")");
     require(std::isfinite(tail_length) && tail_length >= 0.0f, "--tail-length must be >= 0 (got " + fmt(tail_length) + ")");

@@ -22,7 +22,9 @@ struct CornrowGuidesParams {
     int count = 8;                    ///< guides, [1, 256]
     float3 center{0.0f, 3.0f, -1.0f}; ///< centre of the sphere paths are laid on (default: the default head's cranium)
     float radius = 10.0f;             ///< radius of that sphere, scene units; > 0 (roughly the cranium's)
-    float pivot = 5.0f;               ///< depth of the fan's axis below center, scene units; [0, radius)
+    /// Depth of the fan's axis below center, scene units; [0, radius). Rows meet (and would cross)
+    /// where the axis pierces the sphere, at elevation -asin(pivot / radius): back_angle must stay above it.
+    float pivot = 7.5f;
     float spread = 55.0f;             ///< the outermost guides lean this far from vertical, degrees; [0, 90)
     // Angles are measured in each guide's plane around its circle's centre, from the front
     // horizontal (+Z) upwards; for the middle guide they are plain elevations.

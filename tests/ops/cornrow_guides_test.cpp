@@ -36,7 +36,7 @@ TEST(CornrowGuides, WithTheFanAxisThroughTheCentreGuidesAreGreatCirclesWithExact
     p.samples = 40;
     p.front_angle = 20.0f;
     p.hairline_curve = 10.0f;
-    p.back_angle = -30.0f;
+    p.back_angle = 10.0f;  // great circles all meet at the back horizontal (0 degrees): end before it
     const CornrowGuides g = cornrow_guides(sphere, p);
     ASSERT_EQ(g.guides.num_curves(), 5u);
     ASSERT_EQ(g.guides.num_points(), 200u);
@@ -56,7 +56,7 @@ TEST(CornrowGuides, WithTheFanAxisThroughTheCentreGuidesAreGreatCirclesWithExact
         }
         // Root at the (curved) hairline, tip at the nape: 180 - back_angle.
         EXPECT_NEAR(path_angle(P[r.begin] - c, lean), 20.0f + 10.0f * u * u, 0.01f);
-        EXPECT_NEAR(path_angle(P[r.end - 1] - c, lean), 210.0f, 0.01f);
+        EXPECT_NEAR(path_angle(P[r.end - 1] - c, lean), 170.0f, 0.01f);
         // Evenly spaced in arc length (chords of one circle: equal to 1e-3 relative).
         const std::vector<float3> pts(P.begin() + r.begin, P.begin() + r.end);
         const float step = polyline_length(pts) / float(pts.size() - 1);
@@ -122,6 +122,14 @@ TEST(CornrowGuides, InvalidOptionsAreRejected)
     p = {};
     p.back_angle = std::nanf("");
     rejects(p, "--back-angle");
+    // Rows meet where the fan axis pierces the path sphere, -asin(pivot / radius) = -30 degrees for
+    // pivot 5 on radius 10; ending below that, rows would have crossed at the nape.
+    p = {};
+    p.pivot = 5.0f;
+    p.back_angle = -31.0f;
+    rejects(p, "runs past the point where all rows meet (-30");
+    p.back_angle = -29.0f;
+    EXPECT_NO_THROW(p.validate());
     p = {};
     p.samples = 1;
     rejects(p, "--samples must be in [2, 100000] (got 1)");

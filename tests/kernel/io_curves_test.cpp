@@ -608,8 +608,9 @@ TEST(CurveIo, TruncatedOrCorruptedFilesFailWithParseErrorsNeverCrash)
     CurveWriteOptions ascii;
     ascii.ply_encoding = PlyEncoding::Ascii;
     const std::pair<std::string, CurveWriteOptions> formats[] = {{"a.usda", {}}, {"a.ply", {}}, {"b.ply", ascii}, {"a.hair", {}}, {"a.obj", {}}};
-    for (const auto& [name, opt] : formats) {
-        write_curves(src, dir.file(name), opt);
+    for (const auto& format : formats) {
+        const std::string& name = format.first;  // not a structured binding: clang 14 cannot capture those
+        write_curves(src, dir.file(name), format.second);
         const std::string bytes = read_bytes(dir.file(name));
         size_t k = 0;
         // Every header byte, then a sample of the body (odd strides hit every alignment).

@@ -1,5 +1,6 @@
 // `groom braid`: N-strand braids and cornrows from hand-sculpted guides (talk, Sec. 2.1; ops/braid.h).
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
@@ -57,7 +58,7 @@ void setup(CommandContext& ctx)
     app->add_option("GUIDES", a.input, "Guide curves, root to tip (.usda .obj .ply .hair, - = stdin)")->required();
     app->add_option("-o,--output", a.output, "Output curves (strands, or fibers with --fibers)")->required();
     app->add_option("--scalp", a.scalp, "Scalp: a .vdb from `groom scalp` or a mesh; keeps every point outside it");
-    app->add_option("--voxel-size", a.scalp_params.voxel_size, "Voxel size when --scalp is a mesh, scene units (0 = automatic)");
+    add_scalp_build_options(app, a.scalp_params);
     app->add_option("--strands", a.params.strands, "Strands per braid N, >= 2")->capture_default_str();
     a.frequency_opt = app->add_option("--frequency", a.frequency,
                                       "F: knots (full x cycles) over each whole guide, >= 0 (default " + fmt(d.kDefaultFrequency) + ")");

@@ -1,5 +1,6 @@
 // `groom cornrow-guides`: procedural front-to-back cornrow guides over a scalp (ops/cornrow_guides.h).
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
 #include "ops/cornrow_guides.h"
@@ -11,6 +12,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
+    ScalpBuildParams scalp_params;
     std::string scalp, output, tails_out, center;
     CornrowGuidesParams params;
 };
@@ -20,6 +22,7 @@ void setup(CommandContext& ctx)
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
     app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh")->required();
+    add_scalp_build_options(app, args->scalp_params);
     app->add_option("-o,--output", args->output, "Output guides (.usda .obj .ply .hair)")->required();
     auto* tails = app->add_option("--tails-out", args->tails_out, "Also write a free tail per guide past the nape here");
     CornrowGuidesParams& p = args->params;
@@ -53,7 +56,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
         const auto start = std::chrono::steady_clock::now();
         auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, {}, progress.get());
+        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         const CornrowGuides g = cornrow_guides(*scalp, a.params);
         write_curves(g.guides, a.output);
         if (!a.tails_out.empty()) write_curves(g.tails, a.tails_out);

@@ -1,5 +1,6 @@
 // `groom cull`: keep curves out of the head (ops/cull.h).
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
 #include "ops/cull.h"
@@ -8,6 +9,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
+    ScalpBuildParams scalp_params;
     std::string input, scalp, output, mode = "push";
     CullParams params;
 };
@@ -18,6 +20,7 @@ void setup(CommandContext& ctx)
     CLI::App* app = ctx.app;
     app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = stdin)")->required();
     app->add_option("--scalp", args->scalp, "Scalp: .vdb from `groom scalp`, or a mesh")->required();
+    add_scalp_build_options(app, args->scalp_params);
     app->add_option("-o,--output", args->output, "Output curves")->required();
     app->add_option("--mode", args->mode, "push: move offending points out along the normal; trim: cut each curve at its first entry; delete: drop the curve")
         ->check(CLI::IsMember({"push", "trim", "delete"}))
@@ -31,7 +34,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
         const CurveSet curves = read_curves(a.input);
         auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, {}, progress.get());
+        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         CullStats stats;
         const CurveSet out = cull(curves, *scalp, a.params, &stats);
         write_curves(out, a.output);

@@ -1,5 +1,6 @@
 // `groom curl`: curl each input curve around its own centreline (talk, Sec. 3.1).
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "cli/curl_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
@@ -10,6 +11,7 @@ namespace {
 
 struct Args {
     std::string input, output, scalp;
+    ScalpBuildParams scalp_params;
     CurlOptions curl;
 };
 
@@ -20,6 +22,7 @@ void setup(CommandContext& ctx)
     app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = stdin)")->required();
     app->add_option("-o,--output", args->output, "Output curves")->required();
     app->add_option("--scalp", args->scalp, "Scalp (.vdb from `groom scalp`, or a mesh): no curled point ends inside it");
+    add_scalp_build_options(app, args->scalp_params);
     add_curl_options(app, args->curl);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
@@ -28,7 +31,7 @@ void setup(CommandContext& ctx)
         const CurveSet in = read_curves(args->input);
         const auto progress = make_progress(common);
         std::unique_ptr<ScalpField> scalp;
-        if (!args->scalp.empty()) scalp = load_scalp(args->scalp, {}, progress.get());
+        if (!args->scalp.empty()) scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const CurveSet out = curl(in, params, scalp.get(), progress.get());
         write_curves(out, args->output);
         note(common, "curl: " + std::to_string(out.num_curves()) + " curves, " + std::to_string(out.num_points()) + " points (type " +

@@ -1,6 +1,7 @@
 // `groom generate`: a full groom from a few guides (ops/generate.h): roots scattered area-uniformly
 // on the scalp, shapes interpolated from the nearest guides.
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
 #include "ops/generate.h"
@@ -14,7 +15,7 @@ namespace {
 
 struct Args {
     std::string input, scalp, output, region;
-    float voxel_size = 0.0f;
+    ScalpBuildParams scalp_params;
     GenerateParams params;
 };
 
@@ -42,7 +43,7 @@ void setup(CommandContext& ctx)
         ->capture_default_str();
     app->add_option("--first-id", p.first_id, "Curve ids start here, >= 0")->capture_default_str();
     app->add_option("--seed", p.seed, "Random seed for the roots")->capture_default_str();
-    app->add_option("--voxel-size", args->voxel_size, "Voxel size when --scalp is a mesh, scene units (default: automatic)");
+    add_scalp_build_options(app, args->scalp_params);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input, args->scalp}, common);
@@ -56,9 +57,7 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         const CurveSet guides = read_curves(args->input);
         const auto progress = make_progress(common);
-        ScalpBuildParams sp;
-        sp.voxel_size = args->voxel_size;
-        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, sp, progress.get());
+        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), args->params, progress.get());
         write_curves(out, args->output);
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

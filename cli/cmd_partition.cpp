@@ -1,5 +1,6 @@
 // `groom partition`: edge hairs between braids (talk, Sec. 2.2), from the guides the braids follow.
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/atomic_file.h"
@@ -17,7 +18,8 @@ namespace {
 
 struct Args {
     std::string input, output, scalp, adjacent_file, write_adjacent, centroids, knot_density;
-    float scalp_voxel = 0.0f, frequency = 0.0f, knot_length = 0.0f, knot_bias = 0.0f;
+    ScalpBuildParams scalp_params;
+    float frequency = 0.0f, knot_length = 0.0f, knot_bias = 0.0f;
     PartitionParams params;
 };
 
@@ -125,7 +127,7 @@ void setup(CommandContext& ctx)
     app->add_option("GUIDES", args->input, "Guide curves, the braids' sources (.usda .obj .ply .hair, - = stdin)")->required();
     app->add_option("-o,--output", args->output, "Output edge-hair curves")->required();
     app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp`, or a mesh converted on the fly")->required();
-    app->add_option("--scalp-voxel", args->scalp_voxel, "Voxel size when --scalp is a mesh, scene units (0 = automatic)");
+    add_scalp_build_options(app, args->scalp_params);
     app->add_option("--adjacent", args->adjacent_file,
                     "Neighbours instead of searching: lines 'source,left,right' (guide indices, -1 = none); only listed guides are partitioned");
     app->add_option("--write-adjacent", args->write_adjacent, "Write the neighbours found (or given) in --adjacent's format, to edit and reuse");
@@ -183,9 +185,7 @@ void setup(CommandContext& ctx)
         if (!args->adjacent_file.empty()) params.adjacent = read_adjacent(args->adjacent_file, guides.num_curves());
         if (params.centroids == CentroidMode::Points) params.centroid_points = read_centroids(spec, guides.num_curves());
         const auto progress = make_progress(common);
-        ScalpBuildParams scalp_params;
-        scalp_params.voxel_size = args->scalp_voxel;
-        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, scalp_params, progress.get());
+        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
 
         if (params.adjacent.empty()) {
             params.adjacent = find_adjacent_guides(guides, *scalp, params.max_gap, progress.get());

@@ -1,5 +1,6 @@
 // `groom probe`: signed distance, normal and closest point of the scalp at given points, as CSV.
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/atomic_file.h"
@@ -14,6 +15,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
+    ScalpBuildParams scalp_params;
     std::string scalp, input, output;
 };
 
@@ -45,6 +47,7 @@ void setup(CommandContext& ctx)
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
     app->add_option("--scalp", args->scalp, "Scalp: .vdb from `groom scalp`, or a mesh")->required();
+    add_scalp_build_options(app, args->scalp_params);
     app->add_option("POINTS", args->input, "Points: text file of 'x y z' lines, or any curve file (all its points)")->required();
     app->add_option("-o,--output", args->output, "Output CSV: x,y,z,distance,nx,ny,nz,cx,cy,cz")->required();
     const CommonOptions& common = *ctx.common;
@@ -61,7 +64,7 @@ void setup(CommandContext& ctx)
             points = read_point_text(a.input);
         }
         auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, {}, progress.get());
+        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         const int64_t n = static_cast<int64_t>(points.size());
         std::vector<float> dist(points.size());
         std::vector<float3> normals(points.size()), closest(points.size());

@@ -1,5 +1,6 @@
 // `groom project`: move curves onto the scalp (ops/project.h).
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
 #include "ops/project.h"
@@ -10,6 +11,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
+    ScalpBuildParams scalp_params;
     std::string input, scalp, output, mode = "root";
     ProjectParams params;
 };
@@ -20,6 +22,7 @@ void setup(CommandContext& ctx)
     CLI::App* app = ctx.app;
     app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = stdin)")->required();
     app->add_option("--scalp", args->scalp, "Scalp: .vdb from `groom scalp`, or a mesh")->required();
+    add_scalp_build_options(app, args->scalp_params);
     app->add_option("-o,--output", args->output, "Output curves")->required();
     app->add_option("--mode", args->mode, "root: move each curve rigidly so its root is on the surface; all: every point onto the surface")
         ->check(CLI::IsMember({"root", "all"}))
@@ -33,7 +36,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
         const CurveSet curves = read_curves(a.input);
         auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, {}, progress.get());
+        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         ProjectStats stats;
         const CurveSet out = project(curves, *scalp, a.params, &stats);
         write_curves(out, a.output);

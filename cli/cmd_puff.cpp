@@ -1,6 +1,7 @@
 // `groom puff`: Izzy's afro puffs (talk, Sec. 3.2): rows x cols guides from a region of the scalp to a
 // perfect sphere, and curls rooted at random in the region that follow them (ops/puff.h).
 #include "cli/command.h"
+#include "cli/scalp_options.h"
 #include "cli/curl_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
@@ -16,7 +17,7 @@ namespace {
 
 struct Args {
     std::string scalp, output, guides_out, center, sphere_center;
-    float voxel_size = 0.0f;
+    ScalpBuildParams scalp_params;
     PuffParams params;
     CurlOptions curl;
 };
@@ -49,7 +50,7 @@ void setup(CommandContext& ctx)
     app->add_option("--neighbours", p.neighbours, "Guides blended per hair, >= 1")->capture_default_str();
     app->add_option("--power", p.power, "Inverse-distance weight exponent of that blend, > 0")->capture_default_str();
     app->add_option("--first-id", p.first_id, "Curve ids start here (guides first, then hairs), >= 0")->capture_default_str();
-    app->add_option("--voxel-size", args->voxel_size, "Voxel size when --scalp is a mesh, scene units (default: automatic)");
+    add_scalp_build_options(app, args->scalp_params);
     add_curl_options(app, args->curl);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
@@ -68,9 +69,7 @@ void setup(CommandContext& ctx)
         }
         const auto start = std::chrono::steady_clock::now();
         const auto progress = make_progress(common);
-        ScalpBuildParams sp;
-        sp.voxel_size = args->voxel_size;
-        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, sp, progress.get());
+        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const PuffResult r = puff(*scalp, scalp_root_sampler(*scalp), params, progress.get());
         // Everything is computed before anything is written.
         if (args->guides_out.empty()) {

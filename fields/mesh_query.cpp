@@ -131,6 +131,14 @@ int32_t MeshGeometry::refine_closest_face(const float3& p, int32_t face) const
             for (int32_t i = vertex_face_offsets[v]; i < vertex_face_offsets[v + 1]; ++i) {
                 const int32_t g = vertex_faces[i];
                 if (g == start) continue;
+                // A face sharing an earlier vertex of `start` was already measured around that vertex.
+                const auto& t = tris[g];
+                bool seen = false;
+                for (int j = 0; j < k; ++j) {
+                    const int32_t u = tris[start][j];
+                    seen |= (t[0] == u) | (t[1] == u) | (t[2] == u);
+                }
+                if (seen) continue;
                 const float d = dist2(g);
                 if (d < best) {
                     best = d;
@@ -187,23 +195,33 @@ struct MeshQuery::Tree {
     AabbTree tree;
 };
 
-MeshQuery::MeshQuery(const MeshGeometry& geometry) : geometry_(geometry), tree_(std::make_unique<Tree>())
+MeshQuery::MeshQuery(const MeshGeometry& geometry) : geometry_(geometry) {}
+
+const MeshQuery::Tree& MeshQuery::tree() const
 {
+    std::call_once(built_, [this] { tree_ = build(geometry_); });
+    return *tree_;
+}
+
+std::unique_ptr<MeshQuery::Tree> MeshQuery::build(const MeshGeometry& geometry)
+{
+    auto out = std::make_unique<Tree>();
     auto P = [&](int32_t v) { return K::Point_3(geometry.points[v].x, geometry.points[v].y, geometry.points[v].z); };
-    tree_->triangles.reserve(geometry.tris.size());
-    for (const auto& t : geometry.tris) tree_->triangles.emplace_back(P(t[0]), P(t[1]), P(t[2]));
-    tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
-    tree_->tree.build();
+    out->triangles.reserve(geometry.tris.size());
+    for (const auto& t : geometry.tris) out->triangles.emplace_back(P(t[0]), P(t[1]), P(t[2]));
+    out->tree.insert(out->triangles.cbegin(), out->triangles.cend());
+    out->tree.build();
     // Builds the internal kd-tree of hints now, so later const queries from many threads never write.
-    tree_->tree.accelerate_distance_queries();
+    out->tree.accelerate_distance_queries();
+    return out;
 }
 
 MeshQuery::~MeshQuery() = default;
 
 float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face) const
 {
-    const auto hit = tree_->tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
-    face = static_cast<int32_t>(hit.second - tree_->triangles.cbegin());
+    const auto hit = tree().tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
+    face = static_cast<int32_t>(hit.second - tree().triangles.cbegin());
     // The AABB tree finds the face; the pseudo-normal of the feature hit gives the sign.
     bool boundary = false;
     const float d = geometry_.signed_distance_to_face(p, face, closest, &boundary);
@@ -220,7 +238,7 @@ bool MeshQuery::inside_by_rays(const float3& p) const
     int votes = 0;
     const K::Point_3 o(p.x, p.y, p.z);
     for (const float3& d : dirs) {
-        const size_t hits = tree_->tree.number_of_intersected_primitives(K::Ray_3(o, K::Vector_3(d.x, d.y, d.z)));
+        const size_t hits = tree().tree.number_of_intersected_primitives(K::Ray_3(o, K::Vector_3(d.x, d.y, d.z)));
         votes += int(hits & 1);
     }
     return votes >= 4;

@@ -14,6 +14,7 @@
 #include <openvdb/tree/LeafManager.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -74,29 +75,42 @@ void ScalpField::Impl::finish_grids(const std::string& what)
     origin = float3(float(o.x()), float(o.y()), float(o.z()));
     band = static_cast<float>(sdf->background() / h);
 
-    // Gradient by central differences where both neighbours are in the band, one-sided at its edge.
-    gradient = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
-    gradient->setTransform(sdf->transform().copy());
-    gradient->tree().topologyUnion(sdf->tree());
-    openvdb::tree::LeafManager<openvdb::Vec3STree> leaves(gradient->tree());
+    static std::atomic<uint64_t> generations{0};
+    generation = ++generations;
+
+    // Distance plus gradient by central differences where both neighbours are in the band,
+    // one-sided at its edge; built leaf by leaf in parallel over the band only.
+    stencil = StencilGrid::create(openvdb::Vec4s(0.0f));
+    stencil->setTransform(sdf->transform().copy());
+    stencil->tree().topologyUnion(sdf->tree());
+    openvdb::tree::LeafManager<StencilTree> leaves(stencil->tree());
     const float inv2h = 0.5f * inv_voxel;
     const openvdb::FloatTree& dist = sdf->tree();
-    leaves.foreach([&](openvdb::Vec3STree::LeafNodeType& leaf, size_t) {
+    leaves.foreach([&](StencilTree::LeafNodeType& leaf, size_t) {
         openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> acc(dist);
+        const openvdb::FloatTree::LeafNodeType* own = acc.probeConstLeaf(leaf.origin());
+        constexpr int kLast = StencilTree::LeafNodeType::DIM - 1;
         for (auto it = leaf.beginValueOn(); it; ++it) {
             const openvdb::Coord c = it.getCoord();
             float v0 = 0.0f;
-            acc.probeValue(c, v0);
-            openvdb::Vec3s g(0.0f);
+            if (own) v0 = own->getValue(it.pos());
+            else acc.probeValue(c, v0);
+            openvdb::Vec4s g(v0, 0.0f, 0.0f, 0.0f);
             for (int axis = 0; axis < 3; ++axis) {
                 openvdb::Coord lo = c, hi = c;
                 lo[axis] -= 1;
                 hi[axis] += 1;
                 float vl = 0.0f, vh = 0.0f;
-                const bool l = acc.probeValue(lo, vl), r = acc.probeValue(hi, vh);
-                if (l && r) g[axis] = (vh - vl) * inv2h;
-                else if (r) g[axis] = (vh - v0) * 2.0f * inv2h;
-                else if (l) g[axis] = (v0 - vl) * 2.0f * inv2h;
+                bool l, r;
+                const int local = c[axis] & kLast;
+                // Neighbours inside this leaf are read from its buffer; only the leaf's faces probe the tree.
+                if (own && local > 0) l = own->probeValue(lo, vl);
+                else l = acc.probeValue(lo, vl);
+                if (own && local < kLast) r = own->probeValue(hi, vh);
+                else r = acc.probeValue(hi, vh);
+                if (l && r) g[axis + 1] = (vh - vl) * inv2h;
+                else if (r) g[axis + 1] = (vh - v0) * 2.0f * inv2h;
+                else if (l) g[axis + 1] = (v0 - vl) * 2.0f * inv2h;
             }
             it.setValue(g);
         }

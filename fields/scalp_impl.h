@@ -70,8 +70,13 @@ public:
 
 private:
     struct Tree;
+    /// The tree, built on first use (thread-safe): `groom scalp` signs almost every voxel from
+    /// meshToVolume's polygon index and rarely needs it, so building it up front cost every conversion.
+    const Tree& tree() const;
+    static std::unique_ptr<Tree> build(const MeshGeometry& geometry);
     const MeshGeometry& geometry_;
-    std::unique_ptr<Tree> tree_;
+    mutable std::once_flag built_;
+    mutable std::unique_ptr<Tree> tree_;
 };
 
 /// Repairs a soup into an oriented, manifold triangle mesh (fields/mesh_repair.cpp).
@@ -89,8 +94,14 @@ void validate_soup(const PolygonSoup& soup, const std::string& what);
 }  // namespace detail
 
 struct ScalpField::Impl {
+    /// Distance and gradient side by side per voxel (d, dx, dy, dz): one leaf lookup and one
+    /// contiguous read per trilinear corner, where two grids cost two lookups and two cache misses.
+    using StencilTree = openvdb::tree::Tree4<openvdb::Vec4s, 5, 4, 3>::Type;
+    using StencilGrid = openvdb::Grid<StencilTree>;
+
     openvdb::FloatGrid::Ptr sdf;         ///< "scalp": signed distance, GRID_LEVEL_SET
-    openvdb::Vec3SGrid::Ptr gradient;    ///< central differences of sdf on the same active voxels
+    StencilGrid::Ptr stencil;            ///< sdf and its central differences on the same active voxels
+    uint64_t generation = 0;             ///< unique per finish_grids(): keys the per-thread accessor cache
     float voxel = 0.0f, inv_voxel = 0.0f;
     float3 origin;                       ///< world position of index (0,0,0)
     float band = 3.0f;                   ///< half width in voxels
@@ -98,21 +109,15 @@ struct ScalpField::Impl {
     std::unique_ptr<detail::MeshQuery> query;
     bool mesh_exact = true;              ///< false when the mesh was extracted from a loaded .vdb
 
-    /// Per-query accessors: unregistered (cheap to make, never shared between threads) and reused
-    /// across the Newton steps of one query so their leaf caches stay warm.
-    struct Accessors {
-        openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> dist;
-        openvdb::tree::ValueAccessor<const openvdb::Vec3STree, false> grad;
-        explicit Accessors(const Impl& im) : dist(im.sdf->tree()), grad(im.gradient->tree()) {}
-    };
+    using Accessor = openvdb::tree::ValueAccessor<const StencilTree, false>;
+    /// This thread's accessor for this field's stencil grid, kept across queries (its node caches
+    /// stay warm from one query to the next). Unregistered, so never shared between threads; keyed by
+    /// `generation`, which no other field (nor a later grid of this one) ever reuses.
+    Accessor& accessor() const;
     /// Trilinear distance and gradient at p when all 8 surrounding voxels are in the band.
-    bool sample(const float3& p, float& d, float3& grad) const
-    {
-        Accessors acc(*this);
-        return sample(acc, p, d, grad);
-    }
-    bool sample(Accessors& acc, const float3& p, float& d, float3& grad) const;
-    /// Fills `gradient` from `sdf`, and the world <-> index mapping. Throws for unsupported transforms.
+    bool sample(const float3& p, float& d, float3& grad) const { return sample(accessor(), p, d, grad); }
+    bool sample(Accessor& acc, const float3& p, float& d, float3& grad) const;
+    /// Fills `stencil` from `sdf`, and the world <-> index mapping. Throws for unsupported transforms.
     void finish_grids(const std::string& what);
 };
 

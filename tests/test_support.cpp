@@ -1,6 +1,8 @@
 #include "test_support.h"
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,7 +55,7 @@ void write_text(const std::string& path, const std::string& text)
     std::ofstream(path, std::ios::binary) << text;
 }
 
-RunResult run_groom(const std::vector<std::string>& args, const std::string& stdin_text)
+RunResult run_groom(const std::vector<std::string>& args, const std::string& stdin_text, uint64_t file_size_limit)
 {
     TempDir dir;
     const std::string in = dir.file("stdin"), out = dir.file("stdout"), err = dir.file("stderr");
@@ -65,6 +67,12 @@ RunResult run_groom(const std::vector<std::string>& args, const std::string& std
         ::dup2(fi, 0);
         ::dup2(fo, 1);
         ::dup2(fe, 2);
+        if (file_size_limit > 0) {
+            // The limit applies to our capture files too: they are opened already, and stay small.
+            ::signal(SIGXFSZ, SIG_IGN);
+            const rlimit rl{rlim_t(file_size_limit), rlim_t(file_size_limit)};
+            ::setrlimit(RLIMIT_FSIZE, &rl);
+        }
         std::vector<std::string> all{GROOM_BINARY};
         all.insert(all.end(), args.begin(), args.end());
         std::vector<char*> argv;

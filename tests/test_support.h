@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -33,8 +34,10 @@ struct RunResult {
     std::string out, err;
 };
 
-/// Runs the groom executable with `args` (no shell), capturing stdout and stderr.
-RunResult run_groom(const std::vector<std::string>& args, const std::string& stdin_text = {});
+/// Runs the groom executable with `args` (no shell), capturing stdout and stderr. A non-zero
+/// `file_size_limit` (bytes) caps every file it writes (RLIMIT_FSIZE, SIGXFSZ ignored), so a write
+/// past it fails part-way exactly as on a full disk.
+RunResult run_groom(const std::vector<std::string>& args, const std::string& stdin_text = {}, uint64_t file_size_limit = 0);
 
 /// Whole file as bytes (empty if missing).
 std::string read_bytes(const std::string& path);

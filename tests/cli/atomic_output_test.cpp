@@ -10,11 +10,6 @@
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <filesystem>
 
@@ -36,36 +31,6 @@ std::string write_guides(const test::TempDir& dir, const std::string& name = "gu
     const std::string path = dir.file(name);
     write_curves(cs, path);
     return path;
-}
-
-/// Runs groom with a maximum file size of `limit` bytes for files it writes (SIGXFSZ ignored, so the
-/// write fails with EFBIG instead of killing the process). Returns the exit code.
-int run_groom_with_file_limit(const std::vector<std::string>& args, rlim_t limit, std::string& err)
-{
-    test::TempDir tmp;
-    const std::string err_path = tmp.file("stderr");
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        const int fe = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        ::dup2(fe, 2);
-        const int null_fd = ::open("/dev/null", O_RDWR);
-        ::dup2(null_fd, 0);
-        ::dup2(null_fd, 1);
-        ::signal(SIGXFSZ, SIG_IGN);
-        const rlimit rl{limit, limit};
-        ::setrlimit(RLIMIT_FSIZE, &rl);
-        std::vector<std::string> all{GROOM_BINARY};
-        all.insert(all.end(), args.begin(), args.end());
-        std::vector<char*> argv;
-        for (auto& a : all) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        ::execv(argv[0], argv.data());
-        ::_exit(127);
-    }
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    err = test::read_bytes(err_path);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 /// Files in `dir` whose name contains ".tmp" (AtomicOutput's and write_scalp's temporaries).
@@ -141,10 +106,9 @@ TEST(AtomicOutput, AFailedWriteLeavesThePreviousOutputUntouched)
         ASSERT_GT(full_size, 2 * kPrevious.size()) << c.command;
 
         test::write_text(out, kPrevious);
-        std::string err;
-        const int code = run_groom_with_file_limit(expand(c, guides, out), full_size / 2, err);
-        EXPECT_EQ(code, 1) << c.command << ": " << err;
-        EXPECT_NE(err.find("groom: error:"), std::string::npos) << c.command << ": " << err;
+        const auto failed = run_groom(expand(c, guides, out), {}, full_size / 2);
+        EXPECT_EQ(failed.exit_code, 1) << c.command << ": " << failed.err;
+        EXPECT_NE(failed.err.find("groom: error:"), std::string::npos) << c.command << ": " << failed.err;
         EXPECT_TRUE(test::read_bytes(out) == kPrevious) << c.command << ": the previous output was changed by a failed write";
         EXPECT_TRUE(temporaries(dir).empty()) << c.command << " left " << temporaries(dir).front();
     }

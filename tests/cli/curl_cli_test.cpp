@@ -144,7 +144,8 @@ TEST(CurlCli, NoCurledPointInsideTheScalpMesh)
     const std::vector<std::string> common = {"--amplitude", "0.6", "--frequency", "0.5", "--root-ramp", "0"};
     auto min_radius = [&](const std::string& out) {
         float m = INFINITY;
-        for (const float3& p : read_curves(out).positions()) m = std::min(m, length(p - centre));
+        const CurveSet curled = read_curves(out);  // named: a range-for over a temporary's span would dangle
+        for (const float3& p : curled.positions()) m = std::min(m, length(p - centre));
         return m;
     };
     std::vector<std::string> args = {"curl", guides, "-o", dir.file("free.usda")};

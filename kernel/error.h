@@ -2,6 +2,7 @@
 // parameter name) and what was expected versus what was found. Only cli/ catches them.
 #pragma once
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -43,5 +44,14 @@ class LimitExceeded : public Error {
 public:
     using Error::Error;
 };
+
+/// A number as error messages show it: "%g", so 1.5 reads "1.5" and 1e-7 stays "1e-07" (a fixed
+/// six-decimal format would print a tiny bad value as "0").
+inline std::string format_number(double v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
 
 }  // namespace groom

@@ -17,15 +17,7 @@ namespace groom {
 
 namespace {
 
-std::string fmt(double v)
-{
-    std::string s = std::to_string(v);
-    if (s.find('.') != std::string::npos) {
-        s.erase(s.find_last_not_of('0') + 1);
-        if (s.back() == '.') s.pop_back();
-    }
-    return s;
-}
+std::string fmt(double v) { return format_number(v); }
 
 void require_finite_at_least(const char* option, float value, float lo)
 {

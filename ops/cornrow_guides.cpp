@@ -15,12 +15,7 @@ namespace {
 
 constexpr float kDeg = 3.14159265358979f / 180.0f;
 
-std::string fmt(float v)
-{
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+std::string fmt(float v) { return format_number(v); }
 
 void require(bool ok, const std::string& what)
 {

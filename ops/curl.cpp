@@ -25,12 +25,7 @@ constexpr uint64_t kStreamOffset = 0x6375726c04;  // per cycle: offset radius an
 
 constexpr int64_t kMaxPoints = int64_t(1) << 31;
 
-std::string num(double v)
-{
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+std::string num(double v) { return format_number(v); }
 
 std::string range_text(const FloatRange& r) { return num(r.lo) + "," + num(r.hi); }
 

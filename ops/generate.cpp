@@ -21,12 +21,7 @@ namespace groom {
 
 namespace {
 
-std::string str(float v)
-{
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", double(v));
-    return buf;
-}
+std::string str(float v) { return format_number(v); }
 
 // Guide roots in a CGAL kd-tree; queries are const and safe from many threads once built.
 class GuideIndex {

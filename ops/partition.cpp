@@ -15,16 +15,7 @@ namespace groom {
 
 namespace {
 
-std::string num(float v)
-{
-    std::string s = std::to_string(v);
-    // to_string prints 6 decimals; trim the trailing zeros so messages read "1.5", not "1.500000".
-    if (s.find('.') != std::string::npos) {
-        s.erase(s.find_last_not_of('0') + 1);
-        if (s.back() == '.') s.pop_back();
-    }
-    return s;
-}
+std::string num(float v) { return format_number(v); }
 
 void require(bool ok, const std::string& message)
 {

@@ -16,13 +16,7 @@ namespace {
 /// Rng stream for the disc offsets; a distinct constant per purpose (kernel/rng.h).
 constexpr uint64_t kStreamFiberDisc = 0x706f70756c617465ull;  // "populate"
 
-std::string fmt(float v)
-{
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    return s;
-}
+std::string fmt(float v) { return format_number(v); }
 }  // namespace
 
 void PopulateParams::validate() const

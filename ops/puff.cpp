@@ -19,12 +19,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string str(float v)
-{
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", double(v));
-    return buf;
-}
+std::string str(float v) { return format_number(v); }
 
 std::string str(const float3& v) { return str(v.x) + "," + str(v.y) + "," + str(v.z); }
 

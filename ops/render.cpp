@@ -19,12 +19,7 @@ constexpr int kTile = 32;                       // tile side in samples: a few K
 constexpr int kMaxSide = 16384;                 // pixels per side of one view
 constexpr int64_t kMaxSamples = int64_t(1) << 27;  // 128 M samples = 1 GiB of colour + depth
 
-std::string fmt(float v)
-{
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+std::string fmt(float v) { return format_number(v); }
 
 bool finite3(const float3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 

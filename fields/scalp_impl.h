@@ -88,6 +88,10 @@ struct RepairOptions {
 };
 TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, RepairReport& report, Progress* progress);
 
+/// True when the polygons are triangles forming an oriented manifold (each directed edge used at
+/// most once, one fan of faces around every vertex): what polygon_soup_to_polygon_mesh needs.
+bool is_oriented_manifold(const std::vector<std::vector<size_t>>& tris, size_t num_points);
+
 /// Throws unless every coordinate is finite and every index in range.
 void validate_soup(const PolygonSoup& soup, const std::string& what);
 

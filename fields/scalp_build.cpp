@@ -59,7 +59,7 @@ void ScalpBuildParams::validate() const
     if (memory_budget == 0) throw InvalidParam("scalp: memory budget must be > 0 bytes");
 }
 
-void ScalpField::Impl::finish_grids(const std::string& what)
+void ScalpField::Impl::set_transform(const std::string& what)
 {
     const openvdb::math::Transform& xf = sdf->transform();
     const openvdb::Vec3d o = xf.indexToWorld(openvdb::Vec3d(0, 0, 0));
@@ -73,48 +73,58 @@ void ScalpField::Impl::finish_grids(const std::string& what)
     voxel = static_cast<float>(h);
     inv_voxel = static_cast<float>(1.0 / h);
     origin = float3(float(o.x()), float(o.y()), float(o.z()));
-    band = static_cast<float>(sdf->background() / h);
+    band_voxels = static_cast<float>(sdf->background() / h);
+}
 
-    static std::atomic<uint64_t> generations{0};
-    generation = ++generations;
+namespace {
 
-    // Distance plus gradient by central differences where both neighbours are in the band,
-    // one-sided at its edge; built leaf by leaf in parallel over the band only.
-    stencil = StencilGrid::create(openvdb::Vec4s(0.0f));
-    stencil->setTransform(sdf->transform().copy());
-    stencil->tree().topologyUnion(sdf->tree());
-    openvdb::tree::LeafManager<StencilTree> leaves(stencil->tree());
+/// One brick per leaf, in the manager's order (brick i is leaf i).
+template <class Manager>
+void allocate_bricks(detail::BrickMap& band, const Manager& leaves)
+{
+    std::vector<openvdb::Coord> origins(leaves.leafCount());
+    for (size_t i = 0; i < origins.size(); ++i) origins[i] = leaves.leaf(i).origin();
+    band.allocate(origins);
+}
+
+}  // namespace
+
+void ScalpField::Impl::fill_band_from_sdf()
+{
+    // Gradient by central differences where both neighbours are in the band, one-sided at its edge,
+    // made unit where it is a distance gradient (|g| near 1); a smaller one (a sign seam, a thin
+    // sheet) is kept as it is, so queries see its length and fall back to the mesh.
     const float inv2h = 0.5f * inv_voxel;
-    const openvdb::FloatTree& dist = sdf->tree();
-    leaves.foreach([&](StencilTree::LeafNodeType& leaf, size_t) {
-        openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> acc(dist);
-        const openvdb::FloatTree::LeafNodeType* own = acc.probeConstLeaf(leaf.origin());
-        constexpr int kLast = StencilTree::LeafNodeType::DIM - 1;
-        for (auto it = leaf.beginValueOn(); it; ++it) {
+    openvdb::tree::LeafManager<const openvdb::FloatTree> leaves(sdf->tree());
+    allocate_bricks(band, leaves);
+    leaves.foreach([&](const openvdb::FloatTree::LeafNodeType& leaf, size_t i) {
+        openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> acc(sdf->tree());
+        constexpr int kLast = openvdb::FloatTree::LeafNodeType::DIM - 1;
+        detail::BandValue* brick = band.brick(i);
+        for (auto it = leaf.cbeginValueOn(); it; ++it) {
             const openvdb::Coord c = it.getCoord();
-            float v0 = 0.0f;
-            if (own) v0 = own->getValue(it.pos());
-            else acc.probeValue(c, v0);
-            openvdb::Vec4s g(v0, 0.0f, 0.0f, 0.0f);
+            const float v0 = *it;
+            float g[3] = {0.0f, 0.0f, 0.0f};
             for (int axis = 0; axis < 3; ++axis) {
                 openvdb::Coord lo = c, hi = c;
                 lo[axis] -= 1;
                 hi[axis] += 1;
                 float vl = 0.0f, vh = 0.0f;
-                bool l, r;
                 const int local = c[axis] & kLast;
                 // Neighbours inside this leaf are read from its buffer; only the leaf's faces probe the tree.
-                if (own && local > 0) l = own->probeValue(lo, vl);
-                else l = acc.probeValue(lo, vl);
-                if (own && local < kLast) r = own->probeValue(hi, vh);
-                else r = acc.probeValue(hi, vh);
-                if (l && r) g[axis + 1] = (vh - vl) * inv2h;
-                else if (r) g[axis + 1] = (vh - v0) * 2.0f * inv2h;
-                else if (l) g[axis + 1] = (v0 - vl) * 2.0f * inv2h;
+                const bool l = local > 0 ? leaf.probeValue(lo, vl) : acc.probeValue(lo, vl);
+                const bool r = local < kLast ? leaf.probeValue(hi, vh) : acc.probeValue(hi, vh);
+                if (l && r) g[axis] = (vh - vl) * inv2h;
+                else if (r) g[axis] = (vh - v0) * 2.0f * inv2h;
+                else if (l) g[axis] = (v0 - vl) * 2.0f * inv2h;
             }
-            it.setValue(g);
+            float3 n(g[0], g[1], g[2]);
+            if (length_squared(n) > 0.25f) n = normalize(n);
+            const openvdb::Coord l = c - leaf.origin();
+            brick[detail::BrickMap::index(l.x(), l.y(), l.z())] = detail::BandValue{v0, n.x, n.y, n.z};
         }
     });
+    band.fill_borders();
 }
 
 ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, RepairReport* report_out, Progress* progress)
@@ -200,7 +210,12 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     sdf->insertMeta("creator", openvdb::StringMetadata("groom scalp " GROOM_VERSION));
     sdf->insertMeta("groom_band_voxels", openvdb::FloatMetadata(float(band)));
     im.sdf = sdf;
-    im.finish_grids("scalp");
+    im.set_transform("scalp");
+    // The band's gradients come from the distances alone, exactly as when this grid is read back
+    // from its .vdb: a scalp answers the same whether given as a mesh or as the file made from it.
+    // (Exact gradients from the closest points measured 0.057 against 0.067 voxels mean projection
+    // error on nefertiti, not worth two answers for one scalp.)
+    im.fill_band_from_sdf();
     im.mesh_exact = true;
     step.advance(1);
     return field;
@@ -276,7 +291,8 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     ScalpField field;
     ScalpField::Impl& im = field.impl();
     im.sdf = sdf;
-    im.finish_grids(path);
+    im.set_transform(path);
+    im.fill_band_from_sdf();
     step.advance(1);
 
     // The mesh for far queries and sampling: the zero crossing, each face turned to agree with the

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 namespace groom {
 
@@ -17,79 +16,17 @@ ScalpField::~ScalpField() = default;
 ScalpField::ScalpField(ScalpField&&) noexcept = default;
 ScalpField& ScalpField::operator=(ScalpField&&) noexcept = default;
 
-ScalpField::Impl::Accessor& ScalpField::Impl::accessor() const
-{
-    struct Cached {
-        uint64_t generation = 0;
-        std::optional<Accessor> acc;
-    };
-    thread_local Cached cached;
-    if (cached.generation != generation || !cached.acc) {
-        // An unregistered accessor's destructor never touches its tree, so dropping one whose grid is
-        // gone is safe.
-        cached.acc.emplace(stencil->tree());
-        cached.generation = generation;
-    }
-    return *cached.acc;
-}
-
-bool ScalpField::Impl::sample(Accessor& acc, const float3& p, float& d, float3& grad) const
-{
-    const float x = (p.x - origin.x) * inv_voxel, y = (p.y - origin.y) * inv_voxel, z = (p.z - origin.z) * inv_voxel;
-    if (!(std::fabs(x) < 1e9f && std::fabs(y) < 1e9f && std::fabs(z) < 1e9f)) return false;  // also rejects NaN
-    const float fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
-    const float tx = x - fx, ty = y - fy, tz = z - fz;
-    const openvdb::Coord c0{int(fx), int(fy), int(fz)};
-    openvdb::Vec4s v[8];
-    using Leaf = StencilTree::LeafNodeType;
-    constexpr int kLast = Leaf::DIM - 1;
-    const int lx = c0.x() & kLast, ly = c0.y() & kLast, lz = c0.z() & kLast;
-    // The 8 corners lie in 1 leaf (the common case) or straddle up to 8: each leaf is looked up once
-    // and its buffer read directly (per-corner tree lookups cost twice as much as the whole read).
-    const int sx = lx == kLast, sy = ly == kLast, sz = lz == kLast;
-    const Leaf* leaves[8] = {};
-    for (int n = 0; n < 8; ++n) {
-        const int bx = (n & 1) & sx, by = ((n >> 1) & 1) & sy, bz = ((n >> 2) & 1) & sz;
-        const int key = bx | (by << 1) | (bz << 2);
-        const openvdb::Coord c(c0.x() + (n & 1), c0.y() + ((n >> 1) & 1), c0.z() + ((n >> 2) & 1));
-        if (!leaves[key]) {
-            leaves[key] = acc.probeConstLeaf(c);
-            if (!leaves[key]) return false;  // no leaf: outside the band (level sets have no active tiles)
-        }
-        const openvdb::Index o = Leaf::coordToOffset(c);
-        if (!leaves[key]->isValueOn(o)) return false;
-        v[n] = leaves[key]->getValue(o);
-    }
-    const float wx[2] = {1.0f - tx, tx}, wy[2] = {1.0f - ty, ty}, wz[2] = {1.0f - tz, tz};
-    openvdb::Vec4s sum(0.0f);
-    for (int n = 0; n < 8; ++n) sum += v[n] * (wx[n & 1] * wy[(n >> 1) & 1] * wz[(n >> 2) & 1]);
-    d = sum[0];
-    grad = float3(sum[1], sum[2], sum[3]);
-    return true;
-}
-
 float ScalpField::query(const float3& p, float3& n, float3& closest) const
 {
     const Impl& im = *impl_;
-    Impl::Accessor& acc = im.accessor();
     float d = 0.0f;
     float3 g;
-    if (im.sample(acc, p, d, g) && length_squared(g) > 0.25f) {
+    if (im.sample(p, d, g) && length_squared(g) > 0.25f) {
+        // One step along the interpolated unit normal. A Newton step from there (the previous
+        // scheme took up to two) made nefertiti's projection no better (mean 0.069 against 0.067 voxels, max 2.3
+        // against 1.8) and cost 45% more time: the residual is the field's own error, not the step's.
         n = normalize(g);
-        // Projection along the normal, then Newton steps on the zero crossing: each removes the
-        // remaining distance along the local normal (quadratic convergence for a smooth field).
-        // A step whose correction is already below kConverged voxels leaves a residual of order
-        // its square over the radius of curvature: no further sample is taken after it.
-        constexpr float kConverged = 0.05f;
-        float3 q = p - n * d;
-        for (int it = 0; it < 2; ++it) {
-            float dq = 0.0f;
-            float3 gq;
-            if (!im.sample(acc, q, dq, gq) || length_squared(gq) <= 0.25f) break;
-            q -= normalize(gq) * dq;
-            if (std::fabs(dq) < kConverged * im.voxel) break;
-        }
-        closest = q;
+        closest = p - n * d;
         return d;
     }
     int32_t face = -1;
@@ -128,7 +65,7 @@ float3 ScalpField::closest_point(const float3& p) const
 }
 
 float ScalpField::voxel_size() const { return impl_->voxel; }
-float ScalpField::band_voxels() const { return impl_->band; }
+float ScalpField::band_voxels() const { return impl_->band_voxels; }
 bool ScalpField::has_source_mesh() const { return impl_->mesh_exact; }
 int64_t ScalpField::num_faces() const { return static_cast<int64_t>(impl_->geometry.tris.size()); }
 

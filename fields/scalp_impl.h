@@ -2,6 +2,7 @@
 // OpenVDB, OpenMesh and CGAL: never include this outside fields/.
 #pragma once
 
+#include "fields/brick_map.h"
 #include "fields/mesh_repair.h"
 #include "fields/scalp_field.h"
 
@@ -11,6 +12,7 @@
 #include <array>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 namespace groom {
@@ -98,31 +100,28 @@ void validate_soup(const PolygonSoup& soup, const std::string& what);
 }  // namespace detail
 
 struct ScalpField::Impl {
-    /// Distance and gradient side by side per voxel (d, dx, dy, dz): one leaf lookup and one
-    /// contiguous read per trilinear corner, where two grids cost two lookups and two cache misses.
-    using StencilTree = openvdb::tree::Tree4<openvdb::Vec4s, 5, 4, 3>::Type;
-    using StencilGrid = openvdb::Grid<StencilTree>;
-
     openvdb::FloatGrid::Ptr sdf;         ///< "scalp": signed distance, GRID_LEVEL_SET
-    StencilGrid::Ptr stencil;            ///< sdf and its central differences on the same active voxels
-    uint64_t generation = 0;             ///< unique per finish_grids(): keys the per-thread accessor cache
+    detail::BrickMap band;               ///< sdf and its unit gradient, laid out for queries
     float voxel = 0.0f, inv_voxel = 0.0f;
     float3 origin;                       ///< world position of index (0,0,0)
-    float band = 3.0f;                   ///< half width in voxels
+    float band_voxels = 3.0f;            ///< half width in voxels
     detail::MeshGeometry geometry;
     std::unique_ptr<detail::MeshQuery> query;
     bool mesh_exact = true;              ///< false when the mesh was extracted from a loaded .vdb
 
-    using Accessor = openvdb::tree::ValueAccessor<const StencilTree, false>;
-    /// This thread's accessor for this field's stencil grid, kept across queries (its node caches
-    /// stay warm from one query to the next). Unregistered, so never shared between threads; keyed by
-    /// `generation`, which no other field (nor a later grid of this one) ever reuses.
-    Accessor& accessor() const;
     /// Trilinear distance and gradient at p when all 8 surrounding voxels are in the band.
-    bool sample(const float3& p, float& d, float3& grad) const { return sample(accessor(), p, d, grad); }
-    bool sample(Accessor& acc, const float3& p, float& d, float3& grad) const;
-    /// Fills `stencil` from `sdf`, and the world <-> index mapping. Throws for unsupported transforms.
-    void finish_grids(const std::string& what);
+    bool sample(const float3& p, float& d, float3& grad) const
+    {
+        detail::BandValue v;
+        if (!band.sample((p.x - origin.x) * inv_voxel, (p.y - origin.y) * inv_voxel, (p.z - origin.z) * inv_voxel, v)) return false;
+        d = v.d;
+        grad = float3(v.nx, v.ny, v.nz);
+        return true;
+    }
+    /// The world <-> index mapping from `sdf`'s transform. Throws for unsupported transforms.
+    void set_transform(const std::string& what);
+    /// Fills `band` from `sdf` alone (a loaded .vdb): gradients by central differences.
+    void fill_band_from_sdf();
 };
 
 }  // namespace groom

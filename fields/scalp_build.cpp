@@ -89,18 +89,18 @@ void allocate_bricks(detail::BrickMap& band, const Manager& leaves)
 
 }  // namespace
 
-void ScalpField::Impl::fill_band_from_sdf()
+void ScalpField::Impl::fill_band_from_sdf() const
 {
     // Gradient by central differences where both neighbours are in the band, one-sided at its edge,
     // made unit where it is a distance gradient (|g| near 1); a smaller one (a sign seam, a thin
     // sheet) is kept as it is, so queries see its length and fall back to the mesh.
     const float inv2h = 0.5f * inv_voxel;
     openvdb::tree::LeafManager<const openvdb::FloatTree> leaves(sdf->tree());
-    allocate_bricks(band, leaves);
+    allocate_bricks(band_, leaves);
     leaves.foreach([&](const openvdb::FloatTree::LeafNodeType& leaf, size_t i) {
         openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> acc(sdf->tree());
         constexpr int kLast = openvdb::FloatTree::LeafNodeType::DIM - 1;
-        detail::BandValue* brick = band.brick(i);
+        detail::BandValue* brick = band_.brick(i);
         for (auto it = leaf.cbeginValueOn(); it; ++it) {
             const openvdb::Coord c = it.getCoord();
             const float v0 = *it;
@@ -124,7 +124,7 @@ void ScalpField::Impl::fill_band_from_sdf()
             brick[detail::BrickMap::index(l.x(), l.y(), l.z())] = detail::BandValue{v0, n.x, n.y, n.z};
         }
     });
-    band.fill_borders();
+    band_.fill_borders();
 }
 
 ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, RepairReport* report_out, Progress* progress)
@@ -211,11 +211,10 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     sdf->insertMeta("groom_band_voxels", openvdb::FloatMetadata(float(band)));
     im.sdf = sdf;
     im.set_transform("scalp");
-    // The band's gradients come from the distances alone, exactly as when this grid is read back
-    // from its .vdb: a scalp answers the same whether given as a mesh or as the file made from it.
-    // (Exact gradients from the closest points measured 0.057 against 0.067 voxels mean projection
-    // error on nefertiti, not worth two answers for one scalp.)
-    im.fill_band_from_sdf();
+    // The band's gradients (built on the first query) come from the distances alone, exactly as when
+    // this grid is read back from its .vdb: a scalp answers the same whether given as a mesh or as
+    // the file made from it. (Exact gradients from the closest points measured 0.057 against 0.067
+    // voxels mean projection error on nefertiti, not worth two answers for one scalp.)
     im.mesh_exact = true;
     step.advance(1);
     return field;
@@ -292,7 +291,6 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     ScalpField::Impl& im = field.impl();
     im.sdf = sdf;
     im.set_transform(path);
-    im.fill_band_from_sdf();
     step.advance(1);
 
     // The mesh for far queries and sampling: the zero crossing, each face turned to agree with the

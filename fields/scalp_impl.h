@@ -101,7 +101,6 @@ void validate_soup(const PolygonSoup& soup, const std::string& what);
 
 struct ScalpField::Impl {
     openvdb::FloatGrid::Ptr sdf;         ///< "scalp": signed distance, GRID_LEVEL_SET
-    detail::BrickMap band;               ///< sdf and its unit gradient, laid out for queries
     float voxel = 0.0f, inv_voxel = 0.0f;
     float3 origin;                       ///< world position of index (0,0,0)
     float band_voxels = 3.0f;            ///< half width in voxels
@@ -113,15 +112,27 @@ struct ScalpField::Impl {
     bool sample(const float3& p, float& d, float3& grad) const
     {
         detail::BandValue v;
-        if (!band.sample((p.x - origin.x) * inv_voxel, (p.y - origin.y) * inv_voxel, (p.z - origin.z) * inv_voxel, v)) return false;
+        if (!band().sample((p.x - origin.x) * inv_voxel, (p.y - origin.y) * inv_voxel, (p.z - origin.z) * inv_voxel, v)) return false;
         d = v.d;
         grad = float3(v.nx, v.ny, v.nz);
         return true;
     }
     /// The world <-> index mapping from `sdf`'s transform. Throws for unsupported transforms.
     void set_transform(const std::string& what);
-    /// Fills `band` from `sdf` alone (a loaded .vdb): gradients by central differences.
-    void fill_band_from_sdf();
+    /// The distance and its unit gradient, laid out for queries; built from `sdf` on first use
+    /// (thread-safe): `groom scalp` only writes the grid and never pays for it.
+    const detail::BrickMap& band() const
+    {
+        std::call_once(band_built_, [this] { fill_band_from_sdf(); });
+        return band_;
+    }
+
+private:
+    /// Fills `band_` from `sdf` alone, gradients by central differences: the same whether the grid
+    /// was just built or read from a .vdb.
+    void fill_band_from_sdf() const;
+    mutable std::once_flag band_built_;
+    mutable detail::BrickMap band_;
 };
 
 }  // namespace groom

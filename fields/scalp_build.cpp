@@ -187,6 +187,12 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     const detail::MeshQuery& query = *im.query;
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(sdf->tree());
     const openvdb::Int32Tree& index_tree = index_grid.tree();
+    // meshToVolume measures every voxel within sqrt(3)/2 voxels of a triangle against that triangle
+    // (its voxelizer floods out from the triangle to exactly that distance), so where the distance it
+    // found is below that, its polygon is the closest: the walk is needed only farther out, where
+    // the band was grown from neighbours' polygons. (Skipping it there changed no sign and no
+    // distance by more than float rounding on nefertiti and Lee Perry-Smith; 20% of the pass.)
+    const float exact_within = 0.85f * float(h);
     leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, size_t) {
         openvdb::tree::ValueAccessor<const openvdb::Int32Tree, false> idx(index_tree);
         for (auto it = leaf.beginValueOn(); it; ++it) {
@@ -194,7 +200,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
             int32_t f = idx.getValue(c);
             if (f < 0 || size_t(f) >= geo.tris.size()) continue;
             const float3 p(float(c.x() * h), float(c.y() * h), float(c.z() * h));
-            f = geo.refine_closest_face(p, f);
+            if (!(std::fabs(*it) < exact_within)) f = geo.refine_closest_face(p, f);
             float3 closest;
             bool boundary = false;
             const float d = geo.signed_distance_to_face(p, f, closest, &boundary);

@@ -98,20 +98,15 @@ void MeshGeometry::compute(const TriMesh& mesh)
     boundary_vertex.assign(nv, 0);
     for (size_t v = 0; v < nv; ++v) boundary_vertex[v] = mesh.is_boundary(TriMesh::VertexHandle{int(v)});
     // Edge pseudo-normals: the sum of the two faces' normals (one face on a boundary edge).
+    // Walked along each face's own halfedges (find_halfedge per edge searched vertex rings).
     for (size_t f = 0; f < nf; ++f) {
-        for (int k = 0; k < 3; ++k) {
-            const auto vh = TriMesh::VertexHandle(tris[f][k]), wh = TriMesh::VertexHandle(tris[f][(k + 1) % 3]);
-            const auto he = mesh.find_halfedge(vh, wh);
+        for (const auto he : mesh.fh_range(TriMesh::FaceHandle{int(f)})) {
+            const int32_t from = mesh.from_vertex_handle(he).idx();
+            const int k = from == tris[f][0] ? 0 : from == tris[f][1] ? 1 : 2;
+            const auto opp = mesh.opposite_face_handle(he);
             float3 n = face_normals[f];
-            bool boundary = true;
-            if (he.is_valid()) {
-                const auto opp = mesh.opposite_face_handle(he);
-                if (opp.is_valid()) {
-                    n += face_normals[opp.idx()];
-                    boundary = false;
-                }
-            }
-            boundary_edge[f * 3 + k] = boundary;
+            if (opp.is_valid()) n += face_normals[opp.idx()];
+            boundary_edge[f * 3 + k] = !opp.is_valid();
             edge_normals[f * 3 + k] = normalize(n, face_normals[f]);
         }
     }

@@ -20,7 +20,6 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 
 namespace groom {
 
@@ -357,13 +356,14 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         uf.unite(t[0], t[1]);
         uf.unite(t[0], t[2]);
     }
-    std::unordered_map<size_t, int32_t> shell_of_root;
+    std::vector<int32_t> shell_of_root(pts.size(), -1);
     std::vector<int32_t> shell(tris.size());
+    size_t nshells = 0;
     for (size_t t = 0; t < tris.size(); ++t) {
-        auto [it, added] = shell_of_root.try_emplace(uf.find(tris[t][0]), int32_t(shell_of_root.size()));
-        shell[t] = it->second;
+        int32_t& id = shell_of_root[uf.find(tris[t][0])];
+        if (id < 0) id = int32_t(nshells++);
+        shell[t] = id;
     }
-    const size_t nshells = shell_of_root.size();
     report.shells = static_cast<int64_t>(nshells);
     struct Shell {
         double area = 0, volume = 0, scale = 0;
@@ -392,21 +392,29 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         for (size_t v : tris[t]) s.scale = std::max(s.scale, std::sqrt(CGAL::squared_distance(pts[v], c)));
     }
     {
-        // Boundary edges: undirected edges used by exactly one triangle.
-        std::unordered_map<uint64_t, int> uses;
-        uses.reserve(tris.size() * 3);
-        for (const Polygon& t : tris) {
-            for (int k = 0; k < 3; ++k) {
-                const uint64_t a = t[k], b = t[(k + 1) % 3];
-                ++uses[std::min(a, b) << 32 | std::max(a, b)];
-            }
+        // Boundary edges: edges used by one triangle. The soup is an oriented manifold by now (each
+        // directed edge at most once), so that is a directed edge a -> b without b -> a, found in
+        // b's short list of outgoing edges.
+        std::vector<uint32_t> out_offsets(pts.size() + 1, 0), out_to(tris.size() * 3);
+        for (const Polygon& t : tris)
+            for (size_t v : t) ++out_offsets[v + 1];
+        for (size_t v = 0; v < pts.size(); ++v) out_offsets[v + 1] += out_offsets[v];
+        {
+            std::vector<uint32_t> fill(out_offsets.begin(), out_offsets.end() - 1);
+            for (const Polygon& t : tris)
+                for (int k = 0; k < 3; ++k) out_to[fill[t[k]]++] = uint32_t(t[(k + 1) % 3]);
         }
+        auto has_edge = [&](size_t a, size_t b) {
+            for (uint32_t i = out_offsets[a]; i < out_offsets[a + 1]; ++i)
+                if (out_to[i] == b) return true;
+            return false;
+        };
         UnionFind loops(pts.size());
         std::vector<char> on_boundary(pts.size(), 0);
         for (size_t t = 0; t < tris.size(); ++t) {
             for (int k = 0; k < 3; ++k) {
-                const uint64_t a = tris[t][k], b = tris[t][(k + 1) % 3];
-                if (uses[std::min(a, b) << 32 | std::max(a, b)] == 1) {
+                const size_t a = tris[t][k], b = tris[t][(k + 1) % 3];
+                if (!has_edge(b, a)) {
                     ++shells[shell[t]].boundary_edges;
                     loops.unite(a, b);
                     on_boundary[a] = on_boundary[b] = 1;
@@ -430,11 +438,16 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         // Open shells: which side of the shell can the world see? Rays from sample faces along +n and
         // -n that escape without hitting any geometry (ambient visibility) decide: an eye socket or a
         // bowl-shaped patch faces where its opening is, which no local rule can tell.
+        // The tree is built only when some shell is open (closed heads need none).
         std::vector<K::Triangle_3> all;
-        all.reserve(tris.size());
-        for (const Polygon& t : tris) all.emplace_back(pts[t[0]], pts[t[1]], pts[t[2]]);
         using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<K::Triangle_3>::const_iterator>;
-        CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree(all.cbegin(), all.cend());
+        CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree;
+        if (std::any_of(shells.begin(), shells.end(), [](const Shell& s) { return s.boundary_edges > 0; })) {
+            all.reserve(tris.size());
+            for (const Polygon& t : tris) all.emplace_back(pts[t[0]], pts[t[1]], pts[t[2]]);
+            tree.insert(all.cbegin(), all.cend());
+            tree.build();
+        }
         std::vector<std::vector<size_t>> faces_of(nshells);
         for (size_t t = 0; t < tris.size(); ++t) faces_of[shell[t]].push_back(t);
         const double eps = 1e-5 * std::sqrt(diag2);

@@ -194,10 +194,12 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     // distance by more than float rounding on nefertiti and Lee Perry-Smith; 20% of the pass.)
     const float exact_within = 0.85f * float(h);
     leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, size_t) {
-        openvdb::tree::ValueAccessor<const openvdb::Int32Tree, false> idx(index_tree);
+        // The index grid has the same leaves (meshToVolume fills both together): one lookup per leaf.
+        const openvdb::Int32Tree::LeafNodeType* idx = index_tree.probeConstLeaf(leaf.origin());
+        if (!idx) return;
         for (auto it = leaf.beginValueOn(); it; ++it) {
             const openvdb::Coord c = it.getCoord();
-            int32_t f = idx.getValue(c);
+            int32_t f = idx->getValue(it.pos());
             if (f < 0 || size_t(f) >= geo.tris.size()) continue;
             const float3 p(float(c.x() * h), float(c.y() * h), float(c.z() * h));
             if (!(std::fabs(*it) < exact_within)) f = geo.refine_closest_face(p, f);

@@ -3,9 +3,10 @@
 // or loaded from a .vdb written by `groom scalp`. OpenVDB, OpenMesh and CGAL stay behind a pimpl so
 // ops/ and cli/ compile without their headers.
 //
-// Queries are const and thread-safe (each call uses its own unregistered OpenVDB accessor). Inside
-// the narrow band they interpolate the grid; outside it they answer exactly from the mesh through a
-// CGAL AABB tree, so every point in space gets a correct answer.
+// Queries are const and thread-safe (they only read; the query layout of the band, BrickMap, and
+// the mesh's AABB tree are each built once, on first use). Inside the narrow band they interpolate
+// the grid; outside it they answer exactly from the mesh through a CGAL AABB tree, so every point in
+// space gets a correct answer.
 #pragma once
 
 #include "fields/mesh_repair.h"
@@ -49,8 +50,8 @@ public:
     /// Unit outward normal: the normalised gradient of the distance (central differences of the grid
     /// in the band; (p - closest) / distance from the mesh outside it).
     float3 normal(const float3& p) const override;
-    /// Projection onto the surface: p - d * n, refined by Newton steps on the grid in the band; exact
-    /// closest point on the mesh outside it.
+    /// Projection onto the surface: p - d * n from one trilinear sample in the band; exact closest
+    /// point on the mesh outside it.
     float3 closest_point(const float3& p) const override;
     /// Signed distance, unit normal and closest point in one call (cheaper than three).
     float query(const float3& p, float3& normal, float3& closest) const;

@@ -5,8 +5,10 @@
 #include "fields/scalp_impl.h"
 
 #include "kernel/error.h"
+#include "kernel/io/atomic_file.h"
 
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/SignedFloodFill.h>
@@ -20,7 +22,6 @@
 #include <filesystem>
 #include <mutex>
 #include <sstream>
-#include <unistd.h>
 
 namespace groom {
 
@@ -233,35 +234,16 @@ void write_scalp(const ScalpField& scalp, const std::string& path)
     init_openvdb();
     const ScalpField::Impl& im = scalp.impl();
     if (!im.sdf) throw InvalidParam("write_scalp: the scalp field is empty");
-    // OpenVDB writes by file name: write a temporary beside the target, then rename (atomic).
-    const std::filesystem::path target(path);
-    const std::filesystem::path temp =
-        target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
+    // Through our atomic output (a temporary beside the target, renamed when complete) rather than
+    // io::File, which writes by name through an ofstream whose errors it never checks: a full disk
+    // left a truncated file and no exception, and reading the file back to find out cost as much as
+    // writing it. io::Stream writes the same file format to a stream whose state we check.
     try {
-        openvdb::io::File file(temp.string());
-        openvdb::GridPtrVec grids{im.sdf};
-        file.write(grids);
-        file.close();
-        // io::File writes through an ofstream whose errors it never checks: a full disk (or a file
-        // size limit) leaves a truncated file and no exception. Read it back before it replaces the
-        // target, so a failed write cannot pass for a level set.
-        openvdb::io::File check(temp.string());
-        check.open(false);
-        const openvdb::GridBase::Ptr back = check.readGrid(im.sdf->getName());
-        check.close();
-        if (!back || back->activeVoxelCount() != im.sdf->activeVoxelCount()) {
-            throw openvdb::IoError("the written file does not read back (disk full?)");
-        }
-        std::filesystem::rename(temp, target);
+        AtomicOutput out(path);
+        openvdb::io::Stream(out.stream()).write(openvdb::GridCPtrVec{im.sdf});
+        out.commit();
     }
     catch (const openvdb::Exception& e) {
-        std::error_code ec;
-        std::filesystem::remove(temp, ec);
-        throw IoError(path + ": cannot write the level set (" + e.what() + ")");
-    }
-    catch (const std::filesystem::filesystem_error& e) {
-        std::error_code ec;
-        std::filesystem::remove(temp, ec);
         throw IoError(path + ": cannot write the level set (" + e.what() + ")");
     }
 }

@@ -348,6 +348,13 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
     visitor.reversed = &reversed;
     const bool manifold_in = is_oriented_manifold(tris, pts.size());
     if (!manifold_in) PMP::orient_polygon_soup(pts, tris, CGAL::parameters::visitor(visitor));
+    if (manifold_in && options.on_final_triangles) {
+        std::vector<float3> points(pts.size());
+        for (size_t i = 0; i < pts.size(); ++i) points[i] = float3(float(pts[i].x()), float(pts[i].y()), float(pts[i].z()));
+        std::vector<std::array<int32_t, 3>> triangles(tris.size());
+        for (size_t t = 0; t < tris.size(); ++t) triangles[t] = {int32_t(tris[t][0]), int32_t(tris[t][1]), int32_t(tris[t][2])};
+        options.on_final_triangles(std::move(points), std::move(triangles));
+    }
     step.advance(1);
 
     // Shells: components over shared vertices, each with its area, signed volume and boundary edges.

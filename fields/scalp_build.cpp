@@ -14,6 +14,7 @@
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tools/VolumeToMesh.h>
 #include <openvdb/tree/LeafManager.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <atomic>
@@ -21,6 +22,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <span>
 #include <sstream>
 
 namespace groom {
@@ -128,22 +130,15 @@ void ScalpField::Impl::fill_band_from_sdf() const
     band_.fill_borders();
 }
 
-ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, RepairReport* report_out, Progress* progress)
-{
-    params.validate();
-    init_openvdb();
-    detail::RepairOptions options;
-    options.flip = params.flip;
-    options.remove_enclosed = params.remove_enclosed_shells;
-    RepairReport report;
-    const TriMesh mesh = detail::repair_soup(soup, options, report, progress);
-    if (report_out) *report_out = report;
+namespace {
 
-    ScalpField field;
-    ScalpField::Impl& im = field.impl();
-    im.geometry.compute(mesh);
-    const detail::MeshGeometry& geo = im.geometry;
-    const float diag = length(geo.bounds_hi - geo.bounds_lo);
+/// The voxel size (the given one, else the bounding-box diagonal / 256), refused with a suggestion
+/// when the band would need more memory than the budget.
+double choose_voxel(std::span<const float3> points, std::span<const std::array<int32_t, 3>> tris, const ScalpBuildParams& params)
+{
+    Bounds3 box;
+    for (const float3& p : points) box.extend(p);
+    const float diag = length(box.hi - box.lo);
     if (!(diag > 0.0f)) throw InvalidGeometry("scalp: the mesh has no extent (all vertices at one point)");
     const double h = params.voxel_size > 0.0f ? params.voxel_size : diag / 256.0;
 
@@ -151,9 +146,9 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     // each costing the distance, its polygon index, the gradient and meshToVolume's temporaries
     // (~48 bytes measured on the heads in ../shared/datasets, with leaf-node slack).
     double area = 0.0;
-    for (double a : geo.face_areas) area += a;
+    for (const auto& t : tris) area += 0.5 * double(length(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]])));
     const double band = params.band_voxels;
-    const double voxels = area / (h * h) * 2.0 * (band + 0.5) + 512.0 * double(geo.tris.size()) / 64.0;
+    const double voxels = area / (h * h) * 2.0 * (band + 0.5) + 512.0 * double(tris.size()) / 64.0;
     const double bytes = voxels * 48.0;
     const double extent_voxels = diag / h;
     if (bytes > double(params.memory_budget) || extent_voxels > 1.0e6) {
@@ -164,22 +159,95 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
                             fmt(double(params.memory_budget) / double(1ull << 30)) + " GiB budget; use --voxel " +
                             fmt(suggest2) + " or larger (the mesh is " + fmt(diag) + " units across)");
     }
+    return h;
+}
 
-    ProgressStep step(progress, "signed distance", 3);
-    std::vector<openvdb::Vec3s> points(geo.points.size());
+/// meshToVolume's unsigned narrow band (world units) and, in `index_grid`, each voxel's closest
+/// triangle.
+openvdb::FloatGrid::Ptr unsigned_band(std::span<const float3> points, std::span<const std::array<int32_t, 3>> tris, double h,
+                                      double band, openvdb::Int32Grid& index_grid)
+{
     // meshToVolume takes the mesh in index space (voxel units).
+    std::vector<openvdb::Vec3s> index_points(points.size());
     const float inv_h = float(1.0 / h);
     for (size_t i = 0; i < points.size(); ++i) {
-        points[i] = openvdb::Vec3s(geo.points[i].x * inv_h, geo.points[i].y * inv_h, geo.points[i].z * inv_h);
+        index_points[i] = openvdb::Vec3s(points[i].x * inv_h, points[i].y * inv_h, points[i].z * inv_h);
     }
-    std::vector<openvdb::Vec3I> tris(geo.tris.size());
-    for (size_t i = 0; i < tris.size(); ++i) tris[i] = openvdb::Vec3I(geo.tris[i][0], geo.tris[i][1], geo.tris[i][2]);
+    std::vector<openvdb::Vec3I> faces(tris.size());
+    for (size_t i = 0; i < faces.size(); ++i) faces[i] = openvdb::Vec3I(tris[i][0], tris[i][1], tris[i][2]);
     const openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(h);
-    const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(points, tris);
-    openvdb::Int32Grid index_grid(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));  // as meshToVolume expects
+    const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(index_points, faces);
     openvdb::util::NullInterrupter interrupter;
-    openvdb::FloatGrid::Ptr sdf = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
-        interrupter, adapter, *xform, float(band), float(band), openvdb::tools::UNSIGNED_DISTANCE_FIELD, &index_grid);
+    return openvdb::tools::meshToVolume<openvdb::FloatGrid>(interrupter, adapter, *xform, float(band), float(band),
+                                                            openvdb::tools::UNSIGNED_DISTANCE_FIELD, &index_grid);
+}
+
+}  // namespace
+
+ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, RepairReport* report_out, Progress* progress)
+{
+    params.validate();
+    init_openvdb();
+    const double band = params.band_voxels;
+    detail::RepairOptions options;
+    options.flip = params.flip;
+    options.remove_enclosed = params.remove_enclosed_shells;
+
+    // meshToVolume needs only positions and faces, which a clean mesh has final halfway through its
+    // repair (windings and the shell analysis still to come): started then, it runs beside the rest
+    // of the repair and the mesh geometry, which otherwise held up both cores with one busy.
+    struct Early {
+        double h = 0.0;
+        std::vector<float3> points;
+        std::vector<std::array<int32_t, 3>> tris;
+        openvdb::Int32Grid::Ptr index;
+        openvdb::FloatGrid::Ptr sdf;
+    } early;
+    bool started = false;
+    tbb::task_group background;
+    options.on_final_triangles = [&](std::vector<float3> points, std::vector<std::array<int32_t, 3>> tris) {
+        early.h = choose_voxel(points, tris, params);
+        early.points = std::move(points);
+        early.tris = std::move(tris);
+        early.index = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));  // as meshToVolume expects
+        started = true;
+        background.run([&early, band] { early.sdf = unsigned_band(early.points, early.tris, early.h, band, *early.index); });
+    };
+    RepairReport report;
+    ScalpField field;
+    ScalpField::Impl& im = field.impl();
+    try {
+        const TriMesh mesh = detail::repair_soup(soup, options, report, progress);
+        im.geometry.compute(mesh);
+    }
+    catch (...) {
+        background.cancel();
+        try {
+            background.wait();
+        }
+        catch (...) {  // the repair's error is the one to report
+        }
+        throw;
+    }
+    if (report_out) *report_out = report;
+    const detail::MeshGeometry& geo = im.geometry;
+
+    ProgressStep step(progress, "signed distance", 3);
+    background.wait();
+    double h = 0.0;
+    openvdb::FloatGrid::Ptr sdf;
+    openvdb::Int32Grid::Ptr index_grid;
+    // The early band stands when the mesh kept every triangle it was given (no shell removed).
+    if (started && early.sdf && early.tris.size() == geo.tris.size() && report.enclosed_shells_removed == 0) {
+        h = early.h;
+        sdf = early.sdf;
+        index_grid = early.index;
+    }
+    else {
+        h = choose_voxel(geo.points, geo.tris, params);
+        index_grid = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));
+        sdf = unsigned_band(geo.points, geo.tris, h, band, *index_grid);
+    }
     step.advance(1);
 
     // Sign (and recompute exactly) every band voxel from its closest polygon's pseudo-normal, or, where
@@ -187,7 +255,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     im.query = std::make_unique<detail::MeshQuery>(im.geometry);
     const detail::MeshQuery& query = *im.query;
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(sdf->tree());
-    const openvdb::Int32Tree& index_tree = index_grid.tree();
+    const openvdb::Int32Tree& index_tree = index_grid->tree();
     // meshToVolume measures every voxel within sqrt(3)/2 voxels of a triangle against that triangle
     // (its voxelizer floods out from the triangle to exactly that distance), so where the distance it
     // found is below that, its polygon is the closest: the walk is needed only farther out, where

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -178,6 +179,49 @@ TEST(ScalpField, SampleBallIsAreaUniformDeterministicAndThreadIndependent)
     }
     EXPECT_NEAR(double(upper) / one.size(), 0.5, 0.04);
     EXPECT_TRUE(field.sample_ball(float3(5, 5, 5), 0.1f, 10, 1).empty());
+}
+
+// meshToVolume starts during the repair of a clean mesh (on another thread when there is one) and
+// after it otherwise (here: an enclosed shell is removed, so the early band is discarded). Either
+// way the field must not depend on the thread count, and the eye must change nothing.
+TEST(ScalpField, BuildIsThreadIndependentWithOrWithoutTheEarlyBand)
+{
+    const PolygonSoup clean = icosphere({0, 0, 0}, 1.0f, 4);
+    PolygonSoup with_eye = clean;
+    const PolygonSoup eye = icosphere({0.3f, 0.2f, 0.1f}, 0.2f, 2);
+    const int32_t base = int32_t(with_eye.points.size());
+    with_eye.points.insert(with_eye.points.end(), eye.points.begin(), eye.points.end());
+    for (size_t f = 0; f < eye.num_faces(); ++f) {
+        const auto idx = eye.face(f);
+        const std::array<int32_t, 3> shifted{idx[0] + base, idx[1] + base, idx[2] + base};
+        with_eye.add_face(shifted);
+    }
+    std::vector<float3> probes;
+    for (uint64_t i = 0; i < 2000; ++i) {
+        Rng rng(12, i);
+        probes.push_back(random_direction(rng) * rng.uniform(0.9f, 1.1f));
+    }
+    auto answers = [&](const PolygonSoup& soup, int threads) {
+        ThreadLimit limit(threads);
+        RepairReport report;
+        const ScalpField field = build_scalp(soup, {0.02f, 3.0f}, &report);
+        std::vector<float> out;
+        for (const float3& p : probes) {
+            float3 n, c;
+            out.push_back(field.query(p, n, c));
+            out.insert(out.end(), {n.x, n.y, n.z, c.x, c.y, c.z});
+        }
+        return std::make_pair(out, report.enclosed_shells_removed);
+    };
+    const auto [clean1, removed_clean] = answers(clean, 1);
+    const auto [clean2, unused] = answers(clean, 2);
+    const auto [eye1, removed_eye] = answers(with_eye, 1);
+    const auto [eye2, unused2] = answers(with_eye, 2);
+    EXPECT_EQ(removed_clean, 0);
+    EXPECT_EQ(removed_eye, 1);
+    EXPECT_EQ(clean1, clean2);
+    EXPECT_EQ(eye1, eye2);
+    EXPECT_EQ(clean1, eye1) << "an enclosed eye, removed, must change nothing";
 }
 
 TEST(ScalpField, VdbRoundTripGivesTheSameField)

@@ -230,13 +230,15 @@ bool MeshQuery::inside_by_rays(const float3& p) const
                                    normalize(float3(0.05f, -0.97f, 0.23f)),  normalize(float3(0.88f, -0.21f, -0.43f)),
                                    normalize(float3(-0.37f, -0.41f, -0.83f)), normalize(float3(-0.91f, 0.33f, -0.24f)),
                                    normalize(float3(0.27f, 0.36f, -0.89f))};
-    int votes = 0;
+    // Majority of 7, stopping once either side has 4: the same answer as all 7, from 4-7 rays.
+    int inside = 0, outside = 0;
     const K::Point_3 o(p.x, p.y, p.z);
     for (const float3& d : dirs) {
         const size_t hits = tree().tree.number_of_intersected_primitives(K::Ray_3(o, K::Vector_3(d.x, d.y, d.z)));
-        votes += int(hits & 1);
+        ((hits & 1) ? inside : outside) += 1;
+        if (inside == 4 || outside == 4) break;
     }
-    return votes >= 4;
+    return inside >= 4;
 }
 
 float MeshQuery::sign_fixed(const float3& p, float d, bool on_boundary, float local) const

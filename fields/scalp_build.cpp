@@ -193,9 +193,9 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     options.flip = params.flip;
     options.remove_enclosed = params.remove_enclosed_shells;
 
-    // meshToVolume needs only positions and faces, which a clean mesh has final halfway through its
-    // repair (windings and the shell analysis still to come): started then, it runs beside the rest
-    // of the repair and the mesh geometry, which otherwise held up both cores with one busy.
+    // meshToVolume needs only the final positions and faces: started as soon as the repair has them,
+    // it runs beside the OpenMesh conversion and the mesh geometry, serial work that otherwise left
+    // a core idle.
     struct Early {
         double h = 0.0;
         std::vector<float3> points;
@@ -237,8 +237,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     double h = 0.0;
     openvdb::FloatGrid::Ptr sdf;
     openvdb::Int32Grid::Ptr index_grid;
-    // The early band stands when the mesh kept every triangle it was given (no shell removed).
-    if (started && early.sdf && early.tris.size() == geo.tris.size() && report.enclosed_shells_removed == 0) {
+    if (started && early.sdf && early.tris.size() == geo.tris.size()) {
         h = early.h;
         sdf = early.sdf;
         index_grid = early.index;

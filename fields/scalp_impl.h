@@ -88,10 +88,9 @@ struct RepairOptions {
     bool remove_enclosed = true;  ///< drop shells entirely inside another shell
     bool flip = false;            ///< reverse everything at the end
     std::string what = "mesh";    ///< names the input in messages
-    /// Called, when the soup is already an oriented manifold (most meshes), with the triangles the
-    /// repaired mesh will have, in its face order, unless shells are removed afterwards: positions
-    /// and faces are final there, only windings may still turn. Lets the distance field start while
-    /// the rest of the repair runs. May throw, which aborts the repair.
+    /// Called with the repaired triangles (vertex and face order as in the mesh returned) before
+    /// they are turned into the OpenMesh mesh: lets the distance field start while that conversion
+    /// and the caller's own per-mesh work run. May throw, which aborts the repair.
     std::function<void(std::vector<float3> points, std::vector<std::array<int32_t, 3>> triangles)> on_final_triangles;
 };
 TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, RepairReport& report, Progress* progress);

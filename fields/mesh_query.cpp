@@ -223,28 +223,24 @@ float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face
     return sign_fixed(p, d, boundary, 0.0f);
 }
 
-bool MeshQuery::inside_by_rays(const float3& p) const
+const WindingNumber& MeshQuery::winding() const
 {
-    // Fixed, irrational-ish directions so rays rarely graze edges of axis-aligned models.
-    static const float3 dirs[7] = {normalize(float3(0.31f, 0.93f, 0.19f)),   normalize(float3(-0.71f, 0.12f, 0.69f)),
-                                   normalize(float3(0.05f, -0.97f, 0.23f)),  normalize(float3(0.88f, -0.21f, -0.43f)),
-                                   normalize(float3(-0.37f, -0.41f, -0.83f)), normalize(float3(-0.91f, 0.33f, -0.24f)),
-                                   normalize(float3(0.27f, 0.36f, -0.89f))};
-    // Majority of 7, stopping once either side has 4: the same answer as all 7, from 4-7 rays.
-    int inside = 0, outside = 0;
-    const K::Point_3 o(p.x, p.y, p.z);
-    for (const float3& d : dirs) {
-        const size_t hits = tree().tree.number_of_intersected_primitives(K::Ray_3(o, K::Vector_3(d.x, d.y, d.z)));
-        ((hits & 1) ? inside : outside) += 1;
-        if (inside == 4 || outside == 4) break;
-    }
-    return inside >= 4;
+    std::call_once(winding_built_, [this] { winding_ = std::make_unique<WindingNumber>(geometry_.points, geometry_.tris); });
+    return *winding_;
+}
+
+bool MeshQuery::inside_by_winding(const float3& p) const
+{
+    // The fast estimate decides where it is clear; near 1/2 (beside an opening, where its few
+    // percent could tip the answer) a finer one does.
+    const double w = winding()(p, 2.0);
+    return (std::fabs(w - 0.5) > 0.1 ? w : winding()(p, 8.0)) > 0.5;
 }
 
 float MeshQuery::sign_fixed(const float3& p, float d, bool on_boundary, float local) const
 {
     if (!on_boundary || std::fabs(d) <= local) return d;
-    return inside_by_rays(p) ? -std::fabs(d) : std::fabs(d);
+    return inside_by_winding(p) ? -std::fabs(d) : std::fabs(d);
 }
 
 }  // namespace groom::detail

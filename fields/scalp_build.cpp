@@ -250,7 +250,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     step.advance(1);
 
     // Sign (and recompute exactly) every band voxel from its closest polygon's pseudo-normal, or, where
-    // the closest feature is an open boundary (a hole's rim), by a ray vote.
+    // the closest feature is an open boundary (a hole's rim), by the generalized winding number.
     im.query = std::make_unique<detail::MeshQuery>(im.geometry);
     const detail::MeshQuery& query = *im.query;
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(sdf->tree());

@@ -5,6 +5,7 @@
 #include "fields/brick_map.h"
 #include "fields/mesh_repair.h"
 #include "fields/scalp_field.h"
+#include "fields/winding_number.h"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <openvdb/openvdb.h>
@@ -64,11 +65,11 @@ public:
     ~MeshQuery();
     /// Signed distance; writes the closest point and its face.
     float signed_distance(const float3& p, float3& closest, int32_t& face) const;
-    /// Inside test by ray parity, majority over 7 fixed directions: robust through the holes of a
-    /// nearly closed head (eye sockets, mouth, neck), where a rim's pseudo-normal points anywhere.
-    bool inside_by_rays(const float3& p) const;
-    /// Pseudo-normal sign, replaced by the ray vote when the closest feature is a boundary and p is
-    /// more than `local` away from it.
+    /// Inside test by the generalized winding number (> 1/2): robust through the holes of a nearly
+    /// closed head (eye sockets, mouth, neck), where a rim's pseudo-normal points anywhere.
+    bool inside_by_winding(const float3& p) const;
+    /// Pseudo-normal sign, replaced by the winding number when the closest feature is a boundary and
+    /// p is more than `local` away from it.
     float sign_fixed(const float3& p, float d, bool on_boundary, float local) const;
 
 private:
@@ -80,6 +81,10 @@ private:
     const MeshGeometry& geometry_;
     mutable std::once_flag built_;
     mutable std::unique_ptr<Tree> tree_;
+    /// Built on first use like the tree: only open meshes ever ask.
+    const WindingNumber& winding() const;
+    mutable std::once_flag winding_built_;
+    mutable std::unique_ptr<WindingNumber> winding_;
 };
 
 /// Repairs a soup into an oriented, manifold triangle mesh (fields/mesh_repair.cpp).

@@ -17,7 +17,9 @@ double solid_angle(const float3& fa, const float3& fb, const float3& fc)
     const double la = std::sqrt(dot3(a, a)), lb = std::sqrt(dot3(b, b)), lc = std::sqrt(dot3(c, c));
     const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
     const double den = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
-    return 2.0 * std::atan2(det, den);
+    // The single-precision arctangent: half the cost of the double one, and its 1e-7 relative error
+    // is far below what the far field leaves.
+    return 2.0 * double(std::atan2(float(det), float(den)));
 }
 
 }  // namespace

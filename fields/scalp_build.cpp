@@ -219,6 +219,9 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     try {
         const TriMesh mesh = detail::repair_soup(soup, options, report, progress);
         im.geometry.compute(mesh);
+        im.query = std::make_unique<detail::MeshQuery>(im.geometry);
+        // Open rims are signed by the winding number: built here, it too runs beside meshToVolume.
+        if (report.boundary_loops > 0) im.query->winding();
     }
     catch (...) {
         background.cancel();
@@ -251,7 +254,6 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
 
     // Sign (and recompute exactly) every band voxel from its closest polygon's pseudo-normal, or, where
     // the closest feature is an open boundary (a hole's rim), by the generalized winding number.
-    im.query = std::make_unique<detail::MeshQuery>(im.geometry);
     const detail::MeshQuery& query = *im.query;
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(sdf->tree());
     const openvdb::Int32Tree& index_tree = index_grid->tree();

@@ -71,6 +71,8 @@ public:
     /// Pseudo-normal sign, replaced by the winding number when the closest feature is a boundary and
     /// p is more than `local` away from it.
     float sign_fixed(const float3& p, float d, bool on_boundary, float local) const;
+    /// The winding number of the mesh, built on first use (thread-safe): only open meshes need it.
+    const WindingNumber& winding() const;
 
 private:
     struct Tree;
@@ -81,8 +83,6 @@ private:
     const MeshGeometry& geometry_;
     mutable std::once_flag built_;
     mutable std::unique_ptr<Tree> tree_;
-    /// Built on first use like the tree: only open meshes ever ask.
-    const WindingNumber& winding() const;
     mutable std::once_flag winding_built_;
     mutable std::unique_ptr<WindingNumber> winding_;
 };

@@ -29,10 +29,12 @@ WindingNumber::WindingNumber(std::span<const float3> points, std::span<const std
     const size_t n = triangles.size();
     corners_.resize(n * 3);
     centroids_.resize(n);
+    areas_.resize(n);
     order_.resize(n);
     for (size_t t = 0; t < n; ++t) {
         for (int k = 0; k < 3; ++k) corners_[t * 3 + k] = points[triangles[t][k]];
         centroids_[t] = (corners_[t * 3] + corners_[t * 3 + 1] + corners_[t * 3 + 2]) / 3.0f;
+        areas_[t] = cross(corners_[t * 3 + 1] - corners_[t * 3], corners_[t * 3 + 2] - corners_[t * 3]) * 0.5f;
         order_[t] = int32_t(t);
     }
     nodes_.reserve(n / kLeafSize * 2 + 1);
@@ -49,11 +51,10 @@ int32_t WindingNumber::build(int32_t begin, int32_t end)
     Bounds3 box;
     for (int32_t i = begin; i < end; ++i) {
         const int32_t t = order_[i];
-        const float3 a2 = cross(corners_[t * 3 + 1] - corners_[t * 3], corners_[t * 3 + 2] - corners_[t * 3]);
-        const double w = 0.5 * double(length(a2)) + 1e-30;
+        const double w = double(length(areas_[t])) + 1e-30;
         cx += w * centroids_[t].x, cy += w * centroids_[t].y, cz += w * centroids_[t].z;
         total += w;
-        area += a2 * 0.5f;
+        area += areas_[t];
         box.extend(centroids_[t]);
     }
     const float3 center(float(cx / total), float(cy / total), float(cz / total));
@@ -62,7 +63,7 @@ int32_t WindingNumber::build(int32_t begin, int32_t end)
     for (int32_t i = begin; i < end; ++i) {
         const int32_t t = order_[i];
         for (int k = 0; k < 3; ++k) radius = std::max(radius, distance(corners_[t * 3 + k], center));
-        const float3 a = cross(corners_[t * 3 + 1] - corners_[t * 3], corners_[t * 3 + 2] - corners_[t * 3]) * 0.5f;
+        const float3& a = areas_[t];
         const float3 g = centroids_[t] - center;
         const double av[3] = {a.x, a.y, a.z}, gv[3] = {g.x, g.y, g.z};
         for (int r = 0; r < 3; ++r)

@@ -347,8 +347,21 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
     visitor.nm_vertices = &report.non_manifold_vertices;
     visitor.duplicated = &report.vertices_added_by_split;
     visitor.reversed = &reversed;
+    auto report_triangles = [&](const std::vector<Point>& at, const std::vector<Polygon>& faces) {
+        if (!options.on_triangles) return;
+        std::vector<float3> points(at.size());
+        for (size_t i = 0; i < at.size(); ++i) points[i] = float3(float(at[i].x()), float(at[i].y()), float(at[i].z()));
+        std::vector<std::array<int32_t, 3>> triangles(faces.size());
+        for (size_t t = 0; t < faces.size(); ++t) triangles[t] = {int32_t(faces[t][0]), int32_t(faces[t][1]), int32_t(faces[t][2])};
+        options.on_triangles(std::move(points), std::move(triangles));
+    };
     const bool manifold_in = is_oriented_manifold(tris, pts.size());
-    if (!manifold_in) PMP::orient_polygon_soup(pts, tris, CGAL::parameters::visitor(visitor));
+    if (!manifold_in) {
+        // CGAL reverses polygons and duplicates pinched vertices in place: positions and face
+        // order are final already, so the caller can start on them while CGAL works.
+        report_triangles(pts, tris);
+        PMP::orient_polygon_soup(pts, tris, CGAL::parameters::visitor(visitor));
+    }
     step.advance(1);
 
     // Shells: components over shared vertices, each with its area, signed volume and boundary edges.
@@ -596,13 +609,7 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         throw InvalidGeometry(options.what + ": repair could not make a manifold mesh (CGAL orient_polygon_soup left a "
                               "non-manifold configuration); please report this mesh");
     }
-    if (options.on_final_triangles) {
-        std::vector<float3> points(pts.size());
-        for (size_t i = 0; i < pts.size(); ++i) points[i] = float3(float(pts[i].x()), float(pts[i].y()), float(pts[i].z()));
-        std::vector<std::array<int32_t, 3>> triangles(kept.size());
-        for (size_t t = 0; t < kept.size(); ++t) triangles[t] = {int32_t(kept[t][0]), int32_t(kept[t][1]), int32_t(kept[t][2])};
-        options.on_final_triangles(std::move(points), std::move(triangles));
-    }
+    if (manifold_in || report.enclosed_shells_removed > 0) report_triangles(pts, kept);
     TriMesh mesh;  // vertices and faces in the soup's order
     PMP::polygon_soup_to_polygon_mesh(pts, kept, mesh);
     report.output_vertices = static_cast<int64_t>(mesh.n_vertices());

@@ -194,8 +194,8 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     options.remove_enclosed = params.remove_enclosed_shells;
 
     // meshToVolume needs only the final positions and faces: started as soon as the repair has them,
-    // it runs beside the OpenMesh conversion and the mesh geometry, serial work that otherwise left
-    // a core idle.
+    // it runs beside the rest of the repair (CGAL's orientation of a messy soup), the OpenMesh
+    // conversion and the mesh geometry, serial work that otherwise left a core idle.
     struct Early {
         double h = 0.0;
         std::vector<float3> points;
@@ -205,7 +205,12 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     } early;
     bool started = false;
     tbb::task_group background;
-    options.on_final_triangles = [&](std::vector<float3> points, std::vector<std::array<int32_t, 3>> tris) {
+    options.on_triangles = [&](std::vector<float3> points, std::vector<std::array<int32_t, 3>> tris) {
+        if (started) {  // the faces changed (shells removed): stop the band of the old ones
+            background.cancel();
+            background.wait();
+            early.sdf.reset();
+        }
         early.h = choose_voxel(points, tris, params);
         early.points = std::move(points);
         early.tris = std::move(tris);

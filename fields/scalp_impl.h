@@ -93,10 +93,13 @@ struct RepairOptions {
     bool remove_enclosed = true;  ///< drop shells entirely inside another shell
     bool flip = false;            ///< reverse everything at the end
     std::string what = "mesh";    ///< names the input in messages
-    /// Called with the repaired triangles (vertex and face order as in the mesh returned) before
-    /// they are turned into the OpenMesh mesh: lets the distance field start while that conversion
-    /// and the caller's own per-mesh work run. May throw, which aborts the repair.
-    std::function<void(std::vector<float3> points, std::vector<std::array<int32_t, 3>> triangles)> on_final_triangles;
+    /// Called with the triangles' positions in the face order of the mesh returned, as soon as
+    /// those are final: before CGAL's orientation when the soup needs it (that is slow, and only
+    /// turns windings and duplicates vertices in place), else before the OpenMesh conversion; and
+    /// called again, with the remaining faces, if enclosed shells are then removed (the earlier
+    /// call's faces are void). Lets the distance field start while the repair runs. May throw,
+    /// which aborts the repair.
+    std::function<void(std::vector<float3> points, std::vector<std::array<int32_t, 3>> triangles)> on_triangles;
 };
 TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, RepairReport& report, Progress* progress);
 

@@ -181,13 +181,16 @@ TEST(ScalpField, SampleBallIsAreaUniformDeterministicAndThreadIndependent)
     EXPECT_TRUE(field.sample_ball(float3(5, 5, 5), 0.1f, 10, 1).empty());
 }
 
-// meshToVolume starts during the repair of a clean mesh (on another thread when there is one) and
-// after it otherwise (here: an enclosed shell is removed, so the early band is discarded). Either
-// way the field must not depend on the thread count, and the eye must change nothing.
+// meshToVolume starts during the repair (on another thread when there is one): before CGAL's
+// orientation when the soup needs it, and again when an enclosed shell is then removed (here: one
+// face wound the wrong way, and an eye inside, so the first band is cancelled and restarted).
+// Either way the field must not depend on the thread count, and the eye and the flipped face,
+// both repaired, must change nothing.
 TEST(ScalpField, BuildIsThreadIndependentWithOrWithoutTheEarlyBand)
 {
     const PolygonSoup clean = icosphere({0, 0, 0}, 1.0f, 4);
     PolygonSoup with_eye = clean;
+    std::swap(with_eye.face_indices[with_eye.face_offsets[7] + 1], with_eye.face_indices[with_eye.face_offsets[7] + 2]);
     const PolygonSoup eye = icosphere({0.3f, 0.2f, 0.1f}, 0.2f, 2);
     const int32_t base = int32_t(with_eye.points.size());
     with_eye.points.insert(with_eye.points.end(), eye.points.begin(), eye.points.end());
@@ -211,6 +214,7 @@ TEST(ScalpField, BuildIsThreadIndependentWithOrWithoutTheEarlyBand)
             out.push_back(field.query(p, n, c));
             out.insert(out.end(), {n.x, n.y, n.z, c.x, c.y, c.z});
         }
+        EXPECT_EQ(report.faces_flipped, &soup == &clean ? 0 : 1);
         return std::make_pair(out, report.enclosed_shells_removed);
     };
     const auto [clean1, removed_clean] = answers(clean, 1);
@@ -221,7 +225,7 @@ TEST(ScalpField, BuildIsThreadIndependentWithOrWithoutTheEarlyBand)
     EXPECT_EQ(removed_eye, 1);
     EXPECT_EQ(clean1, clean2);
     EXPECT_EQ(eye1, eye2);
-    EXPECT_EQ(clean1, eye1) << "an enclosed eye, removed, must change nothing";
+    EXPECT_EQ(clean1, eye1) << "an enclosed eye, removed, and a flipped face, turned, must change nothing";
 }
 
 TEST(ScalpField, VdbRoundTripGivesTheSameField)

@@ -35,6 +35,8 @@ WindingNumber::WindingNumber(std::span<const float3> points, std::span<const std
         for (int k = 0; k < 3; ++k) corners_[t * 3 + k] = points[triangles[t][k]];
         centroids_[t] = (corners_[t * 3] + corners_[t * 3 + 1] + corners_[t * 3 + 2]) / 3.0f;
         areas_[t] = cross(corners_[t * 3 + 1] - corners_[t * 3], corners_[t * 3 + 2] - corners_[t * 3]) * 0.5f;
+        radii_.push_back(std::max({distance(corners_[t * 3], centroids_[t]), distance(corners_[t * 3 + 1], centroids_[t]),
+                                   distance(corners_[t * 3 + 2], centroids_[t])}));
         order_[t] = int32_t(t);
     }
     nodes_.reserve(n / kLeafSize * 2 + 1);
@@ -118,8 +120,13 @@ double WindingNumber::operator()(const float3& p, double far) const
         }
         if (node.left < 0) {
             for (int32_t i = node.begin; i < node.end; ++i) {
+                // A leaf's triangles by the same rule: far ones by their own dipole (the second-order
+                // term of one triangle about its centroid is zero), near ones exactly.
                 const int32_t t = order_[i];
-                omega += solid_angle(corners_[t * 3] - p, corners_[t * 3 + 1] - p, corners_[t * 3 + 2] - p);
+                const float3 rt = centroids_[t] - p;
+                const double dt = double(length(rt));
+                if (dt > far * double(radii_[t])) omega += double(dot(areas_[t], rt)) / (dt * dt * dt);
+                else omega += solid_angle(corners_[t * 3] - p, corners_[t * 3 + 1] - p, corners_[t * 3 + 2] - p);
             }
             continue;
         }

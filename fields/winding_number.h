@@ -39,6 +39,7 @@ private:
     std::vector<float3> corners_;  ///< per triangle a, b, c
     std::vector<float3> centroids_;
     std::vector<float3> areas_;    ///< per triangle: cross / 2
+    std::vector<float> radii_;     ///< per triangle: from its centroid to its farthest corner
     std::vector<int32_t> order_;
     std::vector<Node> nodes_;
 };

@@ -164,8 +164,15 @@ double choose_voxel(std::span<const float3> points, std::span<const std::array<i
 
 /// meshToVolume's unsigned narrow band (world units) and, in `index_grid`, each voxel's closest
 /// triangle.
+/// Lets a meshToVolume that is no longer wanted stop at its next check. (Cancelling its task group
+/// instead leaked its per-thread voxelization trees: LeakSanitizer, OpenVDB 10.)
+struct StopFlag : openvdb::util::NullInterrupter {
+    std::atomic<bool> stop{false};
+    bool wasInterrupted(int = -1) override { return stop.load(std::memory_order_relaxed); }
+};
+
 openvdb::FloatGrid::Ptr unsigned_band(std::span<const float3> points, std::span<const std::array<int32_t, 3>> tris, double h,
-                                      double band, openvdb::Int32Grid& index_grid)
+                                      double band, openvdb::Int32Grid& index_grid, StopFlag& interrupter)
 {
     // meshToVolume takes the mesh in index space (voxel units).
     std::vector<openvdb::Vec3s> index_points(points.size());
@@ -177,7 +184,6 @@ openvdb::FloatGrid::Ptr unsigned_band(std::span<const float3> points, std::span<
     for (size_t i = 0; i < faces.size(); ++i) faces[i] = openvdb::Vec3I(tris[i][0], tris[i][1], tris[i][2]);
     const openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(h);
     const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(index_points, faces);
-    openvdb::util::NullInterrupter interrupter;
     return openvdb::tools::meshToVolume<openvdb::FloatGrid>(interrupter, adapter, *xform, float(band), float(band),
                                                             openvdb::tools::UNSIGNED_DISTANCE_FIELD, &index_grid);
 }
@@ -202,13 +208,15 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         std::vector<std::array<int32_t, 3>> tris;
         openvdb::Int32Grid::Ptr index;
         openvdb::FloatGrid::Ptr sdf;
+        StopFlag stop;
     } early;
     bool started = false;
     tbb::task_group background;
     options.on_triangles = [&](std::vector<float3> points, std::vector<std::array<int32_t, 3>> tris) {
         if (started) {  // the faces changed (shells removed): stop the band of the old ones
-            background.cancel();
+            early.stop.stop = true;
             background.wait();
+            early.stop.stop = false;
             early.sdf.reset();
         }
         early.h = choose_voxel(points, tris, params);
@@ -216,7 +224,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         early.tris = std::move(tris);
         early.index = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));  // as meshToVolume expects
         started = true;
-        background.run([&early, band] { early.sdf = unsigned_band(early.points, early.tris, early.h, band, *early.index); });
+        background.run([&early, band] { early.sdf = unsigned_band(early.points, early.tris, early.h, band, *early.index, early.stop); });
     };
     RepairReport report;
     ScalpField field;
@@ -229,7 +237,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         if (report.boundary_loops > 0) im.query->winding();
     }
     catch (...) {
-        background.cancel();
+        early.stop.stop = true;
         try {
             background.wait();
         }
@@ -253,7 +261,8 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     else {
         h = choose_voxel(geo.points, geo.tris, params);
         index_grid = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));
-        sdf = unsigned_band(geo.points, geo.tris, h, band, *index_grid);
+        StopFlag never;
+        sdf = unsigned_band(geo.points, geo.tris, h, band, *index_grid, never);
     }
     step.advance(1);
 

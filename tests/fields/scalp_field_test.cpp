@@ -184,8 +184,8 @@ TEST(ScalpField, SampleBallIsAreaUniformDeterministicAndThreadIndependent)
 // meshToVolume starts during the repair (on another thread when there is one): before CGAL's
 // orientation when the soup needs it, and again when an enclosed shell is then removed (here: one
 // face wound the wrong way, and an eye inside, so the first band is cancelled and restarted).
-// Either way the field must not depend on the thread count, and the eye and the flipped face,
-// both repaired, must change nothing.
+// Either way the field must not depend on the thread count (to the bit), and the eye and the
+// flipped face, both repaired, must change nothing (to float rounding).
 TEST(ScalpField, BuildIsThreadIndependentWithOrWithoutTheEarlyBand)
 {
     const PolygonSoup clean = icosphere({0, 0, 0}, 1.0f, 4);
@@ -225,7 +225,10 @@ TEST(ScalpField, BuildIsThreadIndependentWithOrWithoutTheEarlyBand)
     EXPECT_EQ(removed_eye, 1);
     EXPECT_EQ(clean1, clean2);
     EXPECT_EQ(eye1, eye2);
-    EXPECT_EQ(clean1, eye1) << "an enclosed eye, removed, and a flipped face, turned, must change nothing";
+    // The turned face lists its corners in another order than the clean one: the same answers to
+    // float rounding (1e-5 of the radius), not to the bit.
+    ASSERT_EQ(clean1.size(), eye1.size());
+    for (size_t i = 0; i < clean1.size(); ++i) ASSERT_NEAR(clean1[i], eye1[i], 1e-5f) << "an enclosed eye, removed, and a flipped face, turned, must change nothing";
 }
 
 TEST(ScalpField, VdbRoundTripGivesTheSameField)

@@ -258,7 +258,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         sdf = early.sdf;
         index_grid = early.index;
     }
-    else {
+    else {  // the repair always reports its triangles today; a path that does not still gets a band
         h = choose_voxel(geo.points, geo.tris, params);
         index_grid = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));
         StopFlag never;

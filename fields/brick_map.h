@@ -1,7 +1,7 @@
 // BrickMap: the scalp's narrow band laid out for queries. OpenVDB's tree is the right structure to
 // build, store and exchange a level set, but a random point query walks two internal-node tables
 // and reads leaves scattered over the heap in 4 KiB pages: on a head-sized grid each of those is a
-// cache and TLB miss, and the walk, not the arithmetic, was 70% of a projection. Here every leaf of
+// cache and TLB miss, and the stalled loads, not the arithmetic, were 70% of a projection. Here every leaf of
 // the band becomes a brick of 9^3 values (the leaf plus the first layer of its +x, +y and +z
 // neighbours, so the 8 corners of any trilinear cell lie in one brick) in one contiguous block on
 // huge pages, found by a small open-addressing hash of leaf coordinates: one probe, then four

@@ -5,7 +5,6 @@
 #include "fields/scalp_impl.h"
 
 #include "kernel/error.h"
-#include "kernel/parallel.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -160,15 +159,6 @@ struct OrientVisitor : PMP::Default_orientation_visitor {
 inline K::Vector_3 tri_cross(const std::vector<Point>& pts, const Polygon& t)
 {
     return CGAL::cross_product(pts[t[1]] - pts[t[0]], pts[t[2]] - pts[t[0]]);
-}
-
-/// Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom & Strackee 1983).
-double solid_angle(const K::Vector_3& a, const K::Vector_3& b, const K::Vector_3& c)
-{
-    const double la = std::sqrt(a.squared_length()), lb = std::sqrt(b.squared_length()), lc = std::sqrt(c.squared_length());
-    const double det = CGAL::determinant(a, b, c);
-    const double den = la * lb * lc + (a * b) * lc + (a * c) * lb + (b * c) * la;
-    return 2.0 * std::atan2(det, den);
 }
 
 /// Triangulates polygon `poly` (4+ vertices) into `out`, wound like the polygon. Quads split along
@@ -506,8 +496,7 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
                    o.ymax() >= i.ymax() && o.zmax() >= i.zmax();
         };
         // |winding number| of vertex v with respect to shell b: the hierarchical estimate (built once
-        // per host shell), and where it lies within 0.02 of the 1/2 threshold, the exact sum, in
-        // fixed chunks in parallel, added in chunk order (the same bits for any thread count).
+        // per host shell), and where it lies within 0.02 of the 1/2 threshold, the exact sum.
         // Brute force alone took 150 ms for makehuman's 104 helper cubes inside a 27k-face body.
         std::vector<float3> points(pts.size());
         for (size_t i = 0; i < pts.size(); ++i) points[i] = float3(float(pts[i].x()), float(pts[i].y()), float(pts[i].z()));
@@ -520,22 +509,7 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
                 estimate[b] = std::make_unique<WindingNumber>(points, faces);
             }
             const double w = std::fabs((*estimate[b])(points[v], 8.0));
-            if (std::fabs(w - 0.5) > 0.02) return w;
-            constexpr size_t kChunk = 2048;
-            std::vector<double> partial((host.size() + kChunk - 1) / kChunk, 0.0);
-            parallel_for(int64_t(partial.size()), 1, [&](int64_t begin, int64_t end) {
-                for (int64_t c = begin; c < end; ++c) {
-                    double sum = 0.0;
-                    for (size_t i = size_t(c) * kChunk; i < std::min(host.size(), size_t(c + 1) * kChunk); ++i) {
-                        const Polygon& t = tris[host[i]];
-                        sum += solid_angle(pts[t[0]] - pts[v], pts[t[1]] - pts[v], pts[t[2]] - pts[v]);
-                    }
-                    partial[size_t(c)] = sum;
-                }
-            });
-            double sum = 0.0;
-            for (double x : partial) sum += x;
-            return std::fabs(sum) / (4.0 * M_PI);
+            return std::fabs(w - 0.5) > 0.02 ? w : std::fabs(estimate[b]->exact(points[v]));
         };
         size_t biggest_host = order[0];
         for (size_t ai = 1; ai < nshells; ++ai) {

@@ -6,6 +6,7 @@
 
 #include "kernel/error.h"
 #include "kernel/io/atomic_file.h"
+#include "kernel/io/io_util.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
@@ -23,6 +24,7 @@
 #include <filesystem>
 #include <mutex>
 #include <span>
+#include <stdexcept>
 #include <sstream>
 
 namespace groom {
@@ -35,29 +37,15 @@ void init_openvdb()
     std::call_once(once, [] { openvdb::initialize(); });
 }
 
-std::string fmt(double v)
-{
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.4g", v);
-    return buf;
-}
-
-std::string lower_ext(const std::string& path)
-{
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 }  // namespace
 
 void ScalpBuildParams::validate() const
 {
     if (!(voxel_size >= 0.0f) || !std::isfinite(voxel_size)) {
-        throw InvalidParam("scalp: --voxel must be > 0 (got " + fmt(voxel_size) + "); omit it for an automatic size");
+        throw InvalidParam("scalp: --voxel must be > 0 (got " + format_number(voxel_size) + "); omit it for an automatic size");
     }
     if (!(band_voxels >= 1.0f && band_voxels <= 64.0f)) {
-        throw InvalidParam("scalp: --band must be in [1, 64] voxels (got " + fmt(band_voxels) + ")");
+        throw InvalidParam("scalp: --band must be in [1, 64] voxels (got " + format_number(band_voxels) + ")");
     }
     if (memory_budget == 0) throw InvalidParam("scalp: memory budget must be > 0 bytes");
 }
@@ -155,10 +143,10 @@ double choose_voxel(std::span<const float3> points, std::span<const std::array<i
     if (bytes > double(params.memory_budget) || extent_voxels > 1.0e6) {
         const double suggest = h * std::sqrt(std::max(bytes / double(params.memory_budget), 1.0)) * 1.1;
         const double suggest2 = std::max(suggest, diag / 1.0e6 * 1.1);
-        throw LimitExceeded("scalp: voxel size " + fmt(h) + " needs about " + fmt(bytes / double(1ull << 30)) +
-                            " GiB for the level set (" + fmt(voxels) + " voxels), over the " +
-                            fmt(double(params.memory_budget) / double(1ull << 30)) + " GiB budget; use --voxel " +
-                            fmt(suggest2) + " or larger (the mesh is " + fmt(diag) + " units across)");
+        throw LimitExceeded("scalp: voxel size " + format_number(h) + " needs about " + format_number(bytes / double(1ull << 30)) +
+                            " GiB for the level set (" + format_number(voxels) + " voxels), over the " +
+                            format_number(double(params.memory_budget) / double(1ull << 30)) + " GiB budget; use --voxel " +
+                            format_number(suggest2) + " or larger (the mesh is " + format_number(diag) + " units across)");
     }
     return h;
 }
@@ -211,10 +199,9 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         openvdb::FloatGrid::Ptr sdf;
         StopFlag stop;
     } early;
-    bool started = false;
     tbb::task_group background;
     options.on_triangles = [&](std::vector<float3> points, std::vector<std::array<int32_t, 3>> tris) {
-        if (started) {  // the faces changed (shells removed): stop the band of the old ones
+        if (early.index) {  // the faces changed (shells removed): stop the band of the old ones
             early.stop.stop = true;
             background.wait();
             early.stop.stop = false;
@@ -224,7 +211,6 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         early.points = std::move(points);
         early.tris = std::move(tris);
         early.index = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));  // as meshToVolume expects
-        started = true;
         background.run([&early, band] { early.sdf = unsigned_band(early.points, early.tris, early.h, band, *early.index, early.stop); });
     };
     RepairReport report;
@@ -251,20 +237,13 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
 
     ProgressStep step(progress, "signed distance", 3);
     background.wait();
-    double h = 0.0;
-    openvdb::FloatGrid::Ptr sdf;
-    openvdb::Int32Grid::Ptr index_grid;
-    if (started && early.sdf && early.tris.size() == geo.tris.size()) {
-        h = early.h;
-        sdf = early.sdf;
-        index_grid = early.index;
+    // The repair reports its final triangles in every path; the band is of exactly those faces.
+    if (!early.sdf || early.tris.size() != geo.tris.size()) {
+        throw std::logic_error("build_scalp: the repair did not report the mesh's triangles");
     }
-    else {  // the repair always reports its triangles today; a path that does not still gets a band
-        h = choose_voxel(geo.points, geo.tris, params);
-        index_grid = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));
-        StopFlag never;
-        sdf = unsigned_band(geo.points, geo.tris, h, band, *index_grid, never);
-    }
+    const double h = early.h;
+    const openvdb::FloatGrid::Ptr sdf = early.sdf;
+    const openvdb::Int32Grid::Ptr index_grid = early.index;
     step.advance(1);
 
     // Sign (and recompute exactly) every band voxel from its closest polygon's pseudo-normal, or, where
@@ -414,7 +393,7 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
 
 std::unique_ptr<ScalpField> load_scalp(const std::string& path, const ScalpBuildParams& params, Progress* progress)
 {
-    if (lower_ext(path) == ".vdb") return std::make_unique<ScalpField>(read_scalp_vdb(path, progress));
+    if (io::extension_of(path) == "vdb") return std::make_unique<ScalpField>(read_scalp_vdb(path, progress));
     if (!is_mesh_path(path)) {
         throw InvalidParam("--scalp " + path + ": expected a .vdb level set from `groom scalp` or a mesh (.obj .ply .off .stl)");
     }

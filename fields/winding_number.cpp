@@ -1,5 +1,7 @@
 #include "fields/winding_number.h"
 
+#include "kernel/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -133,6 +135,25 @@ double WindingNumber::operator()(const float3& p, double far) const
         stack[depth++] = node.right;
         stack[depth++] = node.left;
     }
+    return omega / (4.0 * M_PI);
+}
+
+double WindingNumber::exact(const float3& p) const
+{
+    constexpr int64_t kChunk = 2048;
+    const int64_t n = int64_t(centroids_.size());
+    std::vector<double> partial(size_t((n + kChunk - 1) / kChunk), 0.0);
+    parallel_for(int64_t(partial.size()), 1, [&](int64_t begin, int64_t end) {
+        for (int64_t c = begin; c < end; ++c) {
+            double sum = 0.0;
+            for (int64_t t = c * kChunk; t < std::min(n, (c + 1) * kChunk); ++t) {
+                sum += solid_angle(corners_[t * 3] - p, corners_[t * 3 + 1] - p, corners_[t * 3 + 2] - p);
+            }
+            partial[size_t(c)] = sum;
+        }
+    });
+    double omega = 0.0;
+    for (double x : partial) omega += x;
     return omega / (4.0 * M_PI);
 }
 

@@ -5,11 +5,15 @@
 #include "kernel/math/polyline.h"
 #include "kernel/math/spline.h"
 #include "kernel/parallel.h"
+#include "ops/braid_fibers.h"
 #include "ops/populate.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <tuple>
 #include <numbers>
 #include <string>
 
@@ -34,8 +38,14 @@ constexpr int kDensityTable = 4096;
 
 void BraidParams::validate() const
 {
-    if (strands < 2) throw InvalidParam("braid: --strands must be >= 2 (got " + std::to_string(strands) + ")");
+    if (strands != 0 && strands < 2) {
+        throw InvalidParam("braid: --strands must be >= 2 (got " + std::to_string(strands) + ")");
+    }
     if (strands > 4096) throw InvalidParam("braid: --strands must be <= 4096 (got " + std::to_string(strands) + ")");
+    validate_pattern_strands(pattern, strand_count());
+    if (pattern == BraidPattern::Lissajous && hand != BraidHand::Auto) {
+        throw InvalidParam("braid: --hand does not apply to --pattern lissajous (the talk's formula fixes who is on top)");
+    }
     if (frequency && knot_length) {
         throw InvalidParam("braid: --frequency and --knot-length are exclusive (got both: --frequency " + fmt(*frequency) +
                            ", --knot-length " + fmt(*knot_length) + ")");
@@ -75,6 +85,34 @@ void BraidParams::validate() const
     }
     require_finite_at_least("--fiber-radius", fiber_radius, 0.0f);
     require_finite_at_least("--fiber-width", fiber_width, 0.0f);
+    if (!std::isfinite(fiber_twist) || std::fabs(fiber_twist) > 1000.0f) {
+        throw InvalidParam("braid: --fiber-twist must be a finite number of turns per knot in [-1000, 1000] (got " + fmt(fiber_twist) + ")");
+    }
+    if (!std::isfinite(flatten) || flatten < 0.0f || flatten > 0.9f) {
+        throw InvalidParam("braid: --flatten must be in [0, 0.9] (got " + fmt(flatten) + ")");
+    }
+    require_finite_at_least("--loose-length", loose_length, 0.0f);
+    require_finite_at_least("--flare", flare, 0.0f);
+    if (flare > 100.0f) throw InvalidParam("braid: --flare must be <= 100 (got " + fmt(flare) + ")");
+    if (tie && !(std::isfinite(*tie) && *tie >= 0.0f && *tie <= 1.0f)) {
+        throw InvalidParam("braid: --tie must be an arc-length fraction in [0, 1] (got " + fmt(*tie) + ")");
+    }
+    require_finite_at_least("--tie-width", tie_width, 0.0f);
+    if (tie_turns < 1 || tie_turns > 64) {
+        throw InvalidParam("braid: --tie-turns must be in [1, 64] (got " + std::to_string(tie_turns) + ")");
+    }
+    if (!std::isfinite(flyaways) || flyaways < 0.0f || flyaways > 1.0f) {
+        throw InvalidParam("braid: --flyaways must be a fraction in [0, 1] (got " + fmt(flyaways) + ")");
+    }
+    require_finite_at_least("--flyaway-height", flyaway_height, 0.0f);
+    if (!std::isfinite(feed_in) || feed_in < 0.0f || feed_in >= 1.0f) {
+        throw InvalidParam("braid: --feed-in must be a fraction in [0, 1) (got " + fmt(feed_in) + ")");
+    }
+    require_finite_at_least("--feed-length", feed_length, 0.0f);
+    if (fibers == 0 && (flyaways > 0.0f || feed_in > 0.0f)) {
+        throw InvalidParam(std::string("braid: ") + (flyaways > 0.0f ? "--flyaways" : "--feed-in") +
+                           " moves fibers; give --fibers M > 0");
+    }
 }
 
 // --- knot distribution ------------------------------------------------------------------------------
@@ -148,9 +186,18 @@ double KnotRemap::inverse(double a) const
 double braid_frequency(const BraidParams& params, double guide_length)
 {
     if (params.frequency) return *params.frequency;
-    if (params.knot_length) return guide_length / *params.knot_length;
+    if (params.knot_length) return std::max(guide_length - double(params.loose_length), 0.0) / *params.knot_length;
     return BraidParams::kDefaultFrequency;
 }
+
+namespace {
+/// t_b: the arc-length fraction of a guide that is woven (the rest is the loose end).
+double woven_fraction(const BraidParams& params, double guide_length)
+{
+    if (!(params.loose_length > 0.0f) || !(guide_length > 0.0)) return 1.0;
+    return std::clamp(1.0 - double(params.loose_length) / guide_length, 0.0, 1.0);
+}
+}  // namespace
 
 std::vector<float> braid_knot_parameters(const BraidParams& params, double guide_length)
 {
@@ -161,7 +208,8 @@ std::vector<float> braid_knot_parameters(const BraidParams& params, double guide
     }
     const KnotRemap remap(params);
     std::vector<float> t;
-    for (int64_t k = 0; (double(k) + 0.5) <= F; ++k) t.push_back(float(remap.inverse((double(k) + 0.5) / F)));
+    const double woven = woven_fraction(params, guide_length);
+    for (int64_t k = 0; (double(k) + 0.5) <= F; ++k) t.push_back(float(woven * remap.inverse((double(k) + 0.5) / F)));
     return t;
 }
 
@@ -173,6 +221,7 @@ namespace {
 struct GuidePlan {
     double length = 0.0;
     double frequency = 0.0;
+    double woven = 1.0;  // t_b, the woven fraction of the guide
     int64_t samples = 0;  // 0 = skipped
     float A = 0.0f, B = 0.0f;
     float strand_width = 0.0f;  // before the amplitude scale s(t)
@@ -182,6 +231,7 @@ struct GuidePlan {
 struct Context {
     const BraidParams& params;
     const KnotRemap& remap;
+    const BraidWeave& weave;
     const Surface* scalp;
     float margin;  // float slack added to every clearance so rounding never lands a point inside
 };
@@ -195,11 +245,18 @@ float3 initial_normal(const Context& ctx, const float3& root, const float3& tang
     return std::fabs(tangent.y) > 0.906f ? float3(0, 0, 1) : float3(0, 1, 0);  // cos 25 deg
 }
 
-/// Amplitude scale s(t): root/tip blend times the taper spline.
-float amplitude_scale(const BraidParams& p, float t)
+/// Amplitude scale s(t): root/tip blend times the taper spline, pinched around a tie.
+float amplitude_scale(const BraidParams& p, const GuidePlan& plan, float t)
 {
     const float blend = p.root_amplitude + (p.tip_amplitude - p.root_amplitude) * t;
-    return p.taper.empty() ? blend : blend * sample_uniform_spline(p.taper, t);
+    float s = p.taper.empty() ? blend : blend * sample_uniform_spline(p.taper, t);
+    if (p.tie) {
+        // A tie gathers the braid: the cross-section narrows to 60% within half a knot of it.
+        const double knot = plan.frequency > 0.0 ? plan.woven * plan.length / plan.frequency : plan.length;
+        const double d = std::fabs(double(t) - double(*p.tie)) * plan.length / (0.5 * knot);
+        if (d < 1.0) s *= float(1.0 - 0.4 * 0.5 * (1.0 + std::cos(std::numbers::pi * d)));
+    }
+    return s;
 }
 
 /// Section lift statistics for one guide.
@@ -208,16 +265,17 @@ struct LiftStats {
     float max_lift = 0.0f, max_lower = 0.0f;
 };
 
-/// Builds the N strands of one guide into `dst` (curves first..first+N-1) and records, for each
-/// output point, the guide point nearest in arc length.
+/// Builds the N strands of one guide into `dst` (curves first..first+N-1), their sections into `sec`,
+/// and records, for each output point, the guide point nearest in arc length.
 LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const float3> guide, int64_t guide_point0,
-                      CurveSet& dst, int64_t first_curve, std::span<int64_t> src_point)
+                      CurveSet& dst, int64_t first_curve, StrandSections& sec, std::span<int64_t> src_point)
 {
     const BraidParams& p = ctx.params;
-    const int N = p.strands;
+    const int N = p.strand_count();
     const int64_t S = plan.samples;
     const double len = plan.length;
     const double F = plan.frequency;
+    const double tb = plan.woven;
 
     // Sample the guide evenly in arc length: t_j = j / (S - 1) (the talk's z = omega = Length / N_cv).
     const std::vector<double> cum = cumulative_lengths(guide);
@@ -250,31 +308,65 @@ LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const
         }
     }
 
+    // Where the weave stops (t_b): each strand's offset there, and its place in the loose end's row
+    // (strands ordered across by their offset at t_b, so none crosses another while they part).
+    const double u_end = F;
+    std::vector<WeaveOffset> end_offset(N);
+    std::vector<double> row(N);
+    if (tb < 1.0) {
+        std::vector<int> order(N);
+        for (int i = 0; i < N; ++i) {
+            end_offset[i] = ctx.weave.at(i, u_end);
+            order[i] = i;
+        }
+        std::sort(order.begin(), order.end(), [&](int a, int b) {
+            return end_offset[a].x != end_offset[b].x ? end_offset[a].x < end_offset[b].x : a < b;
+        });
+        // Row spacing in units of A: the strands' own width, at least the weave's touching width.
+        const double spacing = std::max(ctx.weave.touching_width(), plan.A > 0.0f ? double(plan.strand_width) / plan.A : 0.0);
+        for (int r = 0; r < N; ++r) row[order[r]] = (double(r) - 0.5 * (N - 1)) * spacing;
+    }
+
     auto P = dst.positions();
     auto W = dst.find<float>(Domain::Point, attr::width);
     std::vector<float> section_reach(S);  // how far the hair reaches beyond a centreline, per section
     const float inv_sqrt_m = p.fibers > 0 ? 1.0f / std::sqrt(float(p.fibers)) : 0.0f;
     for (int64_t j = 0; j < S; ++j) {
-        const double alpha = ctx.remap.identity() ? double(t[j]) : ctx.remap.alpha(t[j]);
-        const float s = amplitude_scale(p, t[j]);
+        const double tj = t[j];
+        const bool loose = tj > tb;
+        // Knot phase: F alpha(t / t_b) over the woven part, then held.
+        const double a = loose ? 1.0 : (tb > 0.0 ? tj / tb : 1.0);
+        const double u = F * (ctx.remap.identity() ? a : ctx.remap.alpha(a));
+        // q: 0 where the loose end starts, 1 at the tip; e: its smooth ease.
+        const double q = loose ? (tj - tb) / (1.0 - tb) : 0.0;
+        const double e = q * q * (3.0 - 2.0 * q);
+        const double spread = 1.0 + double(p.flare) * q;
+        const float s = amplitude_scale(p, plan, t[j]);
         const double A = double(plan.A) * s, B = double(plan.B) * s;
         const float w = plan.strand_width * s;
-        // With fibers the strand is a disc of radius w/2 filled with fibers of their own width.
+        // With fibers the strand is an ellipse about w/2 across, filled with fibers of their own width.
         const float fiber_w = p.fibers > 0 ? (p.fiber_width > 0.0f ? p.fiber_width : w * inv_sqrt_m) : 0.0f;
-        section_reach[j] = p.fibers > 0 ? 0.5f * w + 0.5f * fiber_w : 0.5f * w;
-        const double fa = F * alpha;
+        section_reach[j] = p.fibers > 0 ? float(0.5 * w * (1.0 + 0.5 * p.flatten) * spread) + 0.5f * fiber_w : 0.5f * w;
         for (int i = 0; i < N; ++i) {
-            // Sec. 2.1: Lissajous cross-section, beta / alpha = 1/2, delta_i = i / N. Phases are reduced
-            // in double so large F keeps full float precision.
-            const double delta = double(i) / N;
-            double px = fa + delta, py = 0.5 * fa - delta;
-            px -= std::floor(px);
-            py -= std::floor(py);
-            const double x = A * std::sin(2.0 * std::numbers::pi * px);
-            const double y = B * std::sin(2.0 * std::numbers::pi * py);
-            const int64_t q = dst.points_of(first_curve + i).begin + j;
-            P[q] = C[j] + frames[j].b * float(x) + frames[j].n * float(y);
-            W[q] = w;
+            WeaveOffset o = loose ? end_offset[i] : ctx.weave.at(i, u);
+            if (loose) {
+                // Unbraided: part from the weave's last section into a row that opens by the flare.
+                o.x = ((1.0 - e) * o.x + e * row[i]) * spread;
+                o.y *= 1.0 - e;
+                o.press *= 1.0 - e;
+            }
+            const int64_t q_pt = dst.points_of(first_curve + i).begin + j;
+            P[q_pt] = C[j] + frames[j].b * float(A * o.x) + frames[j].n * float(B * o.y);
+            W[q_pt] = w;
+            sec.centre[q_pt] = C[j];
+            sec.lateral[q_pt] = frames[j].b;
+            sec.up[q_pt] = frames[j].n;
+            sec.phase[q_pt] = float(u);
+            sec.press[q_pt] = float(o.press);
+            sec.spread[q_pt] = float(spread);
+            sec.t[q_pt] = t[j];
+            sec.half_width[q_pt] = float(A + 0.5 * w);
+            sec.half_height[q_pt] = float(B + 0.5 * w);
         }
     }
 
@@ -300,7 +392,11 @@ LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const
             if (done) break;
         }
         if (lift == 0.0) continue;
-        for (int i = 0; i < N; ++i) P[dst.points_of(first_curve + i).begin + j] += dir * float(lift);
+        for (int i = 0; i < N; ++i) {
+            const int64_t q = dst.points_of(first_curve + i).begin + j;
+            P[q] += dir * float(lift);
+            sec.centre[q] += dir * float(lift);
+        }
         if (lift > 0.0) {
             ++stats.lifted;
             stats.max_lift = std::max(stats.max_lift, float(lift));
@@ -311,6 +407,40 @@ LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const
         }
     }
     return stats;
+}
+
+/// The tie band of one guide: `turns` wraps of an ellipse around the pinched braid at params.tie,
+/// advancing one band width per turn along the guide. Writes `count` points from `out`.
+void tie_band(const BraidParams& p, const CurveSet& strands, const StrandSections& sec, int64_t first_strand, int N,
+              float band_width, std::span<float3> out)
+{
+    // The strand sample nearest the tie: every strand of a guide shares the guide's samples.
+    const IndexRange r0 = strands.points_of(first_strand);
+    const int64_t S = r0.size();
+    const int64_t j = std::clamp<int64_t>(int64_t(std::lround(double(*p.tie) * double(S - 1))), 0, S - 1);
+    const auto P = strands.positions();
+    const auto W = strands.find<float>(Domain::Point, attr::width);
+    const int64_t q0 = r0.begin + j;
+    const float3 c = sec.centre[q0], b = sec.lateral[q0], n = sec.up[q0];
+    const float3 tan = normalize(cross(b, n));
+    // Reach of the strands' hair from the centre, across and up, plus half the band.
+    float rx = 0.0f, ry = 0.0f;
+    for (int i = 0; i < N; ++i) {
+        const int64_t q = strands.points_of(first_strand + i).begin + j;
+        const float3 d = P[q] - c;
+        const float hw = 0.5f * W[q] * (1.0f + 0.5f * p.flatten);
+        rx = std::max(rx, std::fabs(dot(d, b)) + hw);
+        ry = std::max(ry, std::fabs(dot(d, n)) + hw);
+    }
+    rx += 0.5f * band_width;
+    ry += 0.5f * band_width;
+    const int64_t count = int64_t(out.size());
+    const double span = double(p.tie_turns) * band_width;
+    for (int64_t k = 0; k < count; ++k) {
+        const double f = double(k) / double(count - 1);
+        const double ang = 2.0 * std::numbers::pi * p.tie_turns * f;
+        out[k] = c + b * float(rx * std::cos(ang)) + n * float(ry * std::sin(ang)) + tan * float((f - 0.5) * span);
+    }
 }
 
 /// Last resort after section lifts: any point still closer than clearance + half its width is pushed
@@ -342,35 +472,6 @@ int64_t push_out(CurveSet& cs, const Surface& scalp, float clearance, float marg
     return count;
 }
 
-/// Which fiber points need no scalp query: a fiber point lies within its strand's disc radius r of the
-/// strand point it was offset from, and a signed distance changes no faster than the point moves, so
-/// where the strand point keeps clearance + r + fiber width / 2 every fiber point there keeps
-/// clearance + fiber width / 2. Saves one distance query per fiber point (M of them per strand point).
-std::vector<uint8_t> fibers_known_clear(const CurveSet& strands, const CurveSet& fibers, const Surface& scalp,
-                                        const BraidParams& params)
-{
-    const auto SP = strands.positions();
-    const auto SW = strands.find<float>(Domain::Point, attr::width);
-    const int64_t M = params.fibers;
-    const float inv_sqrt_m = 1.0f / std::sqrt(float(M));
-    std::vector<uint8_t> strand_clear(strands.num_points());
-    parallel_for(int64_t(strands.num_points()), 1024, [&](int64_t begin, int64_t end) {
-        for (int64_t q = begin; q < end; ++q) {
-            const float fiber_w = params.fiber_width > 0.0f ? params.fiber_width : SW[q] * inv_sqrt_m;
-            strand_clear[q] = scalp.distance(SP[q]) >= params.clearance + 0.5f * SW[q] + 0.5f * fiber_w;
-        }
-    });
-    // populate() lays fiber f of strand c out as curve c * M + f with the strand's point count.
-    std::vector<uint8_t> clear(fibers.num_points());
-    parallel_for(int64_t(fibers.num_curves()), 256, [&](int64_t begin, int64_t end) {
-        for (int64_t fc = begin; fc < end; ++fc) {
-            const IndexRange d = fibers.points_of(fc), s = strands.points_of(fc / M);
-            for (int64_t j = 0; j < d.size(); ++j) clear[d.begin + j] = strand_clear[s.begin + j];
-        }
-    });
-    return clear;
-}
-
 }  // namespace
 
 BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surface* scalp, Progress* progress)
@@ -383,10 +484,35 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
         throw InvalidParam(std::string("braid: ") + (params.rest ? "--rest" : "--clearance") + " needs a scalp (give --scalp SCALP)");
     }
     const KnotRemap remap(params);
+    const int N = params.strand_count();
+    const BraidWeave weave(params.pattern, N, params.pattern == BraidPattern::Lissajous ? BraidHand::Over : params.resolved_hand());
     const auto GP = guides.positions();
     const size_t ng = guides.num_curves();
-    const int N = params.strands;
     const int64_t M = params.fibers;
+    // Points per knot where knots are densest: smooth crossings need a few samples per weave step.
+    const double per_knot = params.pattern == BraidPattern::Plait || params.pattern == BraidPattern::Fishtail
+                                ? std::max(16.0, 4.0 * 2.0 * N)
+                            : params.pattern == BraidPattern::Round ? std::max(16.0, 4.0 * N)
+                                                                    : 16.0;
+
+    // The closest approach of strands for an amplitude pair and knot length, measured once per distinct
+    // triple (guides braided with --knot-length share one).
+    const bool helical = params.pattern == BraidPattern::Rope || params.pattern == BraidPattern::Twist ||
+                         params.pattern == BraidPattern::Round;
+    std::mutex separation_mutex;
+    std::map<std::tuple<float, float, double>, double> separation_cache;
+    const auto separation = [&](float A, float B, double knot) {
+        const auto key = std::make_tuple(A, B, knot);
+        {
+            const std::lock_guard<std::mutex> lock(separation_mutex);
+            const auto it = separation_cache.find(key);
+            if (it != separation_cache.end()) return it->second;
+        }
+        const double d = weave.min_separation(A, B, knot);
+        const std::lock_guard<std::mutex> lock(separation_mutex);
+        separation_cache.emplace(key, d);
+        return d;
+    };
 
     // Plan each guide: length, F, sample count, amplitudes.
     std::vector<GuidePlan> plans(ng);
@@ -397,17 +523,36 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
             plan.length = cumulative_lengths(GP.subspan(r.begin, r.size())).back();
             if (r.size() < 2 || !(plan.length > 0.0)) continue;  // nothing to braid along: skipped
             plan.frequency = braid_frequency(params, plan.length);
-            const double knot = plan.frequency > 0.0 ? plan.length / plan.frequency : plan.length;
+            plan.woven = woven_fraction(params, plan.length);
+            const double woven_len = plan.woven * plan.length;
+            const double knot = plan.frequency > 0.0 && woven_len > 0.0 ? woven_len / plan.frequency : plan.length;
             plan.A = params.width ? *params.width : float(knot / 3.0);
-            plan.B = params.height ? *params.height : 0.5f * plan.A;
-            plan.strand_width = params.fibers > 0 && params.fiber_radius > 0.0f ? 2.0f * params.fiber_radius
-                                : params.strand_width > 0.0f                     ? params.strand_width
-                                : std::max(plan.A, plan.B) > 0.0f                ? 2.0f * std::max(plan.A, plan.B) / float(N)
-                                                                                 : float(0.01 * plan.length);
-            // Automatic: >= 16 points per x cycle where alpha is steepest, >= the guide's own detail.
-            const double cycles = plan.frequency * remap.max_slope();
+            plan.B = params.height ? *params.height : float(plan.A * weave.touching_height());
+            if (params.fibers > 0 && params.fiber_radius > 0.0f) plan.strand_width = 2.0f * params.fiber_radius;
+            else if (params.strand_width > 0.0f) plan.strand_width = params.strand_width;
+            else if (plan.A > 0.0f && params.pattern == BraidPattern::Lissajous) {
+                // The talk's formula as written: strands of an even N pass through each other, so there
+                // is no touching width to keep; the width of earlier releases, 2 max(A, B) / N.
+                plan.strand_width = 2.0f * std::max(plan.A, plan.B) / float(N);
+            }
+            else if (plan.A > 0.0f) {
+                // Automatic: as thick as the weave lets neighbours touch, but no thicker than keeps every
+                // two strands' centrelines 0.85 widths apart (a braid wide for its knot length has
+                // steep strands that pass close to the one that went through the same place a step
+                // before). A plait's automatic height then puts crossing strands 1.1 widths apart.
+                const double sep = separation(plan.A, plan.B, knot);
+                double w = std::min(double(plan.A) * weave.touching_width(), sep / 0.85);
+                if (!params.height && !helical) {
+                    plan.B = float(0.55 * w);
+                    w = std::min(w, separation(plan.A, plan.B, knot) / 0.85);
+                }
+                plan.strand_width = float(w);
+            }
+            else plan.strand_width = plan.B > 0.0f ? 2.0f * plan.B / float(N) : float(0.01 * plan.length);
+            // Automatic: enough points per knot where alpha is steepest, >= the guide's own detail.
+            const double cycles = plan.frequency * remap.max_slope() / std::max(plan.woven, 1e-3);
             const double want = params.samples > 0 ? double(params.samples)
-                                                   : std::max({std::ceil(16.0 * cycles) + 1.0, double(r.size()), 8.0});
+                                                   : std::max({std::ceil(per_knot * cycles) + 1.0, double(r.size()), 8.0});
             plan.samples = int64_t(std::min(want, 1e12));
         }
     });
@@ -428,11 +573,14 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
             throw LimitExceeded("braid: the output would have more than " + std::to_string(kMaxBraidPoints) +
                                 " points; lower --samples, --fibers, --strands or --frequency");
         }
-        // id = guide id * N + strand must not overflow (populate checks the fiber factor).
+        // id = (guide id * N + strand) * M + fiber must not overflow, so ids stay unique.
         const int64_t id = guide_ids[g];
-        if (id > (std::numeric_limits<int64_t>::max() - N) / N || id < std::numeric_limits<int64_t>::min() / N) {
-            throw LimitExceeded("braid: guide id " + std::to_string(id) + " times " + std::to_string(N) +
-                                " strands overflows a 64-bit id");
+        const int64_t per_guide = int64_t(N) * std::max<int64_t>(M, 1);
+        if (id > (std::numeric_limits<int64_t>::max() - per_guide) / per_guide ||
+            id < std::numeric_limits<int64_t>::min() / per_guide + 1) {
+            throw LimitExceeded("braid: guide id " + std::to_string(id) + " times " + std::to_string(N) + " strands" +
+                                (M > 0 ? " times " + std::to_string(M) + " fibers" : std::string()) +
+                                " overflows a 64-bit id");
         }
         first_strand[g] = int64_t(strand_counts.size());
         for (int i = 0; i < N; ++i) strand_counts.push_back(plans[g].samples);
@@ -461,8 +609,10 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
     const float extent = bounds.empty() ? 1.0f
                                         : std::max({std::fabs(bounds.lo.x), std::fabs(bounds.lo.y), std::fabs(bounds.lo.z),
                                                     std::fabs(bounds.hi.x), std::fabs(bounds.hi.y), std::fabs(bounds.hi.z), 1e-3f});
-    const Context ctx{params, remap, scalp, 8.0f * extent * std::numeric_limits<float>::epsilon()};
+    const Context ctx{params, remap, weave, scalp, 8.0f * extent * std::numeric_limits<float>::epsilon()};
 
+    StrandSections sec;
+    sec.resize(strands.num_points());
     std::vector<int64_t> src_point(strands.num_points());
     std::vector<LiftStats> stats(ng);
     {
@@ -472,7 +622,7 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
                 if (first_strand[g] >= 0) {
                     const IndexRange r = guides.points_of(g);
                     stats[g] = braid_guide(ctx, plans[g], GP.subspan(r.begin, r.size()), r.begin, strands, first_strand[g],
-                                           src_point);
+                                           sec, src_point);
                 }
                 step.advance(1);
             }
@@ -488,23 +638,125 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
     carry_point_attributes(guides, strands, src_point, {attr::P});
     report.strands = int64_t(strands.num_curves());
 
-    CurveSet out;
-    std::vector<uint8_t> known_clear;
+    // Hair: the strands themselves, or M fibers each.
+    CurveSet hair;
+    std::vector<float> offset_reach;  // per hair point: how far it lies from its strand point
+    std::vector<int64_t> hair_strand_point;
     if (M > 0) {
-        // Each strand's width is its fiber disc's diameter (see plan.strand_width), so populate takes
-        // the radius from it and the taper carries over.
-        PopulateParams pop;
-        pop.count = int(M);
-        pop.radius = 0.0f;
-        pop.width = params.fiber_width;
-        pop.seed = params.seed;
-        out = populate(strands, pop, progress);
-        if (scalp) known_clear = fibers_known_clear(strands, out, *scalp, params);
+        std::vector<StrandFiberPlan> fplans(strands.num_curves());
+        for (size_t g = 0; g < ng; ++g) {
+            if (first_strand[g] < 0) continue;
+            const GuidePlan& plan = plans[g];
+            const double woven_len = plan.woven * plan.length;
+            const double knot = plan.frequency > 0.0 && woven_len > 0.0 ? woven_len / plan.frequency : plan.length;
+            for (int i = 0; i < N; ++i) {
+                StrandFiberPlan& f = fplans[first_strand[g] + i];
+                f.knot_t = float(knot / plan.length);
+                f.feed_t = float(std::min((params.feed_length > 0.0f ? double(params.feed_length) : 3.0 * knot) / plan.length, 1.0));
+            }
+        }
+        FiberStats fs;
+        hair = braid_fibers(strands, sec, fplans, params, weave, fs, offset_reach, hair_strand_point, progress);
+        report.flyaways = fs.flyaways;
+        report.fed_in = fs.fed_in;
     }
     else {
-        out = std::move(strands);
+        hair = std::move(strands);
     }
-    if (scalp) report.pushed_points = push_out(out, *scalp, params.clearance, ctx.margin, known_clear, progress);
+    auto kind_hair = hair.add<int32_t>(Domain::Curve, "kind");
+    std::fill(kind_hair.begin(), kind_hair.end(), 0);
+
+    // Ties: one band per guide, appended after the hair.
+    CurveSet out;
+    if (params.tie) {
+        const CurveSet& strand_src = M > 0 ? strands : hair;
+        constexpr int64_t kTiePointsPerTurn = 24;
+        const int64_t tie_points = kTiePointsPerTurn * params.tie_turns + 1;
+        std::vector<int64_t> counts(hair.num_curves(), 0);
+        const auto hair_offsets = hair.offsets();
+        for (size_t c = 0; c < hair.num_curves(); ++c) counts[c] = hair_offsets[c + 1] - hair_offsets[c];
+        std::vector<int64_t> tie_guide;
+        for (size_t g = 0; g < ng; ++g) {
+            if (first_strand[g] < 0) continue;
+            counts.push_back(tie_points);
+            tie_guide.push_back(int64_t(g));
+        }
+        out = CurveSet::from_counts(counts);
+        const int64_t nh = int64_t(hair.num_curves());
+        std::vector<int64_t> tie_src_curve(out.num_curves()), tie_src_point(out.num_points());
+        for (int64_t c = 0; c < nh; ++c) tie_src_curve[c] = c;
+        for (int64_t p = 0; p < int64_t(hair.num_points()); ++p) tie_src_point[p] = p;
+        auto oP = out.positions();
+        const auto hP = hair.positions();
+        std::copy(hP.begin(), hP.end(), oP.begin());
+        auto ow = out.add<float>(Domain::Point, attr::width);
+        const auto hw = hair.find<float>(Domain::Point, attr::width);
+        std::copy(hw.begin(), hw.end(), ow.begin());
+        auto oid = out.add<int64_t>(Domain::Curve, attr::id);
+        auto okind = out.add<int32_t>(Domain::Curve, "kind");
+        auto ostrand = out.add<int32_t>(Domain::Curve, "strand");
+        const auto hid = hair.find<int64_t>(Domain::Curve, attr::id);
+        const auto hstrand = hair.find<int32_t>(Domain::Curve, "strand");
+        std::copy(hid.begin(), hid.end(), oid.begin());
+        std::copy(hstrand.begin(), hstrand.end(), ostrand.begin());
+        std::fill(okind.begin(), okind.begin() + nh, 0);
+        std::span<int32_t> ofiber;
+        if (M > 0) {
+            ofiber = out.add<int32_t>(Domain::Curve, "fiber");
+            const auto hf = hair.find<int32_t>(Domain::Curve, "fiber");
+            std::copy(hf.begin(), hf.end(), ofiber.begin());
+        }
+        for (size_t k = 0; k < tie_guide.size(); ++k) {
+            const int64_t g = tie_guide[k];
+            const int64_t c = nh + int64_t(k);
+            const int64_t fs = first_strand[g];
+            const IndexRange r = out.points_of(c);
+            const float sw = strand_src.find<float>(Domain::Point, attr::width)[strand_src.points_of(fs).begin];
+            const float band = params.tie_width > 0.0f ? params.tie_width : 0.35f * std::max(sw, 1e-6f);
+            tie_band(params, strand_src, sec, fs, N, band, oP.subspan(r.begin, r.size()));
+            for (int64_t p = r.begin; p < r.end; ++p) ow[p] = band;
+            oid[c] = -1 - guide_ids[g];
+            okind[c] = 1;
+            ostrand[c] = -1;
+            if (M > 0) ofiber[c] = -1;
+            // Curve attributes from the guide's first hair curve, point attributes from its first point.
+            const int64_t first_hair = M > 0 ? fs * M : fs;
+            tie_src_curve[c] = first_hair;
+            for (int64_t p = r.begin; p < r.end; ++p) tie_src_point[p] = hair.points_of(first_hair).begin;
+        }
+        carry_curve_attributes(hair, out, tie_src_curve);
+        carry_point_attributes(hair, out, tie_src_point, {attr::P, attr::width});
+        report.ties = int64_t(tie_guide.size());
+        offset_reach.resize(out.num_points(), std::numeric_limits<float>::infinity());
+        hair_strand_point.resize(out.num_points(), -1);
+    }
+    else {
+        out = std::move(hair);
+    }
+
+    if (scalp) {
+        // Which points need no scalp query: a signed distance changes no faster than the point moves,
+        // so a hair point within `reach` of its strand point keeps clearance where the strand point
+        // keeps clearance + reach + its half width. Saves a query per fiber point.
+        std::vector<uint8_t> known_clear;
+        if (M > 0) {
+            const auto SP = strands.positions();
+            std::vector<float> strand_dist(strands.num_points());
+            parallel_for(int64_t(strands.num_points()), 1024, [&](int64_t begin, int64_t end) {
+                for (int64_t q = begin; q < end; ++q) strand_dist[q] = scalp->distance(SP[q]);
+            });
+            const auto W = out.find<float>(Domain::Point, attr::width);
+            known_clear.assign(out.num_points(), 0);
+            parallel_for(int64_t(out.num_points()), 4096, [&](int64_t begin, int64_t end) {
+                for (int64_t q = begin; q < end; ++q) {
+                    const int64_t sp = hair_strand_point[q];
+                    if (sp < 0) continue;
+                    known_clear[q] = strand_dist[sp] - offset_reach[q] >= params.clearance + 0.5f * W[q] + ctx.margin;
+                }
+            });
+        }
+        report.pushed_points = push_out(out, *scalp, params.clearance, ctx.margin, known_clear, progress);
+    }
     report.curves = int64_t(out.num_curves());
     report.points = int64_t(out.num_points());
     return {std::move(out), report};

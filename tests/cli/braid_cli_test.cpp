@@ -63,7 +63,7 @@ TEST(BraidCli, BraidsGuidesIntoStrandsWithAttributes)
     const auto r = run_groom({"braid", in, "-o", out, "--strands", "4", "--frequency", "3", "--width", "0.5", "--height", "0.2",
                               "--samples", "40", "--taper", "1,0.6", "--root-amplitude", "1", "--tip-amplitude", "0.5"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("braid: 3 guides -> 12 strands (4 each) = 12 curves, 480 points"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("braid: 3 guides -> 12 strands (4 each, plait) = 12 curves, 480 points"), std::string::npos) << r.err;
     const CurveSet cs = read_curves(out);
     ASSERT_EQ(cs.num_curves(), 12u);
     const auto guide = cs.find<int32_t>(Domain::Curve, "guide");

@@ -86,6 +86,7 @@ TEST(Braid, StrandsFollowLissajousOnStraightGuide)
     const CurveSet guides = make_curves({{root, root + dir * 0.5f, root + dir * 4.0f, root + dir * float(L)}});
     for (const int N : {2, 3, 5}) {
         BraidParams p;
+        p.pattern = BraidPattern::Lissajous;  // the closed form below is the talk's
         p.strands = N;
         p.frequency = 2.5f;
         p.width = 0.7f;
@@ -136,6 +137,7 @@ TEST(Braid, RootTipAmplitudeAndTaperScaleTheCrossSection)
 {
     const CurveSet guides = make_curves({{{0, 0, 0}, {4, 0, 0}}});
     BraidParams p;
+        p.pattern = BraidPattern::Lissajous;  // the closed form below is the talk's
     p.frequency = 3.0f;
     p.width = 1.0f;
     p.height = 0.5f;
@@ -171,6 +173,7 @@ TEST(Braid, StrandsDoNotFlipOnSCurve)
     }
     const CurveSet guides = make_curves({s_curve});
     BraidParams p;
+        p.pattern = BraidPattern::Lissajous;  // the closed form below is the talk's
     p.frequency = 6.0f;
     p.width = 0.3f;
     p.height = 0.15f;
@@ -208,6 +211,7 @@ TEST(Braid, HelixTwistMatchesTorsion)
     const auto frenet_b = [&](double u) { return float3(float(bh * std::sin(u) / c), float(-bh * std::cos(u) / c), float(a / c)); };
     const CurveSet guides = make_curves({helix});
     BraidParams p;
+        p.pattern = BraidPattern::Lissajous;  // the closed form below is the talk's
     p.frequency = 5.0f;
     p.width = 0.2f;
     p.height = 0.1f;
@@ -258,6 +262,7 @@ TEST(Braid, CornrowsOnSphereFollowScalp)
     }
     const CurveSet guides = make_curves({great, small});
     BraidParams p;
+        p.pattern = BraidPattern::Lissajous;  // the closed form below is the talk's
     p.orient = BraidOrient::Scalp;
     p.frequency = 6.0f;
     p.width = 0.5f;
@@ -332,6 +337,7 @@ TEST(Braid, RestLowersFloatingCornrowsOntoTheScalp)
     }
     const CurveSet guides = make_curves({arc});
     BraidParams p;
+        p.pattern = BraidPattern::Lissajous;  // the closed form below is the talk's
     p.orient = BraidOrient::Scalp;
     p.frequency = 3.0f;
     p.width = 0.4f;
@@ -467,14 +473,18 @@ TEST(Braid, KnotRemapMatchesClosedForms)
     EXPECT_NEAR(dens.max_slope(), 1.5, 1e-3);
 }
 
-// Default sample count: at least 16 points per x cycle where knots are densest, at least the
-// guide's own point count.
+// Default sample count: at least 16 points per x cycle where knots are densest (4 per weave step of a
+// plait: 24 per knot for 3 strands), at least the guide's own point count.
 TEST(Braid, AutomaticSampleCountGivesSixteenPointsPerCycle)
 {
     const CurveSet guides = make_curves({{{0, 0, 0}, {0, 1, 0}, {0, 2, 0}}});
     BraidParams p;
     p.frequency = 4.0f;
+    p.pattern = BraidPattern::Lissajous;
     EXPECT_EQ(braid(guides, p).curves.points_in(0), 65);
+    p.pattern = BraidPattern::Plait;
+    EXPECT_EQ(braid(guides, p).curves.points_in(0), 97);
+    p.pattern = BraidPattern::Lissajous;
     p.knot_bias = 0.4f;
     const CurveSet out = braid(guides, p).curves;
     const KnotRemap remap(p);

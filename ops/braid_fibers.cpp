@@ -1,0 +1,172 @@
+#include "ops/braid_fibers.h"
+
+#include "kernel/math/polyline.h"
+#include "kernel/parallel.h"
+#include "kernel/rng.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace groom {
+
+namespace {
+
+/// Rng stream for a fiber's draws; a distinct constant per purpose (kernel/rng.h).
+constexpr uint64_t kStreamBraidFiber = 0x62726169646669ull;  // "braidfi"
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// What one fiber drew: its place in the strand's cross-section, its flyaway loop, where it joins.
+struct FiberDraw {
+    float rho = 0.0f, phi = 0.0f;  // polar place in the unit disc
+    bool flyaway = false;
+    float loop_t = 0.0f, loop_half_t = 0.0f, loop_height = 0.0f;  // centre, half-length (t), height scale
+    bool feeds = false;
+    float join_t = 0.0f;
+    float side = 1.0f;  // which side of the braid a feeding fiber comes from
+};
+
+FiberDraw draw_fiber(const BraidParams& p, const StrandFiberPlan& plan, uint64_t fiber_id)
+{
+    Rng rng(p.seed, fiber_id, kStreamBraidFiber);
+    FiberDraw d;
+    float u = 0.0f, v = 0.0f;
+    rng.disc(u, v);
+    d.rho = std::sqrt(u * u + v * v);
+    d.phi = std::atan2(v, u);
+    // Always draw every value, so changing one option never moves another's randomness.
+    const float fly = rng.uniform(), loop_pos = rng.uniform(), loop_len = rng.uniform(), loop_h = rng.uniform();
+    const float feed = rng.uniform(), join = rng.uniform(), side = rng.uniform();
+    d.flyaway = fly < p.flyaways;
+    d.loop_half_t = plan.knot_t * (0.25f + 0.35f * loop_len);
+    d.loop_t = d.loop_half_t + loop_pos * std::max(1.0f - 2.0f * d.loop_half_t, 0.0f);
+    d.loop_height = 0.6f + 0.8f * loop_h;
+    d.feeds = feed < p.feed_in;
+    d.join_t = plan.feed_t * std::max(join, 1e-3f);
+    d.side = side < 0.5f ? -1.0f : 1.0f;
+    return d;
+}
+
+/// First strand sample a fiber uses (a feeding fiber starts where it joins; at least two points).
+int64_t first_sample(const FiberDraw& d, std::span<const float> t)
+{
+    if (!d.feeds) return 0;
+    const int64_t S = int64_t(t.size());
+    const int64_t j = std::lower_bound(t.begin(), t.end(), d.join_t) - t.begin();
+    return std::clamp<int64_t>(j, 0, std::max<int64_t>(S - 2, 0));
+}
+
+}  // namespace
+
+CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::span<const StrandFiberPlan> plans,
+                      const BraidParams& p, const BraidWeave& weave, FiberStats& stats, std::vector<float>& reach,
+                      std::vector<int64_t>& strand_point, Progress* progress)
+{
+    const int64_t M = p.fibers;
+    const int64_t nc = int64_t(strands.num_curves());
+    const std::vector<int64_t> ids = strands.curve_ids();
+    const auto SP = strands.positions();
+    const auto SW = strands.find<float>(Domain::Point, attr::width);
+    const std::span<const float> T = sec.t;
+
+    // Count -> scan -> fill.
+    std::vector<int64_t> counts(nc * M);
+    std::vector<uint8_t> fly(nc * M), feeds(nc * M);
+    parallel_for(nc, 64, [&](int64_t begin, int64_t end) {
+        for (int64_t c = begin; c < end; ++c) {
+            const IndexRange r = strands.points_of(c);
+            for (int64_t f = 0; f < M; ++f) {
+                const FiberDraw d = draw_fiber(p, plans[c], uint64_t(ids[c] * M + f));
+                counts[c * M + f] = r.size() - first_sample(d, T.subspan(r.begin, r.size()));
+                fly[c * M + f] = d.flyaway;
+                feeds[c * M + f] = d.feeds;
+            }
+        }
+    });
+    for (size_t k = 0; k < fly.size(); ++k) {
+        stats.flyaways += fly[k];
+        stats.fed_in += feeds[k];
+    }
+    CurveSet dst = CurveSet::from_counts(counts);
+    auto dP = dst.positions();
+    auto dW = dst.add<float>(Domain::Point, attr::width);
+    auto dfiber = dst.add<int32_t>(Domain::Curve, "fiber");
+    auto did = dst.add<int64_t>(Domain::Curve, attr::id);
+    std::vector<int64_t> src_curve(dst.num_curves());
+    reach.assign(dst.num_points(), 0.0f);
+    strand_point.assign(dst.num_points(), 0);
+
+    // A rope's or twist's fibers turn against the lay of its plies; a plait's strands twist gently.
+    const double twist = double(p.fiber_twist) * (weave.winding() != 0 ? -weave.winding() : 1);
+    const float inv_sqrt_m = 1.0f / std::sqrt(float(M));
+    const ProgressStep step(progress, "braid fibers", nc);
+    parallel_for(nc, 16, [&](int64_t begin, int64_t end) {
+        std::vector<float3> e1, e2;
+        for (int64_t c = begin; c < end; ++c) {
+            const IndexRange r = strands.points_of(c);
+            const auto pts = SP.subspan(r.begin, r.size());
+            const std::vector<float3> tan = polyline_tangents(pts);
+            // The cross-section's axes: across the braid (the binormal, square to the strand) and the
+            // strand tangent crossed with it (about the braid normal).
+            e1.resize(pts.size());
+            e2.resize(pts.size());
+            for (int64_t j = 0; j < r.size(); ++j) {
+                const float3 b = sec.lateral[r.begin + j];
+                float3 a = b - tan[j] * dot(b, tan[j]);
+                a = length_squared(a) > 1e-12f ? normalize(a) : any_perpendicular(tan[j]);
+                e1[j] = a;
+                e2[j] = cross(tan[j], a);
+            }
+            const StrandFiberPlan& plan = plans[c];
+            for (int64_t f = 0; f < M; ++f) {
+                const int64_t oc = c * M + f;
+                const FiberDraw d = draw_fiber(p, plan, uint64_t(ids[c] * M + f));
+                const int64_t j0 = r.size() - (dst.points_of(oc).size());
+                dfiber[oc] = int32_t(f);
+                did[oc] = ids[c] * M + f;
+                src_curve[oc] = c;
+                const IndexRange o = dst.points_of(oc);
+                const float blend_t = 0.35f * plan.knot_t;
+                for (int64_t j = j0; j < r.size(); ++j) {
+                    const int64_t q = r.begin + j;
+                    const float tj = T[q];
+                    float feed_scale = 1.0f;
+                    if (p.feed_in > 0.0f) feed_scale = std::sqrt(1.0f - p.feed_in * (1.0f - std::min(tj / plan.feed_t, 1.0f)));
+                    const float rad = 0.5f * SW[q] * sec.spread[q] * feed_scale;
+                    const float fl = p.flatten * sec.press[q];
+                    const double phi = double(d.phi) + kTwoPi * twist * double(sec.phase[q]);
+                    const float cphi = float(std::cos(phi)), sphi = float(std::sin(phi));
+                    float3 off = (e1[j] * (cphi * rad * (1.0f + 0.5f * fl)) + e2[j] * (sphi * rad * (1.0f - fl))) * d.rho;
+                    if (d.flyaway) {
+                        const float dist = std::fabs(tj - d.loop_t) / d.loop_half_t;
+                        if (dist < 1.0f) {
+                            const float bump = 0.5f * (1.0f + std::cos(float(std::numbers::pi) * dist));
+                            const float height = (p.flyaway_height > 0.0f ? p.flyaway_height : SW[q]) * d.loop_height;
+                            off += (e1[j] * cphi + e2[j] * sphi) * (bump * height);
+                        }
+                    }
+                    float3 pos = pts[j] + off;
+                    if (d.feeds && tj - d.join_t < blend_t) {
+                        // Joining: from beside the braid and below it, eased into the fiber's place.
+                        const float3 root = sec.centre[q] + sec.lateral[q] * (d.side * 1.1f * sec.half_width[q]) -
+                                            sec.up[q] * (0.6f * sec.half_height[q]);
+                        const float v = std::clamp((tj - d.join_t) / blend_t, 0.0f, 1.0f);
+                        const float e = v * v * (3.0f - 2.0f * v);
+                        pos = root + (pos - root) * e;
+                    }
+                    const int64_t oq = o.begin + (j - j0);
+                    dP[oq] = pos;
+                    dW[oq] = p.fiber_width > 0.0f ? p.fiber_width : SW[q] * inv_sqrt_m;
+                    reach[oq] = length(pos - pts[j]);
+                    strand_point[oq] = q;
+                }
+            }
+            step.advance(1);
+        }
+    });
+    carry_curve_attributes(strands, dst, src_curve);
+    carry_point_attributes(strands, dst, strand_point, {attr::P, attr::width});
+    return dst;
+}
+
+}  // namespace groom

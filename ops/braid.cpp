@@ -412,7 +412,7 @@ LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const
 /// The tie band of one guide: `turns` wraps of an ellipse around the pinched braid at params.tie,
 /// advancing one band width per turn along the guide. Writes `count` points from `out`.
 void tie_band(const BraidParams& p, const CurveSet& strands, const StrandSections& sec, int64_t first_strand, int N,
-              float band_width, std::span<float3> out)
+              float band_width, double strand_length, std::span<float3> out)
 {
     // The strand sample nearest the tie: every strand of a guide shares the guide's samples.
     const IndexRange r0 = strands.points_of(first_strand);
@@ -423,14 +423,20 @@ void tie_band(const BraidParams& p, const CurveSet& strands, const StrandSection
     const int64_t q0 = r0.begin + j;
     const float3 c = sec.centre[q0], b = sec.lateral[q0], n = sec.up[q0];
     const float3 tan = normalize(cross(b, n));
-    // Reach of the strands' hair from the centre, across and up, plus half the band.
+    // Reach of the strands' hair from the centre, across and up, over the stretch the band covers.
+    const double len = double(strand_length);
+    const double half_span = 0.5 * double(p.tie_turns) * band_width + band_width;
     float rx = 0.0f, ry = 0.0f;
-    for (int i = 0; i < N; ++i) {
-        const int64_t q = strands.points_of(first_strand + i).begin + j;
-        const float3 d = P[q] - c;
-        const float hw = 0.5f * W[q] * (1.0f + 0.5f * p.flatten);
-        rx = std::max(rx, std::fabs(dot(d, b)) + hw);
-        ry = std::max(ry, std::fabs(dot(d, n)) + hw);
+    for (int64_t jj = 0; jj < S; ++jj) {
+        if (std::fabs(double(jj - j)) / double(S - 1) * len > half_span) continue;
+        const int64_t qc = r0.begin + jj;
+        for (int i = 0; i < N; ++i) {
+            const int64_t q = strands.points_of(first_strand + i).begin + jj;
+            const float3 d = P[q] - sec.centre[qc];
+            const float hw = 0.5f * W[q] * (1.0f + 0.5f * p.flatten);
+            rx = std::max(rx, std::fabs(dot(d, b)) + hw);
+            ry = std::max(ry, std::fabs(dot(d, n)) + hw);
+        }
     }
     rx += 0.5f * band_width;
     ry += 0.5f * band_width;
@@ -528,6 +534,18 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
             const double knot = plan.frequency > 0.0 && woven_len > 0.0 ? woven_len / plan.frequency : plan.length;
             plan.A = params.width ? *params.width : float(knot / 3.0);
             plan.B = params.height ? *params.height : float(plan.A * weave.touching_height());
+            if (!params.width && params.pattern != BraidPattern::Lissajous && !(params.strand_width > 0.0f) &&
+                !(params.fibers > 0 && params.fiber_radius > 0.0f)) {
+                // Automatic width: the widest braid whose strands, at the width where neighbours touch,
+                // still keep 0.85 widths apart along the knot (a tight braid, neither gapped nor
+                // interpenetrating). Shrink A until the touching width fits; a few steps converge.
+                for (int iter = 0; iter < 4; ++iter) {
+                    const double fit = separation(plan.A, plan.B, knot) / 0.85 / weave.touching_width();
+                    if (fit >= 0.999 * plan.A) break;
+                    plan.A = float(fit);
+                    if (!params.height) plan.B = float(plan.A * weave.touching_height());
+                }
+            }
             if (params.fibers > 0 && params.fiber_radius > 0.0f) plan.strand_width = 2.0f * params.fiber_radius;
             else if (params.strand_width > 0.0f) plan.strand_width = params.strand_width;
             else if (plan.A > 0.0f && params.pattern == BraidPattern::Lissajous) {
@@ -713,7 +731,7 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
             const IndexRange r = out.points_of(c);
             const float sw = strand_src.find<float>(Domain::Point, attr::width)[strand_src.points_of(fs).begin];
             const float band = params.tie_width > 0.0f ? params.tie_width : 0.35f * std::max(sw, 1e-6f);
-            tie_band(params, strand_src, sec, fs, N, band, oP.subspan(r.begin, r.size()));
+            tie_band(params, strand_src, sec, fs, N, band, plans[g].length, oP.subspan(r.begin, r.size()));
             for (int64_t p = r.begin; p < r.end; ++p) ow[p] = band;
             oid[c] = -1 - guide_ids[g];
             okind[c] = 1;

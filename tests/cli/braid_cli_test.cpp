@@ -4,6 +4,7 @@
 #include "kernel/io/curve_io.h"
 #include "kernel/math/polyline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -112,6 +113,24 @@ TEST(BraidCli, SameBytesForAnyThreadCount)
     EXPECT_TRUE(ba == bb) << "outputs differ between --threads 1 and --threads 2";
 }
 
+// Every pattern from the command line, with the ends: strands, fibers, a tie with kind = 1.
+TEST(BraidCli, PatternsAndEnds)
+{
+    TempDir dir;
+    const std::string in = guides_obj(dir);
+    for (const std::string pattern : {"plait", "fishtail", "twist", "rope", "round", "lissajous"}) {
+        const std::string out = dir.file(pattern + ".usda");
+        const auto r = run_groom({"braid", in, "-o", out, "--pattern", pattern, "--fibers", "4", "--loose-length", "0.5", "--tie",
+                                  "0.7", "--flyaways", "0.1", "--feed-in", "0.2"});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_NE(r.err.find(", " + pattern + ")"), std::string::npos) << r.err;
+        const CurveSet cs = read_curves(out);
+        const auto kind = cs.find<int32_t>(Domain::Curve, "kind");
+        ASSERT_EQ(kind.size(), cs.num_curves());
+        EXPECT_EQ(std::count(kind.begin(), kind.end(), 1), 3) << pattern;  // one tie per guide
+    }
+}
+
 TEST(BraidCli, RejectsInvalidOptionsWithUsageErrorAndNoOutput)
 {
     TempDir dir;
@@ -133,6 +152,11 @@ TEST(BraidCli, RejectsInvalidOptionsWithUsageErrorAndNoOutput)
     expect_usage({"--orient", "scalp"}, "braid: --orient scalp needs a scalp");
     expect_usage({"--taper", "1,x"}, "braid: --taper: expected a comma-separated list of numbers");
     expect_usage({"--knot-bias", "2"}, "braid: --knot-bias must be in (-1, 1) (got 2)");
+    expect_usage({"--pattern", "herringbone"},
+                 "braid: --pattern must be one of plait|fishtail|twist|rope|round|lissajous (got 'herringbone')");
+    expect_usage({"--hand", "left"}, "braid: --hand must be under, over or auto (got 'left')");
+    expect_usage({"--pattern", "round", "--strands", "3"}, "braid: --pattern round needs an even --strands >= 4 (got --strands 3)");
+    expect_usage({"--feed-in", "0.5"}, "braid: --feed-in moves fibers; give --fibers M > 0");
     // -o onto the input is refused.
     const auto r = run_groom({"braid", in, "-o", in});
     EXPECT_EQ(r.exit_code, 2);

@@ -502,6 +502,46 @@ TEST(Braid, AutomaticSampleCountGivesSixteenPointsPerCycle)
 
 TEST(Braid, RejectsInvalidOptions)
 {
+    {
+        const CurveSet g = make_curves({{{0, 0, 0}, {0, 1, 0}}});
+        const auto msg = [&](BraidParams p) { return message_of([&] { braid(g, p); }); };
+        BraidParams p;
+        p.pattern = BraidPattern::Fishtail;
+        p.strands = 5;
+        EXPECT_EQ(msg(p), "braid: --pattern fishtail needs an even --strands >= 4 (got --strands 5)");
+        p.pattern = BraidPattern::Twist;
+        p.strands = 3;
+        EXPECT_EQ(msg(p), "braid: --pattern twist has 2 strands; use --pattern rope for more (got --strands 3)");
+        p = BraidParams{};
+        p.pattern = BraidPattern::Lissajous;
+        p.hand = BraidHand::Under;
+        EXPECT_NE(msg(p).find("--hand does not apply to --pattern lissajous"), std::string::npos);
+        p = BraidParams{};
+        p.flyaways = 0.1f;
+        EXPECT_EQ(msg(p), "braid: --flyaways moves fibers; give --fibers M > 0");
+        p.fibers = 4;
+        p.flyaways = 1.5f;
+        EXPECT_EQ(msg(p), "braid: --flyaways must be a fraction in [0, 1] (got 1.5)");
+        p = BraidParams{};
+        p.fibers = 4;
+        p.feed_in = 1.0f;
+        EXPECT_EQ(msg(p), "braid: --feed-in must be a fraction in [0, 1) (got 1)");
+        p = BraidParams{};
+        p.tie = 1.5f;
+        EXPECT_EQ(msg(p), "braid: --tie must be an arc-length fraction in [0, 1] (got 1.5)");
+        p = BraidParams{};
+        p.tie_turns = 0;
+        EXPECT_EQ(msg(p), "braid: --tie-turns must be in [1, 64] (got 0)");
+        p = BraidParams{};
+        p.flatten = 0.95f;
+        EXPECT_EQ(msg(p), "braid: --flatten must be in [0, 0.9] (got 0.95)");
+        p = BraidParams{};
+        p.loose_length = -1.0f;
+        EXPECT_EQ(msg(p), "braid: --loose-length must be a finite number >= 0 (got -1)");
+        p = BraidParams{};
+        p.flare = std::numeric_limits<float>::infinity();
+        EXPECT_EQ(msg(p), "braid: --flare must be a finite number >= 0 (got inf)");
+    }
     const CurveSet guides = make_curves({{{0, 0, 0}, {0, 1, 0}}});
     const auto rejects = [&](BraidParams p, const std::string& expected) {
         const std::string msg = message_of([&] { braid(guides, p); });
@@ -601,6 +641,10 @@ TEST(Braid, DeterministicAcrossThreadCounts)
     p.fibers = 8;
     p.clearance = 0.01f;
     p.seed = 42;
+    p.flyaways = 0.2f;  // and every other seeded choice: flyaways, feed-in, a loose end and a tie
+    p.feed_in = 0.3f;
+    p.loose_length = 2.0f;
+    p.tie = 0.8f;
     const auto run = [&](int threads) {
         ThreadLimit limit(threads);
         return braid(guides, p, &sphere);

@@ -66,14 +66,13 @@ fi
 # --- 2. Alisha: cornrows, edge hairs, loose curly ends -----------------------------------------------
 echo "2. Alisha: cornrows"
 alisha=()
-knot=1.3  # cm per knot, shared by braid and partition so edge hairs meet the braids' knots
+knot=2.2  # cm per knot (a strand's full cycle: 6 crossings), shared by braid and partition so edge hairs meet the braids' knots
 if have cornrow-guides; then
     step "cornrow guides" groom cornrow-guides --scalp "$scalp" -o "$out/alisha_guides.usda" \
         --count 12 --tails-out "$out/alisha_tails.usda" --tail-length 14
     if have braid; then
         step "braid" groom braid "$out/alisha_guides.usda" --scalp "$scalp" -o "$out/alisha_braids.usda" \
-            --orient scalp --strands 3 --knot-length "$knot" --width 0.42 --height 0.25 --rest --clearance 0.05 \
-            --fibers 40
+            --orient scalp --strands 3 --knot-length "$knot" --rest --clearance 0.05 --fibers 40 --feed-in 0.3
         alisha+=("$out/alisha_braids.usda")
     else
         skip "groom braid is not in this build"

@@ -346,7 +346,7 @@ LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const
         const float w = plan.strand_width * s;
         // With fibers the strand is an ellipse about w/2 across, filled with fibers of their own width.
         const float fiber_w = p.fibers > 0 ? (p.fiber_width > 0.0f ? p.fiber_width : w * inv_sqrt_m) : 0.0f;
-        section_reach[j] = p.fibers > 0 ? float(0.5 * w * (1.0 + 0.5 * p.flatten) * spread) + 0.5f * fiber_w : 0.5f * w;
+        section_reach[j] = p.fibers > 0 ? float(0.5 * w * (kFiberSpreadAcross + 0.5 * p.flatten) * spread) + 0.5f * fiber_w : 0.5f * w;
         for (int i = 0; i < N; ++i) {
             WeaveOffset o = loose ? end_offset[i] : ctx.weave.at(i, u);
             if (loose) {
@@ -433,7 +433,7 @@ void tie_band(const BraidParams& p, const CurveSet& strands, const StrandSection
         for (int i = 0; i < N; ++i) {
             const int64_t q = strands.points_of(first_strand + i).begin + jj;
             const float3 d = P[q] - sec.centre[qc];
-            const float hw = 0.5f * W[q] * (1.0f + 0.5f * p.flatten);
+            const float hw = 0.5f * W[q] * (kFiberSpreadAcross + 0.5f * p.flatten);
             rx = std::max(rx, std::fabs(dot(d, b)) + hw);
             ry = std::max(ry, std::fabs(dot(d, n)) + hw);
         }
@@ -564,7 +564,8 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
                     plan.B = float(0.55 * w);
                     w = std::min(w, separation(plan.A, plan.B, knot) / 0.85);
                 }
-                plan.strand_width = float(w);
+                // A flat braid asked for (--height 0) has no separation to keep: keep a visible strand.
+                plan.strand_width = float(std::max(w, 0.1 * double(plan.A) * weave.touching_width()));
             }
             else plan.strand_width = plan.B > 0.0f ? 2.0f * plan.B / float(N) : float(0.01 * plan.length);
             // Automatic: enough points per knot where alpha is steepest, >= the guide's own detail.

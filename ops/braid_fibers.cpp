@@ -15,12 +15,7 @@ namespace {
 /// Rng stream for a fiber's draws; a distinct constant per purpose (kernel/rng.h).
 constexpr uint64_t kStreamBraidFiber = 0x62726169646669ull;  // "braidfi"
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
-/// A strand's fibers spread wider across the braid than its round width, as hair does when strands
-/// are pulled tight against each other: the ellipse's half-width is kAcross times the strand's radius.
-/// Measured on 3- and 5-strand plaits of 40 fibers seen from above (tests/ops/braid_weave_test.cpp):
-/// at 1.0, 6-8% of the footprint is see-through; at 1.25, 1.4-2.6%; at 1.4, up to 1%; at 1.55, none
-/// beyond 0.2%.
-constexpr float kAcross = 1.55f;
+
 
 /// What one fiber drew: its place in the strand's cross-section, its flyaway loop, where it joins.
 struct FiberDraw {
@@ -108,6 +103,7 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
     const ProgressStep step(progress, "braid fibers", nc);
     parallel_for(nc, 16, [&](int64_t begin, int64_t end) {
         std::vector<float3> e1, e2;
+        std::vector<float> cos_twist, sin_twist;
         for (int64_t c = begin; c < end; ++c) {
             const IndexRange r = strands.points_of(c);
             const auto pts = SP.subspan(r.begin, r.size());
@@ -123,6 +119,16 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
                 e1[j] = a;
                 e2[j] = cross(tan[j], a);
             }
+            // The twist angle at each strand point, shared by the strand's M fibers: each fiber adds its
+            // own start angle by the sum formula, so a fiber point costs no trigonometry (the profile
+            // of the first version spent two thirds of the op in per-point sin and cos).
+            cos_twist.resize(pts.size());
+            sin_twist.resize(pts.size());
+            for (int64_t j = 0; j < r.size(); ++j) {
+                const double psi = kTwoPi * twist * double(sec.phase[r.begin + j]);
+                cos_twist[j] = float(std::cos(psi));
+                sin_twist[j] = float(std::sin(psi));
+            }
             const StrandFiberPlan& plan = plans[c];
             for (int64_t f = 0; f < M; ++f) {
                 const int64_t oc = c * M + f;
@@ -133,6 +139,7 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
                 src_curve[oc] = c;
                 const IndexRange o = dst.points_of(oc);
                 const float blend_t = 0.35f * plan.knot_t;
+                const float c0 = std::cos(d.phi), s0 = std::sin(d.phi);
                 for (int64_t j = j0; j < r.size(); ++j) {
                     const int64_t q = r.begin + j;
                     const float tj = T[q];
@@ -140,9 +147,8 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
                     if (p.feed_in > 0.0f) feed_scale = std::sqrt(1.0f - p.feed_in * (1.0f - std::min(tj / plan.feed_t, 1.0f)));
                     const float rad = 0.5f * SW[q] * sec.spread[q] * feed_scale;
                     const float fl = p.flatten * sec.press[q];
-                    const double phi = double(d.phi) + kTwoPi * twist * double(sec.phase[q]);
-                    const float cphi = float(std::cos(phi)), sphi = float(std::sin(phi));
-                    float3 off = (e1[j] * (cphi * rad * (kAcross + 0.5f * fl)) + e2[j] * (sphi * rad * (1.0f - fl))) * d.rho;
+                    const float cphi = c0 * cos_twist[j] - s0 * sin_twist[j], sphi = s0 * cos_twist[j] + c0 * sin_twist[j];
+                    float3 off = (e1[j] * (cphi * rad * (kFiberSpreadAcross + 0.5f * fl)) + e2[j] * (sphi * rad * (1.0f - fl))) * d.rho;
                     if (d.flyaway) {
                         const float dist = std::fabs(tj - d.loop_t) / d.loop_half_t;
                         if (dist < 1.0f) {

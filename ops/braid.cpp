@@ -725,6 +725,11 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
             const auto hf = hair.find<int32_t>(Domain::Curve, "fiber");
             std::copy(hf.begin(), hf.end(), ofiber.begin());
         }
+        int64_t tie_id0 = 0;
+        for (const int64_t id : hid) tie_id0 = std::max(tie_id0, id + 1);
+        if (tie_id0 > std::numeric_limits<int64_t>::max() - int64_t(tie_guide.size())) {
+            throw LimitExceeded("braid: tie ids past the largest hair id overflow a 64-bit id; lower the guide ids");
+        }
         for (size_t k = 0; k < tie_guide.size(); ++k) {
             const int64_t g = tie_guide[k];
             const int64_t c = nh + int64_t(k);
@@ -734,7 +739,8 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
             const float band = params.tie_width > 0.0f ? params.tie_width : 0.35f * std::max(sw, 1e-6f);
             tie_band(params, strand_src, sec, fs, N, band, plans[g].length, oP.subspan(r.begin, r.size()));
             for (int64_t p = r.begin; p < r.end; ++p) ow[p] = band;
-            oid[c] = -1 - guide_ids[g];
+            // After every hair id (not negative: tinyusdz, and so some USD readers, refuse negative int64s).
+            oid[c] = tie_id0 + int64_t(k);
             okind[c] = 1;
             ostrand[c] = -1;
             if (M > 0) ofiber[c] = -1;

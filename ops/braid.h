@@ -197,7 +197,7 @@ struct BraidResult {
 ///   point P, point width (scene units);
 ///   curve guide (int32, source curve index), strand (int32, 0..N-1; -1 on a tie), fiber (int32,
 ///   0..M-1, with fibers only; -1 on a tie), kind (int32: 0 hair, 1 tie), id (int64: guide id * N +
-///   strand, times M plus fiber with fibers; a tie's id is -1 - guide id; unique when guide ids are);
+///   strand, times M plus fiber with fibers; a tie's id is one past the largest hair id plus its index among the ties; unique when guide ids are);
 ///   every other curve and detail attribute of the guide; point attributes of the guide from its
 ///   point nearest in arc length (P and width excepted).
 ///

@@ -34,7 +34,7 @@ CurveSet cornrow_guides(const Surface& scalp)
     const int rows = 20, points = 64;
     std::vector<int64_t> counts(rows, points);
     CurveSet guides = CurveSet::from_counts(counts);
-    auto P = guides.positions();
+    auto P = guides.positions_for_write();
     for (int g = 0; g < rows; ++g) {
         const double phi = (-55.0 + 110.0 * g / (rows - 1)) * std::numbers::pi / 180.0;
         for (int k = 0; k < points; ++k) {

@@ -24,7 +24,7 @@ const CurveSet& guides()
 {
     static const CurveSet cs = [] {
         CurveSet g = CurveSet::from_counts(std::vector<int64_t>(kHairs, kGuidePoints));
-        auto P = g.positions();
+        auto P = g.positions_for_write();
         for (int c = 0; c < kHairs; ++c) {
             const float x = float(c % 316), z = float(c / 316);
             for (int i = 0; i < kGuidePoints; ++i) {
@@ -74,7 +74,7 @@ void BM_HelixFloor(benchmark::State& state)
     const auto in = g.positions();
     for (auto _ : state) {
         CurveSet out = CurveSet::from_counts(std::vector<int64_t>(kHairs, kOutPoints));
-        auto P = out.positions();
+        auto P = out.positions_for_write();
         parallel_for(kHairs, 64, [&](int64_t b, int64_t e) {
             for (int64_t c = b; c < e; ++c) {
                 const float3 root = in[size_t(c) * kGuidePoints];

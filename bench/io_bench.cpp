@@ -19,7 +19,7 @@ const CurveSet& synthetic()
     static const CurveSet cs = [] {
         const size_t curves = 10000, per = 32;
         CurveSet s = CurveSet::from_counts(std::vector<int64_t>(curves, per));
-        auto P = s.positions();
+        auto P = s.positions_for_write();
         auto w = s.add<float>(Domain::Point, attr::width);
         auto cd = s.add<float3>(Domain::Point, "Cd");
         auto id = s.add<int64_t>(Domain::Curve, attr::id);

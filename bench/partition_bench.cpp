@@ -54,7 +54,7 @@ const Layout& cornrows()
         const int rows = 30, points = 64;
         std::vector<int64_t> counts(rows, points);
         l.guides = CurveSet::from_counts(counts);
-        auto P = l.guides.positions();
+        auto P = l.guides.positions_for_write();
         for (int k = 0; k < rows; ++k) {
             const float phi = (-60.0f + 120.0f * k / (rows - 1)) * float(M_PI / 180.0);
             for (int i = 0; i < points; ++i) {

@@ -17,7 +17,7 @@ CurveSet make_groom(const PolygonSoup& head, int64_t curves, int points)
 {
     std::vector<int64_t> counts(size_t(curves), points);
     CurveSet c = CurveSet::from_counts(counts);
-    auto P = c.positions();
+    auto P = c.positions_for_write();
     auto width = c.add<float>(Domain::Point, attr::width);
     std::vector<float3> roots;
     for (const float3& p : head.points)

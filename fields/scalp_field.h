@@ -11,7 +11,7 @@
 
 #include "fields/mesh_repair.h"
 #include "fields/surface.h"
-#include "kernel/io/mesh_io.h"
+#include "kernel/polygon_soup.h"
 #include "kernel/progress.h"
 
 #include <cstdint>

@@ -110,6 +110,9 @@ bool is_oriented_manifold(const std::vector<std::vector<size_t>>& tris, size_t n
 /// Throws unless every coordinate is finite and every index in range.
 void validate_soup(const PolygonSoup& soup, const std::string& what);
 
+/// openvdb::initialize(), once per process (grid types must be registered before reading a file).
+void init_openvdb();
+
 }  // namespace detail
 
 struct ScalpField::Impl {

@@ -3,7 +3,7 @@
 // Faces are wound counter-clockwise seen from outside (normals point away from the centre).
 #pragma once
 
-#include "kernel/io/mesh_io.h"
+#include "kernel/polygon_soup.h"
 #include "kernel/math/vec.h"
 
 namespace groom {

@@ -47,7 +47,7 @@ std::vector<CurveSet> sample_curves()
 {
     const int64_t counts[] = {4, 2, 5};
     CurveSet a = CurveSet::from_counts(counts);
-    auto P = a.positions();
+    auto P = a.positions_for_write();
     for (size_t i = 0; i < P.size(); ++i) P[i] = {float(i % 3) * 0.5f, float(i) * 1.25f, -float(i) / 3.0f};
     auto w = a.add<float>(Domain::Point, "width");
     for (size_t i = 0; i < w.size(); ++i) w[i] = 0.01f * float(i + 1);
@@ -59,7 +59,7 @@ std::vector<CurveSet> sample_curves()
 
     const int64_t one[] = {2};
     CurveSet b = CurveSet::from_counts(one);
-    b.positions()[1] = {0, 10, 0};
+    b.positions_for_write()[1] = {0, 10, 0};
     return {a, b};
 }
 

@@ -65,15 +65,18 @@ public:
         if (!a || a->type() != attr_type_of<T>()) return {};
         return a->values<T>();
     }
-    template <class T> std::span<T> find(Domain d, std::string_view name)
+    /// The same column for writing; named apart so that a reader cannot write by accident.
+    template <class T> std::span<T> find_for_write(Domain d, std::string_view name)
     {
         Attribute* a = attributes(d).find(name);
         if (!a || a->type() != attr_type_of<T>()) return {};
         return a->values<T>();
     }
 
-    std::span<float3> positions() { return attributes(Domain::Point).find(attr::P)->values<float3>(); }
+    /// Point positions ("P"), read only; positions_for_write() for the writable view (Blender's
+    /// naming: a call that can change the geometry says so).
     std::span<const float3> positions() const { return attributes(Domain::Point).find(attr::P)->values<float3>(); }
+    std::span<float3> positions_for_write() { return attributes(Domain::Point).find(attr::P)->values<float3>(); }
 
     /// Curve ids: the "id" curve attribute when present (int64 or int32), else the curve index.
     std::vector<int64_t> curve_ids() const;

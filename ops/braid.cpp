@@ -327,8 +327,8 @@ LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const
         for (int r = 0; r < N; ++r) row[order[r]] = (double(r) - 0.5 * (N - 1)) * spacing;
     }
 
-    auto P = dst.positions();
-    auto W = dst.find<float>(Domain::Point, attr::width);
+    auto P = dst.positions_for_write();
+    auto W = dst.find_for_write<float>(Domain::Point, attr::width);
     std::vector<float> section_reach(S);  // how far the hair reaches beyond a centreline, per section
     const float inv_sqrt_m = p.fibers > 0 ? 1.0f / std::sqrt(float(p.fibers)) : 0.0f;
     for (int64_t j = 0; j < S; ++j) {
@@ -455,7 +455,7 @@ void tie_band(const BraidParams& p, const CurveSet& strands, const StrandSection
 int64_t push_out(CurveSet& cs, const Surface& scalp, float clearance, float margin, std::span<const uint8_t> known_clear,
                  Progress* progress)
 {
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     const auto W = cs.find<float>(Domain::Point, attr::width);
     const int64_t n = int64_t(cs.num_points());
     std::vector<uint8_t> moved(n, 0);
@@ -705,7 +705,7 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
         std::vector<int64_t> tie_src_curve(out.num_curves()), tie_src_point(out.num_points());
         for (int64_t c = 0; c < nh; ++c) tie_src_curve[c] = c;
         for (int64_t p = 0; p < int64_t(hair.num_points()); ++p) tie_src_point[p] = p;
-        auto oP = out.positions();
+        auto oP = out.positions_for_write();
         const auto hP = hair.positions();
         std::copy(hP.begin(), hP.end(), oP.begin());
         auto ow = out.add<float>(Domain::Point, attr::width);

@@ -89,7 +89,7 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
         stats.fed_in += feeds[k];
     }
     CurveSet dst = CurveSet::from_counts(counts);
-    auto dP = dst.positions();
+    auto dP = dst.positions_for_write();
     auto dW = dst.add<float>(Domain::Point, attr::width);
     auto dfiber = dst.add<int32_t>(Domain::Curve, "fiber");
     auto did = dst.add<int64_t>(Domain::Curve, attr::id);

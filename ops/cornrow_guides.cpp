@@ -66,7 +66,7 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     CornrowGuides out;
     std::vector<int64_t> counts(size_t(n), params.samples);
     out.guides = CurveSet::from_counts(counts);
-    auto P = out.guides.positions();
+    auto P = out.guides.positions_for_write();
     // Dense paths before re-spacing: projection bunches points where the head curves away from the
     // sphere, so sample generously and resample by arc length afterwards.
     const int dense = std::max(4 * params.samples, 64);
@@ -109,7 +109,7 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
 
     std::vector<int64_t> tail_counts(size_t(n), params.tail_samples);
     out.tails = CurveSet::from_counts(tail_counts);
-    auto T = out.tails.positions();
+    auto T = out.tails.positions_for_write();
     parallel_for(n, 1, [&](int64_t b, int64_t e) {
         for (int64_t i = b; i < e; ++i) {
             const float3* g = &P[size_t(i) * params.samples];

@@ -24,7 +24,7 @@ CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& param
 
     if (params.mode == CullMode::Push) {
         CurveSet dst = src;
-        const auto Q = dst.positions();
+        const auto Q = dst.positions_for_write();
         std::vector<int64_t> pushed(nc, 0);
         parallel_for(nc, 64, [&](int64_t b, int64_t e) {
             for (int64_t c = b; c < e; ++c) {
@@ -89,7 +89,7 @@ CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& param
         counts.push_back(keep[c]);
     }
     CurveSet dst = CurveSet::from_counts(counts);
-    const auto Q = dst.positions();
+    const auto Q = dst.positions_for_write();
     std::vector<int64_t> src_point(dst.num_points());
     parallel_for(int64_t(kept_curves.size()), 64, [&](int64_t b, int64_t e) {
         for (int64_t k = b; k < e; ++k) {

@@ -289,7 +289,7 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     std::vector<int64_t> counts(nc);
     for (size_t c = 0; c < nc; ++c) counts[c] = setup[c].points;
     CurveSet dst = CurveSet::from_counts(counts);
-    auto dP = dst.positions();
+    auto dP = dst.positions_for_write();
     auto dshape = dst.add<int32_t>(Domain::Point, "shape");
     auto dcycle = dst.add<int32_t>(Domain::Point, "cycle");
     std::span<float> dwidth;

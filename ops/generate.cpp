@@ -275,7 +275,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     const int query = int(std::min<int64_t>(int64_t(k) + 1, ng));
 
     CurveSet dst = CurveSet::from_counts(std::vector<int64_t>(size_t(nc), np));
-    auto P = dst.positions();
+    auto P = dst.positions_for_write();
     auto ids = dst.add<int64_t>(Domain::Curve, attr::id);
     auto nearest_guide = dst.add<int32_t>(Domain::Curve, "guide");
     std::vector<int64_t> src_curve(static_cast<size_t>(nc));
@@ -353,7 +353,7 @@ CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSample
 
 int64_t push_out_of_scalp(CurveSet& curves, const Surface& scalp, float clearance)
 {
-    auto P = curves.positions();
+    auto P = curves.positions_for_write();
     const int64_t nc = int64_t(curves.num_curves());
     std::vector<int64_t> moved(static_cast<size_t>(nc), 0);
     parallel_for(nc, 256, [&](int64_t b, int64_t e) {

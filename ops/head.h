@@ -9,7 +9,7 @@
 // y = -2 .. 12 above the ears (top at y = 12), the chin is near y = -11.7, the neck is cut flat at y = -22.
 #pragma once
 
-#include "kernel/io/mesh_io.h"
+#include "kernel/polygon_soup.h"
 
 namespace groom {
 

@@ -215,7 +215,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     const int64_t total = first_curve[nc];
     std::vector<int64_t> counts(size_t(total), params.samples);
     CurveSet dst = CurveSet::from_counts(counts);
-    auto out_P = dst.positions();
+    auto out_P = dst.positions_for_write();
     auto out_guide = dst.add<int32_t>(Domain::Curve, "guide");
     auto out_side = dst.add<int32_t>(Domain::Curve, "side");
     auto out_group = dst.add<int32_t>(Domain::Curve, "group");

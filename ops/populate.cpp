@@ -78,7 +78,7 @@ CurveSet populate(const CurveSet& src, const PopulateParams& params, Progress* p
         }
     }
     CurveSet dst = CurveSet::from_counts(counts);
-    auto dP = dst.positions();
+    auto dP = dst.positions_for_write();
     auto dwidth = dst.add<float>(Domain::Point, attr::width);
     auto dfiber = dst.add<int32_t>(Domain::Curve, "fiber");
     auto did = dst.add<int64_t>(Domain::Curve, attr::id);

@@ -17,7 +17,7 @@ CurveSet project(const CurveSet& src, const Surface& scalp, const ProjectParams&
 {
     params.validate();
     CurveSet dst = src;
-    const auto P = dst.positions();
+    const auto P = dst.positions_for_write();
     const int64_t nc = static_cast<int64_t>(dst.num_curves());
     std::vector<float> moved(nc, 0.0f);
     std::vector<int64_t> count(nc, 0);

@@ -239,7 +239,7 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     }
 
     CurveSet dst = CurveSet::from_counts(std::vector<int64_t>(size_t(ng), np));
-    auto P = dst.positions();
+    auto P = dst.positions_for_write();
     auto ids = dst.add<int64_t>(Domain::Curve, attr::id);
     auto kind = dst.add<int32_t>(Domain::Curve, "kind");
     auto guide = dst.add<int32_t>(Domain::Curve, "guide");
@@ -311,7 +311,7 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     CurveSet centres = generate(result.guides, scalp, sample, gen, progress);
 
     // Tips onto the sphere, by a warp that vanishes with its derivative at the root.
-    auto P = centres.positions();
+    auto P = centres.positions_for_write();
     const float3 C = params.sphere_center;
     const float R = params.sphere_radius;
     parallel_for(int64_t(centres.num_curves()), 256, [&](int64_t b, int64_t e) {

@@ -7,8 +7,8 @@
 #pragma once
 
 #include "kernel/curve_set.h"
-#include "kernel/io/mesh_io.h"
-#include "kernel/io/png.h"
+#include "kernel/polygon_soup.h"
+#include "kernel/image.h"
 #include "kernel/progress.h"
 
 #include <span>

@@ -42,7 +42,7 @@ CurveSet resample(const CurveSet& src, const ResampleParams& params)
     });
 
     CurveSet dst = CurveSet::from_counts(counts);
-    auto dP = dst.positions();
+    auto dP = dst.positions_for_write();
     std::vector<int64_t> src_point(dst.num_points());
     parallel_for(int64_t(nc), 256, [&](int64_t b, int64_t e) {
         for (int64_t c = b; c < e; ++c) {

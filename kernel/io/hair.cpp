@@ -81,7 +81,7 @@ CurveSet read_hair(const FileBytes& file)
                      "strand segment counts add up to " + std::to_string(total) + " points but the header says " + std::to_string(points));
     }
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (uint32_t i = 0; i < points; ++i, at += 12) {
         P[i] = {get<float>(d, at), get<float>(d, at + 4), get<float>(d, at + 8)};
         if (!isfinite(P[i])) fail_at_byte(file.name, at, "point " + std::to_string(i) + " is not finite (NaN or inf)");

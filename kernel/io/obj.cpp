@@ -108,7 +108,7 @@ CurveSet read_obj_curves(const FileBytes& file)
     std::vector<int64_t> counts(n);
     for (size_t c = 0; c < n; ++c) counts[c] = obj.line_offsets[c + 1] - obj.line_offsets[c];
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (size_t i = 0; i < obj.line_indices.size(); ++i) P[i] = obj.points[obj.line_indices[i]];
     return cs;
 }

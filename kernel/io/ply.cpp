@@ -625,7 +625,7 @@ CurveSet read_ply_curves(const FileBytes& file)
     }
 
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (size_t i = 0; i < order.size(); ++i) P[i] = pts[order[i]];
     add_columns(*v, g.point_types, Domain::Point, order, {"x", "y", "z"}, cs);
     if (curve && curve->find("point_count") && curve->count == counts.size()) {

@@ -4,26 +4,13 @@
 // IoError / ParseError naming the file.
 #pragma once
 
+#include "kernel/image.h"
+
 #include <cstdint>
-#include <span>
 #include <string>
 #include <vector>
 
 namespace groom {
-
-/// An 8-bit RGB picture, rows top to bottom, 3 bytes per pixel (R, G, B).
-struct RgbImage {
-    int width = 0, height = 0;
-    std::vector<uint8_t> rgb;  ///< #height by #width by 3
-
-    RgbImage() = default;
-    RgbImage(int w, int h) : width(w), height(h), rgb(static_cast<size_t>(w) * static_cast<size_t>(h) * 3u, 0) {}
-    uint8_t* at(int x, int y) { return rgb.data() + (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 3u; }
-    const uint8_t* at(int x, int y) const
-    {
-        return rgb.data() + (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 3u;
-    }
-};
 
 /// The PNG file bytes of `image` (deflate level 6, no interlacing). Throws InvalidParam for an empty
 /// image or one whose buffer does not hold width*height*3 bytes, IoError if libpng fails.

@@ -786,7 +786,7 @@ CurveSet build_prim(const FileBytes& file, Parser::CurvesPrim& cp, const CurveRe
 
     // Control-point topology first; cubic curves are evaluated at the end.
     CurveSet cvs = CurveSet::from_counts(std::span<const int32_t>(counts));
-    std::copy(pts.begin(), pts.end(), cvs.positions().begin());
+    std::copy(pts.begin(), pts.end(), cvs.positions_for_write().begin());
     const int64_t num_curves = static_cast<int64_t>(counts.size()), num_points = total;
     int64_t num_varying = 0;
     for (int32_t n : counts) num_varying += varying_count(n, cubic, pinned);
@@ -928,7 +928,7 @@ CurveSet build_prim(const FileBytes& file, Parser::CurvesPrim& cp, const CurveRe
             base += varying_count(counts[c], true, pinned);
         }
     }
-    eval3(cvs.positions(), out.positions());
+    eval3(cvs.positions_for_write(), out.positions_for_write());
     out.validate(file.name);
     return out;
 }

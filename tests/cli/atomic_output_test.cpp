@@ -26,7 +26,7 @@ std::string write_guides(const test::TempDir& dir, const std::string& name = "gu
 {
     std::vector<int64_t> counts(60, 8);
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (size_t i = 0; i < P.size(); ++i) P[i] = {float(i / 8) * 0.5f, float(i % 8), 0.25f * float(i / 8 % 3)};
     const std::string path = dir.file(name);
     write_curves(cs, path);

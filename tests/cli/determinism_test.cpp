@@ -23,7 +23,7 @@ std::string write_guides(const test::TempDir& dir)
     const int n = 240, k = 12;
     std::vector<int64_t> counts(n, k);
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (int c = 0; c < n; ++c) {
         const float x = float(c % 16) * 0.66f - 5.0f, z = float(c / 16) * 0.66f - 5.0f;
         for (int i = 0; i < k; ++i) {
@@ -43,7 +43,7 @@ std::string write_sphere_guides(const test::TempDir& dir)
     const int n = 120, k = 10;
     std::vector<int64_t> counts(n, k);
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (int c = 0; c < n; ++c) {
         const float polar = 0.9f * std::sqrt((float(c) + 0.5f) / float(n)), az = 2.39996323f * float(c);
         const float3 dir_out{std::sin(polar) * std::cos(az), std::cos(polar), std::sin(polar) * std::sin(az)};

@@ -17,7 +17,7 @@ std::string write_curves_file(const test::TempDir& dir)
 {
     std::vector<int64_t> counts{4, 4, 4};
     CurveSet c = CurveSet::from_counts(counts);
-    auto P = c.positions();
+    auto P = c.positions_for_write();
     auto strand = c.add<int32_t>(Domain::Curve, "strand");
     for (int i = 0; i < 3; ++i) {
         strand[i] = i;

@@ -2,6 +2,7 @@
 // the same answers, far-field queries, sampling, .vdb round trip, the independent Sintel SDF and
 // every real head in ../shared/datasets.
 #include "fields/scalp_field.h"
+#include "kernel/io/mesh_io.h"
 #include "fields/sphere_mesh.h"
 #include "kernel/error.h"
 #include "kernel/parallel.h"

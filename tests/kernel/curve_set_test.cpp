@@ -42,7 +42,7 @@ TEST(CurveSet, StringsOnlyOnDetailDomain)
 TEST(CurveSet, ValidateRejectsNonFinitePositionsNamingThePoint)
 {
     CurveSet cs = CurveSet::from_counts(std::vector<int64_t>{2, 2});
-    cs.positions()[3] = float3(0, NAN, 0);
+    cs.positions_for_write()[3] = float3(0, NAN, 0);
     try {
         cs.validate("guides.usda");
         FAIL() << "expected InvalidGeometry";

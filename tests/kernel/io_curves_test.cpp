@@ -24,7 +24,7 @@ CurveSet sample_curves(bool with_attributes = true)
 {
     const std::vector<int64_t> counts{3, 5, 2, 4};
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (size_t i = 0; i < P.size(); ++i) {
         const float t = static_cast<float>(i);
         P[i] = {std::nextafter(0.1f * t, 1.0f), std::sin(t) * 1e-7f + 1.0f / 3.0f, -1234.5678f * t - 1e-30f};

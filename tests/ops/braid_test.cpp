@@ -27,7 +27,7 @@ CurveSet make_curves(const std::vector<std::vector<float3>>& curves)
     std::vector<int64_t> counts;
     for (const auto& c : curves) counts.push_back(int64_t(c.size()));
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     size_t q = 0;
     for (const auto& c : curves)
         for (const float3& p : c) P[q++] = p;

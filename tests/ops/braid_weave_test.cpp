@@ -29,7 +29,7 @@ constexpr double kPi = std::numbers::pi;
 CurveSet straight_guide(float length, int points = 9)
 {
     CurveSet cs = CurveSet::from_counts(std::vector<int64_t>{points});
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (int k = 0; k < points; ++k) P[k] = {length * float(k) / float(points - 1), 0.0f, 0.0f};
     return cs;
 }
@@ -89,7 +89,7 @@ CurveSet sphere_arcs(int count, double lift = 0.2)
 {
     std::vector<int64_t> counts(count, 31);
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (int g = 0; g < count; ++g) {
         const double lon = g * 25.0 * kPi / 180.0;
         for (int k = 0; k <= 30; ++k) {
@@ -339,7 +339,7 @@ TEST(BraidWeave, PlaitOnAnSCurveStillWeaves)
 {
     std::vector<int64_t> counts{121};
     CurveSet g = CurveSet::from_counts(counts);
-    auto P = g.positions();
+    auto P = g.positions_for_write();
     for (int k = 0; k <= 120; ++k) {
         const double x = 12.0 * k / 120.0;
         P[k] = {float(x), 0.0f, float(1.5 * std::sin(2.0 * kPi * x / 12.0))};

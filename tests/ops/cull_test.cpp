@@ -19,7 +19,7 @@ CurveSet three_curves()
 {
     const int64_t counts[3] = {3, 5, 2};
     CurveSet c = CurveSet::from_counts(counts);
-    auto P = c.positions();
+    auto P = c.positions_for_write();
     const float3 pts[10] = {{0, 1.5f, 0}, {0, 2, 0}, {0, 2.5f, 0}, {1, 0, 0}, {1.5f, 0, 0}, {0.5f, 0, 0}, {0, 0, 0}, {-2, 0, 0},
                             {0, 0, 1.2f}, {0, 0, 2}};
     std::copy(pts, pts + 10, P.begin());
@@ -70,7 +70,7 @@ TEST(Cull, SameResultForAnyThreadCount)
     const AnalyticSphere sphere({0, 0, 0}, 1.0f);
     std::vector<int64_t> counts(2000, 6);
     CurveSet src = CurveSet::from_counts(counts);
-    auto P = src.positions();
+    auto P = src.positions_for_write();
     for (size_t i = 0; i < P.size(); ++i) P[i] = float3(std::sin(float(i)) * 2, std::cos(float(i) * 1.3f) * 2, float(i % 7) * 0.3f - 1);
     for (CullMode mode : {CullMode::Push, CullMode::Trim, CullMode::Delete}) {
         CurveSet a, b;

@@ -22,7 +22,7 @@ CurveSet straight_guides(int n, float length, int points = 8)
 {
     std::vector<int64_t> counts(size_t(n), points);
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     auto id = cs.add<int64_t>(Domain::Curve, attr::id);
     for (int c = 0; c < n; ++c) {
         id[size_t(c)] = 1000 + c;
@@ -327,7 +327,7 @@ TEST(Curl, RootEasesInAndTheHairKeepsItsLength)
 TEST(Curl, KeepsTheHairLengthForEveryHairType)
 {
     CurveSet guides = straight_guides(10, 30.0f, 6);
-    auto P = guides.positions();
+    auto P = guides.positions_for_write();
     for (size_t i = 0; i < P.size(); ++i) P[i].z += 0.5f * std::sin(0.2f * P[i].y);  // gently bent
     for (const HairTypePreset& preset : hair_type_presets()) {
         CurlParams p;
@@ -350,7 +350,7 @@ TEST(Curl, CirclesStayAtTheAmplitudeOnABentGuide)
 {
     const int n = 64;
     CurveSet cs = CurveSet::from_counts(std::vector<int64_t>{n});
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (int i = 0; i < n; ++i) {
         const float a = 1.5f * std::numbers::pi_v<float> * float(i) / float(n - 1);
         P[size_t(i)] = {10.0f * std::cos(a), 10.0f * std::sin(a), 2.0f * a};  // a helix-like guide
@@ -377,7 +377,7 @@ TEST(Curl, NoCurledPointInsideTheScalp)
     const AnalyticSphere sphere({0.0f, 0.0f, 0.0f}, 1.0f);
     const int curves = 40, n = 16;
     CurveSet cs = CurveSet::from_counts(std::vector<int64_t>(curves, n));
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (int c = 0; c < curves; ++c) {
         const float az = 2.0f * std::numbers::pi_v<float> * float(c) / curves;
         for (int i = 0; i < n; ++i) {
@@ -402,7 +402,7 @@ TEST(Curl, NoCurledPointInsideTheScalp)
 TEST(Curl, SameResultForOneAndTwoThreadsAndIndependentOfCurveOrder)
 {
     CurveSet guides = straight_guides(300, 15.0f, 12);
-    auto P = guides.positions();
+    auto P = guides.positions_for_write();
     for (size_t i = 0; i < P.size(); ++i) P[i].x += 0.3f * std::sin(0.37f * float(i));  // bent guides
     CurlParams p;
     p.hair_type = "4a";
@@ -426,7 +426,7 @@ TEST(Curl, SameResultForOneAndTwoThreadsAndIndependentOfCurveOrder)
     // Curve 5 alone (same id) curls exactly as it did among the others.
     const IndexRange r = guides.points_of(5);
     CurveSet single = CurveSet::from_counts(std::vector<int64_t>{r.size()});
-    std::copy(P.begin() + r.begin, P.begin() + r.end, single.positions().begin());
+    std::copy(P.begin() + r.begin, P.begin() + r.end, single.positions_for_write().begin());
     single.add<int64_t>(Domain::Curve, attr::id)[0] = guides.find<int64_t>(Domain::Curve, attr::id)[5];
     const CurveSet alone = curl(single, p);
     const IndexRange o = one.points_of(5);
@@ -480,7 +480,7 @@ TEST(Curl, CarriesAttributesThrough)
 TEST(Curl, DegenerateCurvesPassThrough)
 {
     CurveSet cs = CurveSet::from_counts(std::vector<int64_t>{1, 3, 0});
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     P[0] = {1, 2, 3};
     P[1] = P[2] = P[3] = {4, 5, 6};  // zero length
     const CurveSet out = curl(cs, CurlParams{});

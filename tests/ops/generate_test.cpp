@@ -44,7 +44,7 @@ CurveSet to_curves(const std::vector<std::vector<float3>>& g)
     std::vector<int64_t> counts;
     for (const auto& c : g) counts.push_back(int64_t(c.size()));
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     size_t k = 0;
     for (const auto& c : g)
         for (const float3& p : c) P[k++] = p;

@@ -39,7 +39,7 @@ CurveSet meridian_guides(const std::vector<Arc>& arcs, int points = 201)
 {
     std::vector<int64_t> counts(arcs.size(), points);
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (size_t c = 0; c < arcs.size(); ++c) {
         for (int i = 0; i < points; ++i) {
             const float lat = arcs[c].lat0 + (arcs[c].lat1 - arcs[c].lat0) * float(i) / float(points - 1);
@@ -65,7 +65,7 @@ CurveSet straight_guides(const std::vector<float>& xs, float h = 0.2f, float len
 {
     std::vector<int64_t> counts(xs.size(), 5);
     CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     for (size_t c = 0; c < xs.size(); ++c)
         for (int i = 0; i < 5; ++i) P[cs.points_of(c).begin + i] = float3(xs[c], h, len * float(i) / 4.0f);
     return cs;
@@ -199,7 +199,7 @@ TEST(Adjacency, AGuideCrossingNearTheTipIsNotANeighbour)
     // guide 0 just before its tip, so it is nearest on the right only at the last few stations.
     std::vector<int64_t> counts = {5, 5, 2};
     CurveSet guides = CurveSet::from_counts(counts);
-    auto P = guides.positions();
+    auto P = guides.positions_for_write();
     for (int i = 0; i < 5; ++i) {
         P[i] = float3(0, 0.2f, float(i));
         P[5 + i] = float3(1, 0.2f, float(i));
@@ -267,7 +267,7 @@ TEST(Adjacency, NearestOnSidesEqualsBruteForceOnRandomInputs)
     std::vector<int64_t> counts(20);
     for (auto& c : counts) c = 1 + rng.below(30);
     CurveSet guides = CurveSet::from_counts(counts);
-    for (float3& p : guides.positions()) p = float3(rng.uniform(-5, 5), rng.uniform(-1, 1), rng.uniform(-5, 5));
+    for (float3& p : guides.positions_for_write()) p = float3(rng.uniform(-5, 5), rng.uniform(-1, 1), rng.uniform(-5, 5));
     const GuidePointIndex index(guides);
     const auto P = guides.positions();
     int found = 0;
@@ -509,7 +509,7 @@ TEST(Partition, MaxHeightDropsStationsHighAboveTheScalp)
 {
     CurveSet guides = straight_guides({0.0f, 1.0f});
     // Tilt the guides up: height 0.2 at z = 0 rising to 2.2 at z = 4.
-    for (float3& p : guides.positions()) p.y += 0.5f * p.z;
+    for (float3& p : guides.positions_for_write()) p.y += 0.5f * p.z;
     PartitionParams params;
     params.count = 8;
     params.max_height = 1.0f;  // stations at z <= 1.6

@@ -18,7 +18,7 @@ CurveSet random_curves(int n, int points, uint64_t seed)
 {
     std::vector<int64_t> counts(n, points);
     CurveSet c = CurveSet::from_counts(counts);
-    auto P = c.positions();
+    auto P = c.positions_for_write();
     auto w = c.add<float>(Domain::Point, attr::width);
     for (size_t i = 0; i < P.size(); ++i) {
         Rng rng(seed, i);

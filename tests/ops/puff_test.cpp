@@ -143,7 +143,7 @@ TEST(Puff, MinCurveSeparationClosedForm)
 {
     // Two parallel unit segments 0.5 apart, then a third crossing the first.
     CurveSet cs = CurveSet::from_counts(std::vector<int64_t>{3, 2});
-    auto P = cs.positions();
+    auto P = cs.positions_for_write();
     P[0] = float3(0, 0, 0), P[1] = float3(0.5f, 0, 0), P[2] = float3(1, 0, 0);
     P[3] = float3(0, 0.5f, 0), P[4] = float3(1, 0.5f, 0);
     EXPECT_NEAR(min_curve_separation(cs), 0.5, 1e-7);
@@ -312,7 +312,7 @@ TEST(Puff, JoinCurvesFillsMissingColumns)
     b.add<int32_t>(Domain::Curve, "kind")[0] = 1;
     b.add<int32_t>(Domain::Point, "shape")[3] = 4;
     a.add<float>(Domain::Point, "width")[0] = 0.5f;
-    b.positions()[2] = float3(1, 2, 3);
+    b.positions_for_write()[2] = float3(1, 2, 3);
     b.set_detail_string("hair_type", "4a");
     const CurveSet j = join_curves(a, b);
     ASSERT_EQ(j.num_curves(), 3u);

@@ -44,7 +44,7 @@ CurveSet polyline(std::initializer_list<float3> pts)
 {
     const int64_t n = int64_t(pts.size());
     CurveSet c = CurveSet::from_counts(std::span<const int64_t>(&n, 1));
-    std::copy(pts.begin(), pts.end(), c.positions().begin());
+    std::copy(pts.begin(), pts.end(), c.positions_for_write().begin());
     return c;
 }
 
@@ -299,7 +299,7 @@ TEST(Render, IdenticalPicturesForOneAndTwoThreads)
     const int64_t n = 400;
     std::vector<int64_t> counts(n, 8);
     CurveSet c = CurveSet::from_counts(counts);
-    auto P = c.positions();
+    auto P = c.positions_for_write();
     auto strand = c.add<int32_t>(Domain::Curve, "strand");
     for (int64_t i = 0; i < n; ++i) {
         strand[i] = int32_t(i % 3);
@@ -332,7 +332,7 @@ TEST(Render, ColorByReadsPointOrCurveAttributes)
     // Two curves, strand 0 and 1 on the curve domain; colours must be the palette's.
     std::vector<int64_t> counts{2, 2};
     CurveSet c = CurveSet::from_counts(counts);
-    auto P = c.positions();
+    auto P = c.positions_for_write();
     P[0] = {-1, 1.05f, 0};
     P[1] = {1, 1.05f, 0};
     P[2] = {-1, -1.05f, 0};

@@ -1,0 +1,112 @@
+#include "kernel/polygon_soup.h"
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <unordered_map>
+
+namespace groom {
+
+namespace {
+
+struct PositionKey {
+    uint32_t x, y, z;
+    bool operator==(const PositionKey&) const = default;
+};
+struct PositionHash {
+    size_t operator()(const PositionKey& k) const
+    {
+        uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
+        h ^= (h >> 29) + k.y * 0xBF58476D1CE4E5B9ull;
+        h ^= (h >> 31) + k.z * 0x94D049BB133111EBull;
+        return static_cast<size_t>(h ^ (h >> 32));
+    }
+};
+uint32_t bits(float f)
+{
+    if (f == 0.0f) f = 0.0f;  // -0 and +0 are the same position
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+int64_t find_root(std::vector<int64_t>& parent, int64_t i)
+{
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    return i;
+}
+
+}  // namespace
+
+MeshStats mesh_stats(const PolygonSoup& soup)
+{
+    MeshStats s;
+    s.vertices = static_cast<int64_t>(soup.points.size());
+    s.faces = static_cast<int64_t>(soup.num_faces());
+
+    // Weld exact duplicate positions: vertex -> welded id.
+    std::vector<int64_t> weld(soup.points.size());
+    std::unordered_map<PositionKey, int64_t, PositionHash> ids;
+    ids.reserve(soup.points.size());
+    for (size_t i = 0; i < soup.points.size(); ++i) {
+        const float3& p = soup.points[i];
+        const auto [it, fresh] = ids.emplace(PositionKey{bits(p.x), bits(p.y), bits(p.z)}, static_cast<int64_t>(ids.size()));
+        weld[i] = it->second;
+        if (!fresh) ++s.duplicate_vertices;
+    }
+    const int64_t welded = static_cast<int64_t>(ids.size());
+
+    std::vector<int64_t> parent(welded);
+    std::iota(parent.begin(), parent.end(), 0);
+    std::vector<char> used(welded, 0);
+    std::unordered_map<uint64_t, int32_t> edge_use;
+    edge_use.reserve(soup.face_indices.size());
+    std::vector<int64_t> w;
+    for (size_t f = 0; f < soup.num_faces(); ++f) {
+        const auto face = soup.face(f);
+        const size_t n = face.size();
+        if (n == 3) ++s.triangles;
+        else if (n == 4) ++s.quads;
+        else if (n > 4) ++s.ngons;
+        w.assign(n, 0);
+        for (size_t k = 0; k < n; ++k) w[k] = weld[face[k]];
+        // Degenerate: fewer than 3 corners, a repeated (welded) corner, or zero area (Newell normal).
+        bool degenerate = n < 3;
+        std::vector<int64_t> sorted = w;
+        std::sort(sorted.begin(), sorted.end());
+        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) degenerate = true;
+        if (!degenerate) {
+            double nx = 0, ny = 0, nz = 0;
+            for (size_t k = 0; k < n; ++k) {
+                const float3& a = soup.points[face[k]];
+                const float3& b = soup.points[face[(k + 1) % n]];
+                nx += (double(a.y) - b.y) * (double(a.z) + b.z);
+                ny += (double(a.z) - b.z) * (double(a.x) + b.x);
+                nz += (double(a.x) - b.x) * (double(a.y) + b.y);
+            }
+            if (nx == 0 && ny == 0 && nz == 0) degenerate = true;
+        }
+        if (degenerate) ++s.degenerate_faces;
+        for (size_t k = 0; k < n; ++k) {
+            used[w[k]] = 1;
+            const int64_t a = w[k], b = w[(k + 1) % n];
+            if (n < 2 || a == b) continue;
+            const int64_t ra = find_root(parent, a), rb = find_root(parent, b);
+            if (ra != rb) parent[ra] = rb;
+            const uint64_t key = (static_cast<uint64_t>(std::min(a, b)) << 32) | static_cast<uint64_t>(std::max(a, b));
+            ++edge_use[key];
+        }
+    }
+    for (const auto& [key, count] : edge_use) {
+        if (count == 1) ++s.boundary_edges;
+        else if (count >= 3) ++s.non_manifold_edges;
+    }
+    for (int64_t i = 0; i < welded; ++i)
+        if (used[i] && find_root(parent, i) == i) ++s.shells;
+    return s;
+}
+
+}  // namespace groom

@@ -1,0 +1,42 @@
+// PolygonSoup: a mesh exactly as a file has it (n-gons, flipped, non-manifold, duplicate vertices),
+// because a half-edge structure silently drops faces it cannot insert; repair happens later, in
+// fields/. Readers in kernel/io/ produce it; fields/ and ops/ consume it without any io header.
+#pragma once
+
+#include "kernel/math/vec.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace groom {
+
+struct PolygonSoup {
+    std::vector<float3> points;           ///< #vertices
+    std::vector<int64_t> face_offsets{0}; ///< #faces+1; face f uses indices [face_offsets[f], face_offsets[f+1])
+    std::vector<int32_t> face_indices;    ///< vertex indices, each < points.size()
+
+    size_t num_faces() const { return face_offsets.size() - 1; }
+    std::span<const int32_t> face(size_t f) const
+    {
+        return {face_indices.data() + face_offsets[f], static_cast<size_t>(face_offsets[f + 1] - face_offsets[f])};
+    }
+    void add_face(std::span<const int32_t> idx)
+    {
+        face_indices.insert(face_indices.end(), idx.begin(), idx.end());
+        face_offsets.push_back(static_cast<int64_t>(face_indices.size()));
+    }
+};
+
+/// Topology statistics of a soup, for `groom info` and repair reports.
+struct MeshStats {
+    int64_t vertices = 0, faces = 0, triangles = 0, quads = 0, ngons = 0;
+    int64_t shells = 0;               ///< connected components over shared vertex positions
+    int64_t boundary_edges = 0;       ///< edges used by exactly one face (after welding duplicates)
+    int64_t non_manifold_edges = 0;   ///< edges used by three or more faces (after welding)
+    int64_t duplicate_vertices = 0;   ///< vertices at exactly the position of an earlier vertex
+    int64_t degenerate_faces = 0;     ///< faces with a repeated vertex or zero area
+};
+MeshStats mesh_stats(const PolygonSoup& soup);
+
+}  // namespace groom

@@ -61,7 +61,7 @@ void setup(CommandContext& ctx)
     Args& a = *args;
     const BraidParams d;
     CLI::App* app = ctx.app;
-    app->add_option("GUIDES", a.input, "Guide curves, root to tip (.usda .obj .ply .hair, - = stdin)")->required();
+    app->add_option("GUIDES", a.input, "Guide curves, root to tip (" + curve_formats() + ", - = stdin)")->required();
     app->add_option("-o,--output", a.output, "Output curves (strands, or fibers with --fibers)")->required();
     app->add_option("--scalp", a.scalp, "Scalp: a .vdb from `groom scalp` or a mesh; keeps every point outside it");
     add_scalp_build_options(app, a.scalp_params);

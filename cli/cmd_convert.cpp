@@ -1,7 +1,8 @@
-// `groom convert IN -o OUT`: between the curve formats (.usda .obj .ply .hair), saying which
+// `groom convert IN -o OUT`: between the curve formats (kernel/io/format_table.h), saying which
 // attributes the target format cannot hold.
 #include "cli/command.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/format_table.h"
 
 namespace groom::cli {
 namespace {
@@ -16,8 +17,8 @@ void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
-    app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = .usda on stdin)")->required();
-    app->add_option("-o,--output", args->output, "Output curves (.usda .obj .ply .hair, - = .usda on stdout)")->required();
+    app->add_option("CURVES", args->input, "Input curves (" + curve_formats() + ", - = .usda on stdin)")->required();
+    app->add_option("-o,--output", args->output, "Output curves (" + io::format_list(io::kWriteCurves) + ", - = .usda on stdout)")->required();
     app->add_flag("--ascii", args->ascii, "Write .ply as ASCII (default binary little-endian)");
     app->add_option("--samples-per-segment", args->samples, "Points per segment when reading cubic .usda curves (>= 1)");
     const CommonOptions& common = *ctx.common;
@@ -37,7 +38,7 @@ void setup(CommandContext& ctx)
     };
 }
 
-const Registrar reg({"convert", "Convert curves between .usda, .obj, .ply and .hair", 20, setup});
+const Registrar reg({"convert", "Convert curves from one file format to another", 20, setup});
 
 }  // namespace
 }  // namespace groom::cli

@@ -23,7 +23,7 @@ void setup(CommandContext& ctx)
     CLI::App* app = ctx.app;
     app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh")->required();
     add_scalp_build_options(app, args->scalp_params);
-    app->add_option("-o,--output", args->output, "Output guides (.usda .obj .ply .hair)")->required();
+    app->add_option("-o,--output", args->output, "Output guides (" + curve_formats() + ")")->required();
     auto* tails = app->add_option("--tails-out", args->tails_out, "Also write a free tail per guide past the nape here");
     CornrowGuidesParams& p = args->params;
     app->add_option("--count", p.count, "Guides (rows), [1, 256]")->capture_default_str();

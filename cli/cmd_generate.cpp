@@ -24,8 +24,8 @@ void setup(CommandContext& ctx)
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
     GenerateParams& p = args->params;
-    app->add_option("GUIDES", args->input, "Guide curves, root to tip (.usda .obj .ply .hair, - = stdin)")->required();
-    app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh (.obj .ply .off .stl)")->required();
+    app->add_option("GUIDES", args->input, "Guide curves, root to tip (" + curve_formats() + ", - = stdin)")->required();
+    app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh (" + mesh_formats() + ")")->required();
     app->add_option("-o,--output", args->output, "Output curves")->required();
     app->add_option("--count", p.count, "Curves to generate, >= 1")->required();
     app->add_option("--region", args->region,

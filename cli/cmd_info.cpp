@@ -4,6 +4,7 @@
 #include "cli/command.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/format_table.h"
 #include "kernel/io/mesh_io.h"
 #include "kernel/math/polyline.h"
 
@@ -173,7 +174,7 @@ void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
-    app->add_option("FILE", args->input, "Curves (.usda .obj .ply .hair) or mesh (.obj .ply .off .stl); - = curves on stdin")->required();
+    app->add_option("FILE", args->input, "Curves (" + curve_formats() + ") or mesh (" + mesh_formats() + "); - = curves on stdin")->required();
     app->add_flag("--json", args->json, "Print JSON instead of text");
     auto* m = app->add_flag("--mesh", args->mesh, "Read FILE as a mesh (default: decided by extension and content)");
     app->add_flag("--curves", args->curves, "Read FILE as curves")->excludes(m);
@@ -181,7 +182,10 @@ void setup(CommandContext& ctx)
         bool curves = args->curves;
         if (!args->curves && !args->mesh) {
             if (args->input != "-" && !is_curve_path(args->input) && !is_mesh_path(args->input)) {
-                throw InvalidParam("info: " + args->input + ": unknown format (expected .usda .obj .ply .hair .off .stl)");
+                const io::Format* f = io::format_of_path(args->input);
+                if (f && !f->refusal.empty()) throw InvalidParam("info: " + args->input + ": " + std::string(f->refusal));
+                throw InvalidParam("info: " + args->input + ": unknown format (expected curves " + curve_formats() + " or a mesh " +
+                                   mesh_formats() + ")");
             }
             curves = holds_curves(args->input);
         }

@@ -124,7 +124,7 @@ void setup(CommandContext& ctx)
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
     PartitionParams& p = args->params;
-    app->add_option("GUIDES", args->input, "Guide curves, the braids' sources (.usda .obj .ply .hair, - = stdin)")->required();
+    app->add_option("GUIDES", args->input, "Guide curves, the braids' sources (" + curve_formats() + ", - = stdin)")->required();
     app->add_option("-o,--output", args->output, "Output edge-hair curves")->required();
     app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp`, or a mesh converted on the fly")->required();
     add_scalp_build_options(app, args->scalp_params);

@@ -20,7 +20,7 @@ void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
-    app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = stdin)")->required();
+    app->add_option("CURVES", args->input, "Input curves (" + curve_formats() + ", - = stdin)")->required();
     app->add_option("--scalp", args->scalp, "Scalp: .vdb from `groom scalp`, or a mesh")->required();
     add_scalp_build_options(app, args->scalp_params);
     app->add_option("-o,--output", args->output, "Output curves")->required();

@@ -33,7 +33,7 @@ void setup(CommandContext& ctx)
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
     PuffParams& p = args->params;
-    app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh (.obj .ply .off .stl)")->required();
+    app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh (" + mesh_formats() + ")")->required();
     app->add_option("-o,--output", args->output, "Output curves: guides and hairs (only hairs with --guides-out)")->required();
     app->add_option("--guides-out", args->guides_out, "Write the guides to this file instead of with the hairs");
     app->add_option("--center", args->center, "X,Y,Z: the region's centre, projected onto the scalp")->required();

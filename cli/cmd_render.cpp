@@ -75,8 +75,8 @@ void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
-    app->add_option("FILES", args->inputs, "Curve files to draw (.usda .obj .ply .hair), each a layer");
-    app->add_option("--scalp", args->scalp, "Scalp to draw under the curves: a mesh (.obj .ply .off .stl) or a .vdb from `groom scalp`");
+    app->add_option("FILES", args->inputs, "Curve files to draw (" + curve_formats() + "), each a layer");
+    app->add_option("--scalp", args->scalp, "Scalp to draw under the curves: a mesh (" + mesh_formats() + ") or a .vdb from `groom scalp`");
     app->add_option("-o,--output", args->output, "Output picture (.png)")->required();
     auto* view = app->add_option("--view", args->view, "front|back|left|right|top|three-quarter (default front)");
     auto* views = app->add_option("--views", args->views, "Several views on one labelled sheet, e.g. front,left,top");

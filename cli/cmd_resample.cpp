@@ -15,7 +15,7 @@ void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
-    app->add_option("CURVES", args->input, "Input curves (.usda .obj .ply .hair, - = stdin)")->required();
+    app->add_option("CURVES", args->input, "Input curves (" + curve_formats() + ", - = stdin)")->required();
     app->add_option("-o,--output", args->output, "Output curves")->required();
     app->add_option("--count", args->params.count, "Points per curve (>= 2)");
     app->add_option("--segment-length", args->params.segment_length, "Target spacing between points, scene units (> 0)");

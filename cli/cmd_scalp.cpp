@@ -24,7 +24,7 @@ void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
-    app->add_option("MESH", args->input, "Head or scalp mesh (.obj .ply .off .stl); any units, any mess")->required();
+    app->add_option("MESH", args->input, "Head or scalp mesh (" + mesh_formats() + "); any units, any mess")->required();
     app->add_option("-o,--output", args->output, "Output level set (.vdb, grid 'scalp')")->required();
     CLI::Option* voxel = app->add_option("--voxel", args->voxel, "Voxel size, scene units (> 0; default: bounding-box diagonal / 256)");
     app->add_option("--band", args->params.band_voxels, "Narrow-band half width in voxels (1..64)")->capture_default_str();

@@ -59,6 +59,11 @@ void check_output(const std::string& output, std::initializer_list<std::string> 
 /// nothing with --quiet.
 std::unique_ptr<Progress> make_progress(const CommonOptions& o);
 
+/// The extensions groom reads as curves (".usda .obj .ply .hair") and as meshes, for help texts:
+/// taken from the format table (kernel/io/format_table.h), so a new format shows up everywhere.
+std::string curve_formats();
+std::string mesh_formats();
+
 /// Parses "x,y,z" (or "a,b" etc.) into floats, naming the option in errors.
 std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max);
 

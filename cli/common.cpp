@@ -1,6 +1,7 @@
 #include "cli/command.h"
 
 #include "kernel/error.h"
+#include "kernel/io/format_table.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -24,6 +25,9 @@ void detail(const CommonOptions& o, const std::string& message)
 {
     if (o.verbose && !o.quiet) std::cerr << message << "\n";
 }
+
+std::string curve_formats() { return io::format_list(io::kReadCurves); }
+std::string mesh_formats() { return io::format_list(io::kReadMesh); }
 
 namespace {
 bool same_file(const std::string& a, const std::string& b)

@@ -5,6 +5,7 @@
 
 #include "kernel/error.h"
 #include "kernel/io/atomic_file.h"
+#include "kernel/io/format_table.h"
 #include "kernel/io/io_util.h"
 #include "kernel/io/mesh_io.h"
 
@@ -120,7 +121,7 @@ std::unique_ptr<ScalpField> load_scalp(const std::string& path, const ScalpBuild
 {
     if (io::extension_of(path) == "vdb") return std::make_unique<ScalpField>(read_scalp_vdb(path, progress));
     if (!is_mesh_path(path)) {
-        throw InvalidParam("--scalp " + path + ": expected a .vdb level set from `groom scalp` or a mesh (.obj .ply .off .stl)");
+        throw InvalidParam("--scalp " + path + ": expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
     }
     return std::make_unique<ScalpField>(build_scalp(read_mesh(path), params, nullptr, progress));
 }

@@ -1,6 +1,6 @@
 // The individual curve and mesh formats behind read_curves / write_curves / read_mesh /
-// write_mesh. Internal to kernel/io: callers use curve_io.h and mesh_io.h, which pick a format by
-// extension. Each reader takes the whole file in memory plus the name to put in messages.
+// write_mesh. Internal to kernel/io: callers use curve_io.h and mesh_io.h, which pick a format from
+// the table in format_table.cpp (one row per format). Each reader takes the whole file in memory plus the name to put in messages.
 #pragma once
 
 #include "kernel/curve_set.h"

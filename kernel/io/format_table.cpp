@@ -1,0 +1,163 @@
+#include "kernel/io/format_table.h"
+
+#include "kernel/io/formats.h"
+#include "kernel/io/io_util.h"
+
+#include <array>
+
+namespace groom::io {
+
+namespace {
+
+bool starts_with(std::string_view head, std::string_view magic) { return head.substr(0, magic.size()) == magic; }
+
+// --- signatures ---------------------------------------------------------------------------------
+bool sniff_usda(std::string_view head) { return starts_with(head, "#usda"); }
+bool sniff_ply(std::string_view head) { return starts_with(head, "ply"); }
+bool sniff_hair(std::string_view head) { return starts_with(head, "HAIR"); }
+bool sniff_crate(std::string_view head) { return starts_with(head, "PXR-USDC"); }
+
+// --- adapters to one signature per column -------------------------------------------------------
+CurveSet read_obj_curves_row(const FileBytes& f, const CurveReadOptions&) { return read_obj_curves(f); }
+CurveSet read_ply_curves_row(const FileBytes& f, const CurveReadOptions&) { return read_ply_curves(f); }
+CurveSet read_hair_row(const FileBytes& f, const CurveReadOptions&) { return read_hair(f); }
+std::string write_usda_row(const CurveSet& c, const CurveWriteOptions&) { return write_usda(c); }
+std::string write_obj_curves_row(const CurveSet& c, const CurveWriteOptions&) { return write_obj_curves(c); }
+std::string write_ply_curves_row(const CurveSet& c, const CurveWriteOptions& o) { return write_ply_curves(c, o.ply_encoding); }
+std::string write_hair_row(const CurveSet& c, const CurveWriteOptions&) { return write_hair(c); }
+
+/// `.usd` is either encoding of USD: the text one is read as .usda, the binary crate refused.
+CurveSet read_usd_row(const FileBytes& f, const CurveReadOptions& options)
+{
+    if (sniff_usda(f.data)) return read_usda(f, options);
+    const std::string found = sniff_crate(f.data) ? "a binary USD crate file" : "not a '#usda' text file";
+    throw ParseError(f.name + ": " + found + "; groom reads USD as text (no OpenUSD package exists on Debian): convert it with `usdcat " +
+                     f.name + " -o " + f.name + "a` (OpenUSD's tool) and pass the .usda");
+}
+
+// --- content of the formats that hold either ------------------------------------------------------
+bool ply_holds_curves(const FileBytes& file)
+{
+    const std::string_view d = file.data;
+    const std::string_view header = d.substr(0, d.find("end_header"));
+    const bool face = header.find("\nelement face ") != std::string_view::npos;
+    const bool edge = header.find("\nelement edge ") != std::string_view::npos || header.find("\nelement curve ") != std::string_view::npos;
+    return edge && !face;
+}
+
+bool obj_holds_curves(const FileBytes& file)
+{
+    const std::string_view d = file.data;
+    bool lines = false, faces = false;
+    for (size_t pos = 0; pos < d.size();) {
+        const size_t start = d.find_first_not_of(" \t", pos);
+        if (start == std::string_view::npos) break;
+        if (d.compare(start, 2, "l ") == 0 || d.compare(start, 2, "l\t") == 0) lines = true;
+        if (d.compare(start, 2, "f ") == 0 || d.compare(start, 2, "f\t") == 0) faces = true;
+        if (faces) break;
+        const size_t nl = d.find('\n', start);
+        pos = nl == std::string_view::npos ? d.size() : nl + 1;
+    }
+    return lines && !faces;
+}
+
+// --- which columns survive a write -----------------------------------------------------------------
+bool obj_keeps(Domain, const Attribute&) { return false; }  // OBJ has positions only
+/// Cem Yuksel's .hair has per-point thickness, transparency and colour arrays, nothing else.
+bool hair_keeps(Domain d, const Attribute& a)
+{
+    return d == Domain::Point && ((a.type() == AttrType::Float && (a.name == attr::width || a.name == "opacity")) ||
+                                  (a.type() == AttrType::Float3 && a.name == "Cd"));
+}
+
+Format row(std::string_view ext, std::string_view name) { return Format{ext, name}; }
+
+const std::array<Format, 10> kFormats = [] {
+    Format usda = row("usda", "USD ASCII BasisCurves");
+    usda.sniff = sniff_usda, usda.read_curves = read_usda, usda.write_curves = write_usda_row;
+
+    Format obj = row("obj", "Wavefront OBJ (l polylines, f faces)");
+    obj.read_curves = read_obj_curves_row, obj.write_curves = write_obj_curves_row;
+    obj.read_mesh = read_obj_mesh, obj.write_mesh = write_obj_mesh;
+    obj.content_is_curves = obj_holds_curves, obj.keeps = obj_keeps;
+
+    Format ply = row("ply", "PLY (edge or curve element, or faces)");
+    ply.sniff = sniff_ply, ply.read_curves = read_ply_curves_row, ply.write_curves = write_ply_curves_row;
+    ply.read_mesh = read_ply_mesh, ply.write_mesh = write_ply_mesh, ply.content_is_curves = ply_holds_curves;
+
+    Format hair = row("hair", "Cem Yuksel's .hair");
+    hair.sniff = sniff_hair, hair.read_curves = read_hair_row, hair.write_curves = write_hair_row, hair.keeps = hair_keeps;
+
+    Format off = row("off", "OFF mesh");
+    off.read_mesh = read_off;
+    Format stl = row("stl", "STL mesh (ASCII or binary)");
+    stl.read_mesh = read_stl;
+
+    Format usd = row("usd", "USD, text encoding");
+    usd.read_curves = read_usd_row;
+
+    Format usdc = row("usdc", "binary USD crate");
+    usdc.refusal = "binary USD is not readable here (no OpenUSD package exists on Debian); convert it to text with "
+                   "`usdcat FILE.usdc -o FILE.usda` (OpenUSD's tool) or export .usda from your DCC";
+    Format usdz = row("usdz", "USD zip package");
+    usdz.refusal = "a USDZ package is a zip of binary USD (no OpenUSD package exists on Debian); unzip it and convert "
+                   "the .usdc inside with `usdcat FILE.usdc -o FILE.usda`, or export .usda from your DCC";
+    Format abc = row("abc", "Alembic");
+    abc.refusal = "Alembic is not readable here (no Alembic package exists on Debian); export the curves as .usda, "
+                  ".ply or .obj from your DCC (Houdini, Maya and Blender all write them)";
+    return std::array<Format, 10>{usda, obj, ply, hair, off, stl, usd, usdc, usdz, abc};
+}();
+
+}  // namespace
+
+std::span<const Format> formats() { return kFormats; }
+
+const Format* format_by_extension(std::string_view extension)
+{
+    for (const Format& f : kFormats)
+        if (f.extension == extension) return &f;
+    return nullptr;
+}
+
+const Format* format_of_path(const std::string& path) { return format_by_extension(extension_of(path)); }
+
+std::string format_list(unsigned cap, std::string_view separator)
+{
+    std::string out;
+    for (const Format& f : kFormats) {
+        // .usd reads the same files as .usda: listed once, under .usda.
+        if (!f.can(cap) || f.extension == "usd") continue;
+        if (!out.empty()) out += separator;
+        out += '.';
+        out += f.extension;
+    }
+    return out;
+}
+
+const Format& format_for(const std::string& path, unsigned cap, std::string_view what, std::string_view head, bool error_is_param)
+{
+    auto fail = [&](const std::string& message) -> const Format& {
+        if (error_is_param) throw InvalidParam(message);
+        throw IoError(message);
+    };
+    if (path == "-") {
+        if (cap & (kReadCurves | kReadMesh)) {
+            for (const Format& f : kFormats)
+                if (f.can(cap) && f.sniff && f.sniff(head)) return f;
+            return *format_by_extension("obj");  // OBJ has no signature: whatever else comes on stdin
+        }
+        return *format_by_extension("usda");
+    }
+    const std::string ext = extension_of(path);
+    const Format* f = format_by_extension(ext);
+    if (f && !f->refusal.empty()) return fail(path + ": " + std::string(f->refusal));
+    if (!f || !f->can(cap)) {
+        const bool writing = cap & (kWriteCurves | kWriteMesh);
+        return fail(path + ": " + (f ? std::string(f->name) + " files are not " + (writing ? "written" : "read") + " as " + std::string(what) + "s"
+                                     : "unknown " + std::string(what) + " format '." + ext + "'") +
+                    " (expected " + format_list(cap, ", ") + ")");
+    }
+    return *f;
+}
+
+}  // namespace groom::io

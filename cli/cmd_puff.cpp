@@ -1,9 +1,10 @@
 // `groom puff`: Izzy's afro puffs (talk, Sec. 3.2): rows x cols guides from a region of the scalp to a
 // perfect sphere, and curls rooted at random in the region that follow them (ops/puff.h).
 #include "cli/command.h"
-#include "cli/scalp_options.h"
 #include "cli/curl_options.h"
+#include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
+#include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
 #include "ops/puff.h"
@@ -73,7 +74,7 @@ void setup(CommandContext& ctx)
         const PuffResult r = puff(*scalp, scalp_root_sampler(*scalp), params, progress.get());
         // Everything is computed before anything is written.
         if (args->guides_out.empty()) {
-            write_curves(params.hairs > 0 ? join_curves(r.guides, r.hairs) : r.guides, args->output);
+            write_curves(params.hairs > 0 ? join(r.guides, r.hairs) : r.guides, args->output);
         }
         else {
             write_curves(r.hairs, args->output);

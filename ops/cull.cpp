@@ -1,5 +1,6 @@
 #include "ops/cull.h"
 
+#include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
 #include "kernel/parallel.h"
 
@@ -14,6 +15,47 @@ void CullParams::validate() const
         throw InvalidParam("cull: --clearance must be a finite distance >= 0 (got " + std::to_string(clearance) + ")");
     }
 }
+
+namespace {
+
+/// Curve c keeps its first keep[c] points (0: the curve goes, unless it had none), the last moved
+/// to the cut at cut_t[c] on the segment it ends; every column carried. count -> scan -> fill.
+CurveSet trim(const CurveSet& src, std::span<const int64_t> keep, std::span<const float> cut_t, std::vector<int64_t>& kept_curves)
+{
+    const auto P = src.positions();
+    const int64_t nc = static_cast<int64_t>(src.num_curves());
+    kept_curves.reserve(size_t(nc));
+    std::vector<int64_t> counts;
+    for (int64_t c = 0; c < nc; ++c) {
+        if (keep[c] == 0 && src.points_in(size_t(c)) > 0) continue;
+        kept_curves.push_back(c);
+        counts.push_back(keep[c]);
+    }
+    CurveSet dst = CurveSet::from_counts(counts);
+    const auto Q = dst.positions_for_write();
+    std::vector<int64_t> src_point(dst.num_points());
+    parallel_for(int64_t(kept_curves.size()), 64, [&](int64_t b, int64_t e) {
+        for (int64_t k = b; k < e; ++k) {
+            const int64_t c = kept_curves[k];
+            const IndexRange r = src.points_of(size_t(c)), d = dst.points_of(size_t(k));
+            for (int64_t i = 0; i < d.size(); ++i) {
+                src_point[d.begin + i] = r.begin + i;
+                Q[d.begin + i] = P[r.begin + i];
+            }
+            if (cut_t[c] >= 0.0f && d.size() >= 2) {
+                // The last kept point is the source's first offending point: move it to the cut.
+                const int64_t inner = r.begin + d.size() - 1;
+                Q[d.end - 1] = lerp(P[inner - 1], P[inner], cut_t[c]);
+                src_point[d.end - 1] = inner - 1;
+            }
+        }
+    });
+    carry_curve_attributes(src, dst, kept_curves);
+    carry_point_attributes(src, dst, src_point, {attr::P});
+    return dst;
+}
+
+}  // namespace
 
 CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& params, CullStats* stats)
 {
@@ -80,40 +122,22 @@ CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& param
             }
         }
     });
+    // A curve left with no points goes; one the file had empty stays (nothing of it is inside).
     std::vector<int64_t> kept_curves;
-    kept_curves.reserve(size_t(nc));
-    std::vector<int64_t> counts;
-    for (int64_t c = 0; c < nc; ++c) {
-        if (keep[c] == 0 && src.points_in(size_t(c)) > 0) continue;
-        kept_curves.push_back(c);
-        counts.push_back(keep[c]);
+    CurveSet dst;
+    if (params.mode == CullMode::Delete) {
+        std::vector<char> gone(static_cast<size_t>(nc));
+        for (int64_t c = 0; c < nc; ++c) gone[c] = keep[c] == 0 && src.points_in(size_t(c)) > 0;
+        dst = remove_curves(src, gone, &kept_curves);
     }
-    CurveSet dst = CurveSet::from_counts(counts);
-    const auto Q = dst.positions_for_write();
-    std::vector<int64_t> src_point(dst.num_points());
-    parallel_for(int64_t(kept_curves.size()), 64, [&](int64_t b, int64_t e) {
-        for (int64_t k = b; k < e; ++k) {
-            const int64_t c = kept_curves[k];
-            const IndexRange r = src.points_of(size_t(c)), d = dst.points_of(size_t(k));
-            for (int64_t i = 0; i < d.size(); ++i) {
-                src_point[d.begin + i] = r.begin + i;
-                Q[d.begin + i] = P[r.begin + i];
-            }
-            if (cut_t[c] >= 0.0f && d.size() >= 2) {
-                // The last kept point is the source's first offending point: move it to the cut.
-                const int64_t inner = r.begin + d.size() - 1;
-                Q[d.end - 1] = lerp(P[inner - 1], P[inner], cut_t[c]);
-                src_point[d.end - 1] = inner - 1;
-            }
-        }
-    });
-    carry_curve_attributes(src, dst, kept_curves);
+    else {
+        dst = trim(src, keep, cut_t, kept_curves);
+    }
     if (dst.find<int64_t>(Domain::Curve, attr::id).empty() && dst.find<int32_t>(Domain::Curve, attr::id).empty()) {
         // Without an id column a curve's identity is its index, which deleting shifts: record it.
         const auto id = dst.add<int64_t>(Domain::Curve, attr::id);
         std::copy(kept_curves.begin(), kept_curves.end(), id.begin());
     }
-    carry_point_attributes(src, dst, src_point, {attr::P});
     if (stats) {
         *stats = CullStats{};
         for (int64_t c = 0; c < nc; ++c) stats->curves_affected += affected[c];

@@ -141,55 +141,6 @@ float curl_reach(const CurlParams& params)
     return amplitude * shape + std::max(0.0f, params.offset.hi);
 }
 
-CurveSet join_curves(const CurveSet& a, const CurveSet& b)
-{
-    std::vector<int64_t> counts;
-    counts.reserve(a.num_curves() + b.num_curves());
-    for (size_t c = 0; c < a.num_curves(); ++c) counts.push_back(a.points_in(c));
-    for (size_t c = 0; c < b.num_curves(); ++c) counts.push_back(b.points_in(c));
-    CurveSet dst = CurveSet::from_counts(counts);
-    for (Domain d : {Domain::Point, Domain::Curve}) {
-        const size_t na = d == Domain::Point ? a.num_points() : a.num_curves();
-        // Every column of either side, in a's order then b's new ones.
-        std::vector<std::string> names;
-        for (const Attribute& col : a.attributes(d).all()) names.push_back(col.name);
-        for (const Attribute& col : b.attributes(d).all())
-            if (!a.attributes(d).find(col.name)) names.push_back(col.name);
-        for (const std::string& name : names) {
-            const Attribute* ca = a.attributes(d).find(name);
-            const Attribute* cb = b.attributes(d).find(name);
-            if (ca && cb && ca->type() != cb->type()) {
-                throw InvalidGeometry(std::string("join: ") + domain_name(d) + " attribute '" + name + "' is " +
-                                      type_name(ca->type()) + " in the guides but " + type_name(cb->type()) + " in the hairs");
-            }
-            const AttrType type = (ca ? ca : cb)->type();
-            Attribute& out = dst.attributes(d).add(name, d, type, dst.domain_size(d));
-            std::visit(
-                [&](auto& values) {
-                    using T = typename std::decay_t<decltype(values)>::value_type;
-                    T fill{};
-                    if constexpr (std::is_integral_v<T>) fill = T(-1);
-                    std::fill(values.begin(), values.end(), fill);
-                    if (ca) {
-                        const auto& src = std::get<std::vector<T>>(ca->data);
-                        std::copy(src.begin(), src.end(), values.begin());
-                    }
-                    if (cb) {
-                        const auto& src = std::get<std::vector<T>>(cb->data);
-                        std::copy(src.begin(), src.end(), values.begin() + na);
-                    }
-                },
-                out.data);
-        }
-    }
-    for (const CurveSet* s : {&a, &b}) {
-        for (const Attribute& col : s->attributes(Domain::Detail).all()) {
-            if (!dst.attributes(Domain::Detail).find(col.name)) dst.attributes(Domain::Detail).all().push_back(col);
-        }
-    }
-    return dst;
-}
-
 CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* progress)
 {
     params.validate();

@@ -92,11 +92,6 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
 /// unit cross-section (2^(1/2 - 1/n) for a Lame curve with exponent n > 2, else 1), plus the largest offset.
 float curl_reach(const CurlParams& params);
 
-/// One set holding the curves of `a` then those of `b`. Columns only one side has are filled with
-/// -1 (integers) or 0 (floats, float3) on the other; a detail string keeps a's value when both have
-/// it. Throws InvalidGeometry when a column has different types in a and b.
-CurveSet join_curves(const CurveSet& a, const CurveSet& b);
-
 /// Smallest distance between two different curves of `curves` (segment to segment), scene units;
 /// +infinity with fewer than two curves. O(points^2): for checks and tests, not big grooms.
 double min_curve_separation(const CurveSet& curves);

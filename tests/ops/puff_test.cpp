@@ -1,6 +1,7 @@
 #include "ops/puff.h"
 
 #include "fields/scalp_field.h"
+#include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
 #include "kernel/io/mesh_io.h"
 #include "kernel/parallel.h"
@@ -304,36 +305,6 @@ TEST(Puff, CurlReachClosedForm)
     EXPECT_NEAR(curl_reach(c), t->radius_cm * 2.0f * 1.2f, 1e-6f);
 }
 
-TEST(Puff, JoinCurvesFillsMissingColumns)
-{
-    CurveSet a = CurveSet::from_counts(std::vector<int64_t>{2, 3});
-    CurveSet b = CurveSet::from_counts(std::vector<int64_t>{4});
-    a.add<int32_t>(Domain::Curve, "kind")[1] = 7;
-    b.add<int32_t>(Domain::Curve, "kind")[0] = 1;
-    b.add<int32_t>(Domain::Point, "shape")[3] = 4;
-    a.add<float>(Domain::Point, "width")[0] = 0.5f;
-    b.positions_for_write()[2] = float3(1, 2, 3);
-    b.set_detail_string("hair_type", "4a");
-    const CurveSet j = join_curves(a, b);
-    ASSERT_EQ(j.num_curves(), 3u);
-    ASSERT_EQ(j.num_points(), 9u);
-    EXPECT_EQ(j.positions()[7], float3(1, 2, 3));
-    const auto kind = j.find<int32_t>(Domain::Curve, "kind");
-    EXPECT_EQ(kind[0], 0);
-    EXPECT_EQ(kind[1], 7);
-    EXPECT_EQ(kind[2], 1);
-    const auto shape = j.find<int32_t>(Domain::Point, "shape");
-    EXPECT_EQ(shape[0], -1);
-    EXPECT_EQ(shape[8], 4);
-    EXPECT_EQ(j.find<float>(Domain::Point, "width")[0], 0.5f);
-    EXPECT_EQ(j.find<float>(Domain::Point, "width")[8], 0.0f);
-    EXPECT_EQ(j.detail_string("hair_type"), "4a");
-    EXPECT_NO_THROW(j.validate());
-    b.add<float>(Domain::Curve, "clump");
-    a.add<int32_t>(Domain::Curve, "clump");
-    EXPECT_THROW(join_curves(a, b), InvalidGeometry);
-}
-
 class PuffHairs : public ::testing::TestWithParam<int> {
 protected:
     PuffParams params(int64_t hairs) const { return hairy(GetParam() == 0 ? top_puff() : side_puff(), hairs); }
@@ -413,7 +384,7 @@ TEST_P(PuffHairs, AttributesAndIds)
     PuffParams p = params(200);
     p.first_id = 10;
     const PuffResult r = puff(head, test::sphere_cap_sampler(kHeadC, kHeadR), p);
-    const CurveSet all = join_curves(r.guides, r.hairs);
+    const CurveSet all = join(r.guides, r.hairs);
     const size_t ng = r.guides.num_curves();
     ASSERT_EQ(all.num_curves(), ng + 200);
     const auto id = all.find<int64_t>(Domain::Curve, attr::id);

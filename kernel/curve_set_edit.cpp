@@ -1,0 +1,84 @@
+#include "kernel/curve_set_edit.h"
+
+#include <algorithm>
+#include <string>
+#include <type_traits>
+
+namespace groom {
+
+CurveSet join(const CurveSet& a, const CurveSet& b)
+{
+    std::vector<int64_t> counts;
+    counts.reserve(a.num_curves() + b.num_curves());
+    for (size_t c = 0; c < a.num_curves(); ++c) counts.push_back(a.points_in(c));
+    for (size_t c = 0; c < b.num_curves(); ++c) counts.push_back(b.points_in(c));
+    CurveSet dst = CurveSet::from_counts(counts);
+    for (Domain d : {Domain::Point, Domain::Curve}) {
+        const size_t na = d == Domain::Point ? a.num_points() : a.num_curves();
+        // Every column of either side, in a's order then b's new ones.
+        std::vector<std::string> names;
+        for (const Attribute& col : a.attributes(d).all()) names.push_back(col.name);
+        for (const Attribute& col : b.attributes(d).all())
+            if (!a.attributes(d).find(col.name)) names.push_back(col.name);
+        for (const std::string& name : names) {
+            const Attribute* ca = a.attributes(d).find(name);
+            const Attribute* cb = b.attributes(d).find(name);
+            if (ca && cb && ca->type() != cb->type()) {
+                throw InvalidGeometry(std::string("join: ") + domain_name(d) + " attribute '" + name + "' is " +
+                                      type_name(ca->type()) + " in the first set but " + type_name(cb->type()) + " in the second");
+            }
+            const AttrType type = (ca ? ca : cb)->type();
+            Attribute& out = dst.attributes(d).add(name, d, type, dst.domain_size(d));
+            std::visit(
+                [&](auto& values) {
+                    using T = typename std::decay_t<decltype(values)>::value_type;
+                    T fill{};
+                    // -1 marks "none" in integer columns (a guide index, a shape id), where 0 is a value.
+                    if constexpr (std::is_integral_v<T>) fill = T(-1);
+                    std::fill(values.begin(), values.end(), fill);
+                    if (ca) {
+                        const auto& src = std::get<std::vector<T>>(ca->data);
+                        std::copy(src.begin(), src.end(), values.begin());
+                    }
+                    if (cb) {
+                        const auto& src = std::get<std::vector<T>>(cb->data);
+                        std::copy(src.begin(), src.end(), values.begin() + na);
+                    }
+                },
+                out.data);
+        }
+    }
+    for (const CurveSet* s : {&a, &b}) {
+        for (const Attribute& col : s->attributes(Domain::Detail).all()) {
+            if (!dst.attributes(Domain::Detail).find(col.name)) dst.attributes(Domain::Detail).all().push_back(col);
+        }
+    }
+    return dst;
+}
+
+CurveSet remove_curves(const CurveSet& src, std::span<const char> remove, std::vector<int64_t>* kept)
+{
+    if (remove.size() != src.num_curves()) {
+        throw InvalidParam("remove_curves: the mask has " + std::to_string(remove.size()) + " values for " +
+                           std::to_string(src.num_curves()) + " curves");
+    }
+    std::vector<int64_t> src_curve, counts, src_point;
+    for (size_t c = 0; c < src.num_curves(); ++c) {
+        if (remove[c]) continue;
+        src_curve.push_back(int64_t(c));
+        counts.push_back(src.points_in(c));
+        const IndexRange r = src.points_of(c);
+        for (int64_t i = r.begin; i < r.end; ++i) src_point.push_back(i);
+    }
+    CurveSet dst = CurveSet::from_counts(counts);
+    carry_point_attributes(src, dst, src_point);
+    // carry_point_attributes leaves columns dst has alone, and dst was born with P: gather it too.
+    const auto P = src.positions();
+    const auto Q = dst.positions_for_write();
+    for (size_t i = 0; i < src_point.size(); ++i) Q[i] = P[size_t(src_point[i])];
+    carry_curve_attributes(src, dst, src_curve);
+    if (kept) *kept = std::move(src_curve);
+    return dst;
+}
+
+}  // namespace groom

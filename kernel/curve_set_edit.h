@@ -1,0 +1,21 @@
+// Container operations on whole curves: joining two sets and removing curves, every attribute
+// carried. Ops that change which curves exist call these rather than rebuilding columns themselves.
+#pragma once
+
+#include "kernel/curve_set.h"
+
+#include <span>
+
+namespace groom {
+
+/// One set holding the curves of `a` then those of `b`. Columns only one side has are filled with
+/// -1 (integers) or 0 (floats, float3) on the other; a detail column both have keeps a's value.
+/// Throws InvalidGeometry naming the column when it has different types in a and b.
+CurveSet join(const CurveSet& a, const CurveSet& b);
+
+/// A copy of `src` without the curves c where remove[c] is non-zero (#curves values); every point,
+/// curve and detail column carried, order kept. `kept` (optional) receives the source index of
+/// each curve left. Throws InvalidParam when `remove` has the wrong size.
+CurveSet remove_curves(const CurveSet& src, std::span<const char> remove, std::vector<int64_t>* kept = nullptr);
+
+}  // namespace groom

@@ -96,6 +96,16 @@ int run(int argc, char** argv)
         return 2;
     }
 
+    // The long option names of the command that ran (and the common ones), for error messages.
+    auto parsed_options = [&] {
+        std::vector<std::string> names;
+        for (const CommandContext& c : contexts) {
+            if (!c.app->parsed()) continue;
+            for (const CLI::Option* o : c.app->get_options())
+                for (const std::string& l : o->get_lnames()) names.push_back(l);
+        }
+        return names;
+    };
     try {
         app.parse(argc, argv);
         for (size_t i = 0; i < commands.size(); ++i) {
@@ -152,11 +162,11 @@ int run(int argc, char** argv)
         return 2;
     }
     catch (const InvalidParam& e) {
-        error(e.what());
+        error(with_option_names(e.what(), parsed_options()));
         return 2;
     }
     catch (const Error& e) {
-        error(e.what());
+        error(with_option_names(e.what(), parsed_options()));
         return 1;
     }
     catch (const std::bad_alloc&) {

@@ -59,6 +59,11 @@ void check_output(const std::string& output, std::initializer_list<std::string> 
 /// nothing with --quiet.
 std::unique_ptr<Progress> make_progress(const CommonOptions& o);
 
+/// The library names a parameter in its messages as `snake_case` (the op's params field, the Python
+/// keyword); the command line shows it as the option a user typed: `knot_length` -> --knot-length,
+/// for every name in `options` (long names without dashes). Other text is left as it is.
+std::string with_option_names(const std::string& message, const std::vector<std::string>& options);
+
 /// The extensions groom reads as curves (".usda .obj .ply .hair") and as meshes, for help texts:
 /// taken from the format table (kernel/io/format_table.h), so a new format shows up everywhere.
 std::string curve_formats();

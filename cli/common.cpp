@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <charconv>
@@ -24,6 +25,32 @@ void note(const CommonOptions& o, const std::string& message)
 void detail(const CommonOptions& o, const std::string& message)
 {
     if (o.verbose && !o.quiet) std::cerr << message << "\n";
+}
+
+std::string with_option_names(const std::string& message, const std::vector<std::string>& options)
+{
+    std::string out;
+    size_t pos = 0;
+    while (pos < message.size()) {
+        const size_t open = message.find('`', pos);
+        const size_t close = open == std::string::npos ? std::string::npos : message.find('`', open + 1);
+        if (close == std::string::npos) break;
+        std::string name = message.substr(open + 1, close - open - 1);
+        const bool identifier = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+            return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+        });
+        std::replace(name.begin(), name.end(), '_', '-');
+        out.append(message, pos, open - pos);
+        if (identifier && std::find(options.begin(), options.end(), name) != options.end()) {
+            out += "--" + name;
+        }
+        else {
+            out.append(message, open, close + 1 - open);
+        }
+        pos = close + 1;
+    }
+    out.append(message, pos, std::string::npos);
+    return out;
 }
 
 std::string curve_formats() { return io::format_list(io::kReadCurves); }

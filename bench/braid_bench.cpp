@@ -62,7 +62,7 @@ BraidParams cornrow_params(int fibers)
 }
 
 struct Scene {
-    std::unique_ptr<Surface> scalp;
+    std::shared_ptr<const Surface> scalp;
     CurveSet guides;
 };
 
@@ -71,7 +71,7 @@ const Scene& head_scene()
     static const Scene scene = [] {
         Scene s;
         const std::string path = sintel_path();
-        if (path.empty()) s.scalp = std::make_unique<AnalyticSphere>(kHeadCentre, kHeadRadius);
+        if (path.empty()) s.scalp = std::make_shared<AnalyticSphere>(kHeadCentre, kHeadRadius);
         else s.scalp = load_scalp(path);
         s.guides = cornrow_guides(*s.scalp);
         return s;
@@ -83,7 +83,7 @@ const Scene& sphere_scene()
 {
     static const Scene scene = [] {
         Scene s;
-        s.scalp = std::make_unique<AnalyticSphere>(kHeadCentre, kHeadRadius);
+        s.scalp = std::make_shared<AnalyticSphere>(kHeadCentre, kHeadRadius);
         s.guides = cornrow_guides(*s.scalp);
         return s;
     }();

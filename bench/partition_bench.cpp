@@ -28,7 +28,7 @@ std::string shared_file(const std::string& relative)
 }
 
 struct Layout {
-    std::unique_ptr<Surface> scalp;
+    std::shared_ptr<const Surface> scalp;
     CurveSet guides;
     std::string what;
 };
@@ -48,7 +48,7 @@ const Layout& cornrows()
             l.what = "sintel.obj";
         }
         else {
-            l.scalp = std::make_unique<AnalyticSphere>(centre, 0.12f);
+            l.scalp = std::make_shared<AnalyticSphere>(centre, 0.12f);
             l.what = "sphere (../shared/datasets absent)";
         }
         const int rows = 30, points = 64;

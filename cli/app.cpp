@@ -48,9 +48,13 @@ std::string closest(std::string_view word, const std::vector<std::string>& candi
     return best;
 }
 
+/// Where error() puts its message: stderr, or a caller's string (run_captured).
+thread_local std::string* error_sink = nullptr;
+
 void error(const std::string& message)
 {
-    std::cerr << "groom: error: " << message << "\n";
+    if (error_sink) *error_sink = message;
+    else std::cerr << "groom: error: " << message << "\n";
 }
 
 }  // namespace
@@ -177,6 +181,21 @@ int run(int argc, char** argv)
         error(std::string("unexpected failure: ") + e.what());
         return 1;
     }
+}
+
+int run_captured(const std::vector<std::string>& args, std::string& error_message)
+{
+    std::vector<std::string> words{"groom"};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    error_message.clear();
+    error_sink = &error_message;
+    struct Reset {
+        ~Reset() { error_sink = nullptr; }
+    } reset;
+    return run(static_cast<int>(words.size()), argv.data());
 }
 
 }  // namespace groom::cli

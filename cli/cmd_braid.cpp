@@ -130,7 +130,7 @@ void setup(CommandContext& ctx)
         a.scalp_params.validate();
         const CurveSet guides = read_curves(a.input);
         const auto progress = make_progress(common);
-        std::unique_ptr<ScalpField> scalp;
+        std::shared_ptr<const ScalpField> scalp;
         if (!a.scalp.empty()) scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         const BraidResult res = braid(guides, params, scalp.get(), progress.get());
         write_curves(res.curves, a.output);

@@ -56,7 +56,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
         const auto start = std::chrono::steady_clock::now();
         auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
+        const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         const CornrowGuides g = cornrow_guides(*scalp, a.params);
         write_curves(g.guides, a.output);
         if (!a.tails_out.empty()) write_curves(g.tails, a.tails_out);

@@ -34,7 +34,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
         const CurveSet curves = read_curves(a.input);
         auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
+        const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         CullStats stats;
         const CurveSet out = cull(curves, *scalp, a.params, &stats);
         write_curves(out, a.output);

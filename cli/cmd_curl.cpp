@@ -30,7 +30,7 @@ void setup(CommandContext& ctx)
         const CurlParams params = curl_params_from(args->curl);
         const CurveSet in = read_curves(args->input);
         const auto progress = make_progress(common);
-        std::unique_ptr<ScalpField> scalp;
+        std::shared_ptr<const ScalpField> scalp;
         if (!args->scalp.empty()) scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const CurveSet out = curl(in, params, scalp.get(), progress.get());
         write_curves(out, args->output);

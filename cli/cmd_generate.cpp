@@ -57,7 +57,7 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         const CurveSet guides = read_curves(args->input);
         const auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), args->params, progress.get());
         write_curves(out, args->output);
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -185,7 +185,7 @@ void setup(CommandContext& ctx)
         if (!args->adjacent_file.empty()) params.adjacent = read_adjacent(args->adjacent_file, guides.num_curves());
         if (params.centroids == CentroidMode::Points) params.centroid_points = read_centroids(spec, guides.num_curves());
         const auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
 
         if (params.adjacent.empty()) {
             params.adjacent = find_adjacent_guides(guides, *scalp, params.max_gap, progress.get());

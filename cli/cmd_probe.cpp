@@ -64,7 +64,7 @@ void setup(CommandContext& ctx)
             points = read_point_text(a.input);
         }
         auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
+        const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         const int64_t n = static_cast<int64_t>(points.size());
         std::vector<float> dist(points.size());
         std::vector<float3> normals(points.size()), closest(points.size());

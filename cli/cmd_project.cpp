@@ -36,7 +36,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
         const CurveSet curves = read_curves(a.input);
         auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
+        const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         ProjectStats stats;
         const CurveSet out = project(curves, *scalp, a.params, &stats);
         write_curves(out, a.output);

@@ -70,7 +70,7 @@ void setup(CommandContext& ctx)
         }
         const auto start = std::chrono::steady_clock::now();
         const auto progress = make_progress(common);
-        const std::unique_ptr<ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const PuffResult r = puff(*scalp, scalp_root_sampler(*scalp), params, progress.get());
         // Everything is computed before anything is written.
         if (args->guides_out.empty()) {

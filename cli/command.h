@@ -11,6 +11,7 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace groom::cli {
 
@@ -44,6 +45,10 @@ struct Registrar {
 
 /// Runs the groom command line; returns the process exit code (0 ok, 2 usage error, 1 failure).
 int run(int argc, char** argv);
+
+/// The same for a program that embeds groom (the Python module): `args` without the program name;
+/// the error message is returned in `error_message` instead of printed (empty on success).
+int run_captured(const std::vector<std::string>& args, std::string& error_message);
 
 // --- helpers for command implementations -----------------------------------------------------------
 

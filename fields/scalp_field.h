@@ -97,8 +97,14 @@ void write_scalp(const ScalpField& scalp, const std::string& path);
 /// far queries and sampling is extracted from its zero crossing. Throws IoError / ParseError.
 ScalpField read_scalp_vdb(const std::string& path, Progress* progress = nullptr);
 
-/// Loads the scalp for any command's --scalp: a .vdb written by `groom scalp` (grid "scalp"), or a
-/// mesh converted on the fly with `params`. Throws ParseError/IoError/InvalidParam/InvalidGeometry.
-std::unique_ptr<ScalpField> load_scalp(const std::string& path, const ScalpBuildParams& params = {}, Progress* progress = nullptr);
+/// Loads the scalp for any command's --scalp: a .vdb written by `groom scalp` (grid "scalp"), a
+/// mesh converted on the fly with `params`, or a field stored in memory under "mem:NAME" (see
+/// store_memory_scalp). Throws ParseError/IoError/InvalidParam/InvalidGeometry.
+std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const ScalpBuildParams& params = {}, Progress* progress = nullptr);
+
+/// A field a program embedding groom (the Python module) passes to a command as "mem:NAME" in
+/// place of a scalp file (kernel/io/memory_files.h does the same for curves).
+void store_memory_scalp(const std::string& path, std::shared_ptr<const ScalpField> scalp);
+void erase_memory_scalp(const std::string& path);
 
 }  // namespace groom

@@ -7,6 +7,7 @@
 #include "kernel/io/atomic_file.h"
 #include "kernel/io/format_table.h"
 #include "kernel/io/io_util.h"
+#include "kernel/io/memory_files.h"
 #include "kernel/io/mesh_io.h"
 
 #include <openvdb/io/File.h>
@@ -15,6 +16,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
+#include <mutex>
 
 namespace groom {
 
@@ -117,13 +120,49 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     return field;
 }
 
-std::unique_ptr<ScalpField> load_scalp(const std::string& path, const ScalpBuildParams& params, Progress* progress)
+namespace {
+
+struct MemoryScalps {
+    std::mutex mutex;
+    std::map<std::string, std::shared_ptr<const ScalpField>, std::less<>> fields;
+};
+
+MemoryScalps& memory_scalps()
 {
-    if (io::extension_of(path) == "vdb") return std::make_unique<ScalpField>(read_scalp_vdb(path, progress));
+    static MemoryScalps m;
+    return m;
+}
+
+}  // namespace
+
+void store_memory_scalp(const std::string& path, std::shared_ptr<const ScalpField> scalp)
+{
+    MemoryScalps& m = memory_scalps();
+    const std::lock_guard lock(m.mutex);
+    m.fields.insert_or_assign(path, std::move(scalp));
+}
+
+void erase_memory_scalp(const std::string& path)
+{
+    MemoryScalps& m = memory_scalps();
+    const std::lock_guard lock(m.mutex);
+    m.fields.erase(path);
+}
+
+std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const ScalpBuildParams& params, Progress* progress)
+{
+    if (is_memory_path(path)) {
+        MemoryScalps& m = memory_scalps();
+        const std::lock_guard lock(m.mutex);
+        const auto it = m.fields.find(path);
+        if (it == m.fields.end()) throw IoError(path + ": no scalp stored under this name");
+        return it->second;
+    }
+    if (io::extension_of(path) == "vdb") return std::make_shared<ScalpField>(read_scalp_vdb(path, progress));
     if (!is_mesh_path(path)) {
         throw InvalidParam("--scalp " + path + ": expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
     }
-    return std::make_unique<ScalpField>(build_scalp(read_mesh(path), params, nullptr, progress));
+    return std::make_shared<ScalpField>(build_scalp(read_mesh(path), params, nullptr, progress));
 }
 
 }  // namespace groom

@@ -3,17 +3,20 @@
 #include "kernel/io/atomic_file.h"
 #include "kernel/io/format_table.h"
 #include "kernel/io/io_util.h"
+#include "kernel/io/memory_files.h"
 
 namespace groom {
 
 bool is_curve_path(const std::string& path)
 {
+    if (is_memory_path(path)) return true;
     const io::Format* f = io::format_of_path(path);
     return f && f->can(io::kReadCurves);
 }
 
 CurveSet read_curves(const std::string& path, const CurveReadOptions& options)
 {
+    if (is_memory_path(path)) return read_memory_curves(path);
     if (path != "-") io::format_for(path, io::kReadCurves, "curve");  // refuse by name before reading
     const io::FileBytes file = io::read_all(path);
     const io::Format& fmt = io::format_for(path, io::kReadCurves, "curve", file.data);
@@ -25,6 +28,11 @@ CurveSet read_curves(const std::string& path, const CurveReadOptions& options)
 
 void write_curves(const CurveSet& curves, const std::string& path, const CurveWriteOptions& options)
 {
+    if (is_memory_path(path)) {
+        curves.validate("writing " + path);
+        store_memory_curves(path, curves);
+        return;
+    }
     const io::Format& fmt = io::format_for(path, io::kWriteCurves, "curve", {}, /*error_is_param=*/true);
     curves.validate("writing " + path);
     // Encode fully before opening the output, so an encoding error leaves no file behind.
@@ -36,6 +44,7 @@ void write_curves(const CurveSet& curves, const std::string& path, const CurveWr
 
 std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path)
 {
+    if (is_memory_path(path)) return {};
     const io::Format& fmt = io::format_for(path, io::kWriteCurves, "curve", {}, /*error_is_param=*/true);
     std::vector<std::string> lost;
     for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
@@ -49,7 +58,7 @@ std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::s
 
 bool holds_curves(const std::string& path)
 {
-    if (path == "-") return true;
+    if (path == "-" || is_memory_path(path)) return true;
     const io::Format* fmt = io::format_of_path(path);
     if (!fmt || !fmt->can(io::kReadCurves)) return false;
     if (!fmt->can(io::kReadMesh) || !fmt->content_is_curves) return true;

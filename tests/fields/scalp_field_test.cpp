@@ -237,7 +237,7 @@ TEST(ScalpField, VdbRoundTripGivesTheSameField)
     test::TempDir dir;
     const ScalpField built = build_scalp(icosphere({0, 0, 0}, 1.0f, 4), {0.02f, 3.0f});
     write_scalp(built, dir.file("s.vdb"));
-    const std::unique_ptr<ScalpField> loaded = load_scalp(dir.file("s.vdb"));
+    const std::shared_ptr<const ScalpField> loaded = load_scalp(dir.file("s.vdb"));
     EXPECT_FALSE(loaded->has_source_mesh());
     EXPECT_FLOAT_EQ(loaded->voxel_size(), 0.02f);
     for (int i = 0; i < 500; ++i) {

@@ -1,0 +1,459 @@
+// The `groom` Python module: CurveSet as numpy views of the container's own memory, the scalp's
+// vectorised queries, and every op as a function.
+//
+// An op runs the very command the CLI runs, in this process: its inputs are handed over as in-memory
+// "files" (kernel/io/memory_files.h, store_memory_scalp), its keyword arguments become the command's
+// options (knot_length=1.3 -> --knot-length 1.3), and its output comes back from memory. So the
+// defaults, the validation, the messages and the bytes are the CLI's by construction, not a second
+// copy of every option that could drift from it.
+#include "cli/command.h"
+#include "fields/scalp_field.h"
+#include "kernel/curve_set.h"
+#include "kernel/error.h"
+#include "kernel/io/curve_io.h"
+#include "kernel/io/memory_files.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <memory>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace groom;
+
+namespace {
+
+// --- errors ---------------------------------------------------------------------------------------
+
+PyObject* g_error = nullptr;        // groom.Error(Exception)
+PyObject* g_param_error = nullptr;  // groom.ParamError(groom.Error, ValueError)
+
+/// The CLI's wording turned into Python's: options become keyword names (--knot-length ->
+/// knot_length) and the pointer to `groom CMD --help` goes.
+std::string python_message(std::string message)
+{
+    static const std::regex see_help(R"( \(see `groom[^`]*`\))");
+    message = std::regex_replace(message, see_help, "");
+    static const std::regex option(R"(--([a-z][a-z0-9]*(?:-[a-z0-9]+)*))");
+    std::string out;
+    auto begin = std::sregex_iterator(message.begin(), message.end(), option);
+    size_t last = 0;
+    for (auto it = begin; it != std::sregex_iterator(); ++it) {
+        out.append(message, last, size_t(it->position()) - last);
+        std::string name = (*it)[1];
+        std::replace(name.begin(), name.end(), '-', '_');
+        out += name;
+        last = size_t(it->position() + it->length());
+    }
+    out.append(message, last, std::string::npos);
+    return out;
+}
+
+[[noreturn]] void raise(bool param, const std::string& message)
+{
+    PyErr_SetString(param ? g_param_error : g_error, python_message(message).c_str());
+    throw py::error_already_set();
+}
+
+// --- CurveSet <-> numpy ---------------------------------------------------------------------------
+
+/// A numpy view of one column, sharing its memory; `owner` (the Python CurveSet) is kept alive by it.
+py::object column_view(Attribute& a, py::handle owner)
+{
+    const py::ssize_t n = static_cast<py::ssize_t>(a.size());
+    switch (a.type()) {
+        case AttrType::Float: return py::array_t<float>({n}, {py::ssize_t(sizeof(float))}, a.values<float>().data(), owner);
+        case AttrType::Int32: return py::array_t<int32_t>({n}, {py::ssize_t(sizeof(int32_t))}, a.values<int32_t>().data(), owner);
+        case AttrType::Int64: return py::array_t<int64_t>({n}, {py::ssize_t(sizeof(int64_t))}, a.values<int64_t>().data(), owner);
+        case AttrType::Float3:
+            static_assert(sizeof(float3) == 3 * sizeof(float), "float3 must be three packed floats for numpy views");
+            return py::array_t<float>({n, py::ssize_t(3)}, {py::ssize_t(sizeof(float3)), py::ssize_t(sizeof(float))},
+                                      &a.values<float3>().data()->x, owner);
+        case AttrType::String: {
+            py::list l;
+            for (const std::string& s : a.values<std::string>()) l.append(s);
+            return l.size() == 1 ? py::object(l[0]) : py::object(l);
+        }
+    }
+    return py::none();
+}
+
+/// Sets (adding or replacing) column `name` on domain `d` from a numpy array or, on the detail
+/// domain, a string: float32/float64 of shape (n,) -> float, (n, 3) -> float3, int32 -> int,
+/// int64 -> int64.
+void set_column(CurveSet& cs, Domain d, const std::string& name, py::handle value)
+{
+    if (d == Domain::Point && name == attr::P) {
+        const auto arr = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
+        if (!arr || arr.ndim() != 2 || arr.shape(1) != 3 || size_t(arr.shape(0)) != cs.num_points()) {
+            raise(true, "points: expected an array of shape (" + std::to_string(cs.num_points()) + ", 3)");
+        }
+        std::memcpy(cs.positions_for_write().data(), arr.data(), cs.num_points() * sizeof(float3));
+        return;
+    }
+    const size_t n = cs.domain_size(d);
+    if (d == Domain::Detail && py::isinstance<py::str>(value)) {
+        cs.attributes(d).remove(name);
+        cs.set_detail_string(name, value.cast<std::string>());
+        return;
+    }
+    const py::array any = py::array::ensure(value);
+    if (!any) raise(true, std::string(domain_name(d)) + " attribute '" + name + "': expected a numpy array");
+    const bool vec3 = any.ndim() == 2 && any.shape(1) == 3;
+    if (size_t(any.ndim() == 0 ? 1 : any.shape(0)) != n || (any.ndim() > 1 && !vec3)) {
+        raise(true, std::string(domain_name(d)) + " attribute '" + name + "': expected " + std::to_string(n) +
+                        " values (shape (" + std::to_string(n) + ",) or (" + std::to_string(n) + ", 3)), got shape with " +
+                        std::to_string(any.ndim()) + " dimensions and " + std::to_string(any.size()) + " values");
+    }
+    cs.attributes(d).remove(name);
+    const char kind = any.dtype().kind();
+    if (kind == 'f' && vec3) {
+        const auto arr = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
+        std::memcpy(cs.add<float3>(d, name).data(), arr.data(), n * sizeof(float3));
+    }
+    else if (kind == 'f') {
+        const auto arr = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
+        std::memcpy(cs.add<float>(d, name).data(), arr.data(), n * sizeof(float));
+    }
+    else if ((kind == 'i' || kind == 'u') && any.itemsize() <= 4 && !vec3) {
+        const auto arr = py::array_t<int32_t, py::array::c_style | py::array::forcecast>::ensure(value);
+        std::memcpy(cs.add<int32_t>(d, name).data(), arr.data(), n * sizeof(int32_t));
+    }
+    else if ((kind == 'i' || kind == 'u') && !vec3) {
+        const auto arr = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(value);
+        std::memcpy(cs.add<int64_t>(d, name).data(), arr.data(), n * sizeof(int64_t));
+    }
+    else {
+        raise(true, std::string(domain_name(d)) + " attribute '" + name + "': unsupported dtype '" + std::string(py::str(any.dtype())) +
+                        "' (expected float32/float64 (n,) or (n, 3), int32 or int64)");
+    }
+}
+
+/// `cs.point_attributes` and friends: a live, dict-like view of one domain's columns.
+struct AttributeView {
+    std::shared_ptr<CurveSet> cs;
+    py::object owner;  // the Python CurveSet, so views keep it alive
+    Domain domain;
+};
+
+// --- running a command in process -----------------------------------------------------------------
+
+std::atomic<uint64_t> g_call{0};
+
+/// Keyword arguments as the command's options: True -> a flag, False/None -> left out, sequences
+/// -> "a,b,c", everything else -> str(value).
+void append_options(std::vector<std::string>& args, const py::kwargs& kw)
+{
+    for (auto item : kw) {
+        std::string name = item.first.cast<std::string>();
+        std::replace(name.begin(), name.end(), '_', '-');
+        const py::handle v = item.second;
+        if (v.is_none()) continue;
+        if (py::isinstance<py::bool_>(v)) {
+            if (v.cast<bool>()) args.push_back("--" + name);
+            continue;
+        }
+        std::string text;
+        if (py::isinstance<py::str>(v)) {
+            text = v.cast<std::string>();
+        }
+        else if (py::isinstance<py::sequence>(v) || py::isinstance<py::array>(v)) {
+            for (auto e : py::iter(v)) text += (text.empty() ? "" : ",") + std::string(py::str(e));
+        }
+        else {
+            text = py::str(v);
+        }
+        args.push_back("--" + name);
+        args.push_back(text);
+    }
+}
+
+class Scalp;
+
+/// Runs `groom COMMAND [INPUT] -o OUT --quiet [--scalp S] OPTIONS...` and returns OUT.
+std::shared_ptr<CurveSet> run_command(const std::string& command, const CurveSet* input, py::object scalp, const py::kwargs& kw);
+
+// --- the scalp --------------------------------------------------------------------------------------
+
+class Scalp {
+public:
+    explicit Scalp(std::shared_ptr<const ScalpField> f) : field(std::move(f)) {}
+    std::shared_ptr<const ScalpField> field;
+
+    template <class F> py::array map_points(py::array_t<float, py::array::c_style | py::array::forcecast> pts, int out_dim, F&& f) const
+    {
+        if (pts.ndim() != 2 || pts.shape(1) != 3) raise(true, "points: expected an array of shape (n, 3)");
+        const py::ssize_t n = pts.shape(0);
+        py::array_t<float> out = out_dim == 1 ? py::array_t<float>({n}) : py::array_t<float>({n, py::ssize_t(3)});
+        const float* in = pts.data();
+        float* o = out.mutable_data();
+        {
+            py::gil_scoped_release release;
+            for (py::ssize_t i = 0; i < n; ++i) f(float3(in[3 * i], in[3 * i + 1], in[3 * i + 2]), o + i * out_dim);
+        }
+        return out;
+    }
+};
+
+std::shared_ptr<CurveSet> run_command(const std::string& command, const CurveSet* input, py::object scalp, const py::kwargs& kw)
+{
+    const std::string id = std::to_string(g_call++);
+    const std::string in_path = "mem:in" + id, out_path = "mem:out" + id, scalp_path = "mem:scalp" + id;
+    std::vector<std::string> args{command};
+    if (input) {
+        store_memory_curves(in_path, *input);
+        args.push_back(in_path);
+    }
+    args.insert(args.end(), {"-o", out_path, "--quiet"});
+    if (!scalp.is_none()) {
+        args.push_back("--scalp");
+        if (py::isinstance<Scalp>(scalp)) {
+            store_memory_scalp(scalp_path, scalp.cast<const Scalp&>().field);
+            args.push_back(scalp_path);
+        }
+        else {
+            args.push_back(py::str(scalp));
+        }
+    }
+    append_options(args, kw);
+    std::string message;
+    int code = 0;
+    {
+        py::gil_scoped_release release;
+        code = cli::run_captured(args, message);
+    }
+    erase_memory_curves(in_path);
+    erase_memory_scalp(scalp_path);
+    if (code != 0) {
+        erase_memory_curves(out_path);
+        raise(code == 2, message);
+    }
+    return std::make_shared<CurveSet>(take_memory_curves(out_path));
+}
+
+std::shared_ptr<CurveSet> make_curves(py::array_t<float, py::array::c_style | py::array::forcecast> points,
+                                      py::array_t<int64_t, py::array::c_style | py::array::forcecast> counts)
+{
+    if (points.ndim() != 2 || points.shape(1) != 3) raise(true, "points: expected an array of shape (n, 3)");
+    if (counts.ndim() != 1) raise(true, "counts: expected a 1-D array of points per curve");
+    int64_t total = 0;
+    for (py::ssize_t c = 0; c < counts.shape(0); ++c) {
+        if (counts.at(c) < 0) raise(true, "counts: curve " + std::to_string(c) + " has a negative count (" + std::to_string(counts.at(c)) + ")");
+        total += counts.at(c);
+    }
+    if (total != points.shape(0)) {
+        raise(true, "counts add up to " + std::to_string(total) + " points but points has " + std::to_string(points.shape(0)) + " rows");
+    }
+    auto cs = std::make_shared<CurveSet>(CurveSet::from_counts(std::span<const int64_t>(counts.data(), size_t(counts.shape(0)))));
+    std::memcpy(cs->positions_for_write().data(), points.data(), size_t(total) * sizeof(float3));
+    try {
+        cs->validate("CurveSet");
+    }
+    catch (const Error& e) {
+        raise(true, e.what());
+    }
+    return cs;
+}
+
+/// Converts a groom::Error thrown by library code called directly (read, write, Scalp) to Python's.
+template <class F> auto guarded(F&& f)
+{
+    try {
+        return f();
+    }
+    catch (const InvalidParam& e) {
+        raise(true, e.what());
+    }
+    catch (const Error& e) {
+        raise(false, e.what());
+    }
+}
+
+void def_op(py::module_& m, const char* name, const char* command, bool takes_curves, bool takes_scalp, const char* doc)
+{
+    const std::string cmd = command;
+    if (takes_curves) {
+        m.def(
+            name,
+            [cmd](std::shared_ptr<CurveSet> curves, py::object scalp, py::kwargs kw) { return run_command(cmd, curves.get(), scalp, kw); },
+            py::arg("curves"), py::arg("scalp") = py::none(), doc);
+    }
+    else {
+        m.def(
+            name, [cmd, takes_scalp](py::object scalp, py::kwargs kw) { return run_command(cmd, nullptr, scalp, kw); },
+            py::arg("scalp") = py::none(), doc);
+    }
+    (void)takes_scalp;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(groom, m)
+{
+    m.doc() = "groom: procedural hair grooming (braids, cornrows, edge hairs, curls, afro puffs) on real scalps.\n"
+              "Every op takes keyword arguments named like the command-line options (knot_length for "
+              "--knot-length) with the same defaults; see `groom COMMAND --help`.";
+    m.attr("__version__") = GROOM_VERSION;
+
+    static py::exception<Error> error(m, "Error");
+    g_error = error.ptr();
+    {
+        py::object base = py::make_tuple(py::handle(g_error), py::handle(PyExc_ValueError));
+        PyObject* cls = PyErr_NewExceptionWithDoc("groom.ParamError", "A parameter outside its valid range (also a ValueError).",
+                                                  base.ptr(), nullptr);
+        m.add_object("ParamError", py::handle(cls));
+        g_param_error = cls;
+    }
+
+    py::class_<AttributeView>(m, "AttributeView", "The columns of one domain, dict-like; values are numpy views")
+        .def("keys",
+             [](const AttributeView& v) {
+                 std::vector<std::string> k;
+                 for (const Attribute& a : v.cs->attributes(v.domain).all()) k.push_back(a.name);
+                 return k;
+             })
+        .def("__iter__", [](const AttributeView& v) {
+            std::vector<std::string> k;
+            for (const Attribute& a : v.cs->attributes(v.domain).all()) k.push_back(a.name);
+            return py::iter(py::cast(k));
+        })
+        .def("__len__", [](const AttributeView& v) { return v.cs->attributes(v.domain).count(); })
+        .def("__contains__", [](const AttributeView& v, const std::string& k) { return v.cs->attributes(v.domain).find(k) != nullptr; })
+        .def("__getitem__",
+             [](const AttributeView& v, const std::string& k) {
+                 Attribute* a = v.cs->attributes(v.domain).find(k);
+                 if (!a) throw py::key_error(std::string(domain_name(v.domain)) + " attribute '" + k + "' does not exist");
+                 return column_view(*a, v.owner);
+             })
+        .def("__setitem__", [](AttributeView& v, const std::string& k, py::handle value) { set_column(*v.cs, v.domain, k, value); })
+        .def("__delitem__", [](AttributeView& v, const std::string& k) {
+            if (v.domain == Domain::Point && k == attr::P) raise(true, "point attribute 'P' (the positions) cannot be removed");
+            if (!v.cs->attributes(v.domain).remove(k)) throw py::key_error(k);
+        });
+
+    py::class_<CurveSet, std::shared_ptr<CurveSet>>(m, "CurveSet",
+                                                    "Curves: an (n, 3) float32 `points` array and `counts` points per curve, "
+                                                    "plus named point, curve and detail attributes")
+        .def(py::init(&make_curves), py::arg("points"), py::arg("counts"))
+        .def_property_readonly("num_curves", &CurveSet::num_curves)
+        .def_property_readonly("num_points", &CurveSet::num_points)
+        .def("__len__", &CurveSet::num_curves)
+        .def_property(
+            "points", [](py::object self) { return column_view(*self.cast<CurveSet&>().attributes(Domain::Point).find(attr::P), self); },
+            [](CurveSet& cs, py::handle v) { set_column(cs, Domain::Point, std::string(attr::P), v); },
+            "(num_points, 3) float32 view of the positions: writing to it moves the points")
+        .def_property_readonly("offsets",
+                               [](const CurveSet& cs) {
+                                   const auto o = cs.offsets();
+                                   return py::array_t<int64_t>(py::ssize_t(o.size()), o.data());
+                               })
+        .def_property_readonly("counts",
+                               [](const CurveSet& cs) {
+                                   py::array_t<int64_t> out(py::ssize_t(cs.num_curves()));
+                                   for (size_t c = 0; c < cs.num_curves(); ++c) out.mutable_at(c) = cs.points_in(c);
+                                   return out;
+                               })
+        .def_property_readonly("point_attributes",
+                               [](py::object self) { return AttributeView{self.cast<std::shared_ptr<CurveSet>>(), self, Domain::Point}; })
+        .def_property_readonly("curve_attributes",
+                               [](py::object self) { return AttributeView{self.cast<std::shared_ptr<CurveSet>>(), self, Domain::Curve}; })
+        .def_property_readonly("detail_attributes",
+                               [](py::object self) { return AttributeView{self.cast<std::shared_ptr<CurveSet>>(), self, Domain::Detail}; })
+        .def("copy", [](const CurveSet& cs) { return std::make_shared<CurveSet>(cs); })
+        .def("__repr__", [](const CurveSet& cs) {
+            return "<groom.CurveSet " + std::to_string(cs.num_curves()) + " curves, " + std::to_string(cs.num_points()) + " points>";
+        });
+
+    m.def(
+        "read", [](const std::string& path) { return guarded([&] { return std::make_shared<CurveSet>(read_curves(path)); }); },
+        py::arg("path"), "Reads a curve file (.usda .obj .ply .hair)");
+    m.def(
+        "write",
+        [](const CurveSet& cs, const std::string& path) {
+            guarded([&] {
+                write_curves(cs, path);
+                return 0;
+            });
+        },
+        py::arg("curves"), py::arg("path"), "Writes curves atomically (format by extension)");
+
+    py::class_<Scalp>(m, "Scalp", "The scalp as a signed distance field (OpenVDB level set)")
+        .def_static(
+            "load",
+            [](const std::string& path, float voxel) {
+                ScalpBuildParams p;
+                p.voxel_size = voxel;
+                return guarded([&] {
+                    p.validate();
+                    return Scalp(load_scalp(path, p));
+                });
+            },
+            py::arg("path"), py::arg("voxel") = 0.0f, "A .vdb from `groom scalp`, or a mesh converted with the given voxel size (0 = automatic)")
+        .def_static(
+            "from_mesh",
+            [](py::array_t<float, py::array::c_style | py::array::forcecast> vertices,
+               py::array_t<int32_t, py::array::c_style | py::array::forcecast> faces, float voxel) {
+                if (vertices.ndim() != 2 || vertices.shape(1) != 3) raise(true, "vertices: expected an array of shape (n, 3)");
+                if (faces.ndim() != 2 || faces.shape(1) < 3) raise(true, "faces: expected an array of shape (m, 3) or (m, 4)");
+                PolygonSoup soup;
+                for (py::ssize_t i = 0; i < vertices.shape(0); ++i) soup.points.emplace_back(vertices.at(i, 0), vertices.at(i, 1), vertices.at(i, 2));
+                const size_t k = size_t(faces.shape(1));
+                for (py::ssize_t f = 0; f < faces.shape(0); ++f) soup.add_face(std::span<const int32_t>(faces.data(f, 0), k));
+                ScalpBuildParams p;
+                p.voxel_size = voxel;
+                return guarded([&] {
+                    p.validate();
+                    py::gil_scoped_release release;
+                    return Scalp(std::make_shared<ScalpField>(build_scalp(soup, p)));
+                });
+            },
+            py::arg("vertices"), py::arg("faces"), py::arg("voxel") = 0.0f)
+        .def_property_readonly("voxel_size", [](const Scalp& s) { return s.field->voxel_size(); })
+        .def(
+            "distance",
+            [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
+                return s.map_points(p, 1, [&](const float3& q, float* o) { o[0] = s.field->distance(q); });
+            },
+            py::arg("points"), "Signed distance of each point, (n,) float32; negative inside")
+        .def(
+            "normal",
+            [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
+                return s.map_points(p, 3, [&](const float3& q, float* o) {
+                    const float3 n = s.field->normal(q);
+                    o[0] = n.x, o[1] = n.y, o[2] = n.z;
+                });
+            },
+            py::arg("points"), "Unit outward normal at each point's closest surface point, (n, 3)")
+        .def(
+            "closest",
+            [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
+                return s.map_points(p, 3, [&](const float3& q, float* o) {
+                    const float3 c = s.field->closest_point(q);
+                    o[0] = c.x, o[1] = c.y, o[2] = c.z;
+                });
+            },
+            py::arg("points"), "Closest point on the scalp to each point, (n, 3)")
+        .def(
+            "inside",
+            [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
+                py::array d = s.map_points(p, 1, [&](const float3& q, float* o) { o[0] = s.field->distance(q); });
+                return py::array(d.attr("__lt__")(0.0f));
+            },
+            py::arg("points"), "Whether each point is inside the scalp, (n,) bool");
+
+    def_op(m, "braid", "braid", true, true, "Braids and cornrows from guides (`groom braid --help` lists the keywords)");
+    def_op(m, "partition", "partition", true, true, "Edge hairs between adjacent braids (scalp= required)");
+    def_op(m, "curl", "curl", true, true, "Curls each curve (type='4a', shapes=...)");
+    def_op(m, "generate", "generate", true, true, "Hairs grown from guides over the scalp (scalp= required)");
+    def_op(m, "cull", "cull", true, true, "Keeps hair outside the scalp (scalp= required)");
+    def_op(m, "project", "project", true, true, "Projects curves onto the scalp (scalp= required)");
+    def_op(m, "resample", "resample", true, false, "Resamples curves by count or segment length");
+    def_op(m, "populate", "populate", true, false, "More hairs around each curve");
+    def_op(m, "puff", "puff", false, true, "An afro puff on the scalp (scalp= required)");
+    def_op(m, "cornrow_guides", "cornrow-guides", false, true, "Cornrow guide rows over the scalp (scalp= required)");
+}

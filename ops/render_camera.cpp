@@ -32,17 +32,6 @@ Basis camera_basis(const Camera& cam)
 
 }  // namespace render_detail
 
-View parse_view(std::string_view name)
-{
-    if (name == "front") return View::Front;
-    if (name == "back") return View::Back;
-    if (name == "left" || name == "side") return View::Left;
-    if (name == "right") return View::Right;
-    if (name == "top") return View::Top;
-    if (name == "three-quarter" || name == "threequarter" || name == "3/4") return View::ThreeQuarter;
-    throw InvalidParam("render: unknown view '" + std::string(name) + "' (expected front, back, left, right, top or three-quarter)");
-}
-
 std::string_view view_name(View view)
 {
     switch (view) {

@@ -56,18 +56,6 @@ std::string_view attribute_of(ColorBy c)
 
 }  // namespace render_detail
 
-ColorBy parse_color_by(std::string_view name)
-{
-    if (name == "none") return ColorBy::None;
-    if (name == "strand") return ColorBy::Strand;
-    if (name == "guide") return ColorBy::Guide;
-    if (name == "shape") return ColorBy::Shape;
-    if (name == "kind") return ColorBy::Kind;
-    if (name == "id") return ColorBy::Id;
-    if (name == "file") return ColorBy::File;
-    throw InvalidParam("render: unknown --color-by '" + std::string(name) + "' (expected none, strand, guide, shape, kind, id or file)");
-}
-
 std::string_view color_by_name(ColorBy c)
 {
     switch (c) {

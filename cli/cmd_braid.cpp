@@ -7,6 +7,7 @@
 #include "ops/braid.h"
 
 #include <cstdio>
+#include <string_view>
 
 namespace groom::cli {
 namespace {
@@ -19,6 +20,27 @@ struct Args {
     ScalpBuildParams scalp_params;
     BraidParams params;
 };
+
+/// The --pattern and --hand words (braid_pattern_name spells each pattern); false for an unknown word.
+bool parse_braid_pattern(std::string_view word, BraidPattern& out)
+{
+    for (BraidPattern p : braid_patterns()) {
+        if (word == braid_pattern_name(p)) {
+            out = p;
+            return true;
+        }
+    }
+    return false;
+}
+
+bool parse_braid_hand(std::string_view word, BraidHand& out)
+{
+    if (word == "under") out = BraidHand::Under;
+    else if (word == "over") out = BraidHand::Over;
+    else if (word == "auto") out = BraidHand::Auto;
+    else return false;
+    return true;
+}
 
 std::string fmt(double v)
 {

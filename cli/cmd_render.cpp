@@ -1,5 +1,6 @@
 // `groom render`: preview pictures of curves on a scalp mesh (ops/render.h), written as PNG.
 #include "cli/command.h"
+#include "cli/render_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"

@@ -4,7 +4,22 @@
 #include "kernel/error.h"
 #include "ops/hair_types.h"
 
+#include <charconv>
+
 namespace groom::cli {
+
+int curl_shape_from_string(std::string_view text)
+{
+    for (int i = 0; i < curl_shape_count(); ++i) {
+        if (text == curl_shape_name(i)) return i;
+    }
+    int v = -1;
+    const auto res = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (!text.empty() && res.ec == std::errc() && res.ptr == text.data() + text.size() && v >= 0 && v < curl_shape_count()) {
+        return v;
+    }
+    return -1;
+}
 
 namespace {
 

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <string_view>
 
 namespace groom::cli {
 
@@ -26,5 +27,9 @@ void add_curl_options(CLI::App* app, CurlOptions& o, bool with_seed = true);
 
 /// The validated CurlParams the options describe. Throws InvalidParam naming the option.
 CurlParams curl_params_from(const CurlOptions& o);
+
+/// Index of a shape given by name (case-sensitive, as curl_shape_name spells it) or by its number
+/// ("0".."4"); -1 when unknown.
+int curl_shape_from_string(std::string_view text);
 
 }  // namespace groom::cli

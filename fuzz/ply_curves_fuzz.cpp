@@ -1,4 +1,4 @@
-// libFuzzer target: PLY curve reader (kernel/io/ply.cpp), ASCII and binary. See fuzz_reader.h.
+// libFuzzer target: PLY curve reader (kernel/io/ply_parse.cpp, ply_curves.cpp), ASCII and binary. See fuzz_reader.h.
 // The round trip alternates the writer's encoding by input size so both writers are exercised.
 #include "fuzz_reader.h"
 

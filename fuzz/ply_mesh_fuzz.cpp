@@ -1,4 +1,4 @@
-// libFuzzer target: PLY mesh reader (kernel/io/ply.cpp). See fuzz_reader.h.
+// libFuzzer target: PLY mesh reader (kernel/io/ply_parse.cpp, ply_mesh.cpp). See fuzz_reader.h.
 #include "fuzz_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)

@@ -1,4 +1,4 @@
-// libFuzzer target: USD ASCII BasisCurves reader (kernel/io/usda.cpp). See fuzz_reader.h.
+// libFuzzer target: USD ASCII BasisCurves reader (kernel/io/usda_*.cpp). See fuzz_reader.h.
 #include "fuzz_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)

@@ -88,24 +88,11 @@ double ease(double a, double b, double v) { return a + (b - a) * 0.5 * (1.0 - st
 
 }  // namespace
 
-bool parse_braid_pattern(std::string_view word, BraidPattern& out)
+std::vector<BraidPattern> braid_patterns()
 {
-    for (const PatternName& p : kPatterns) {
-        if (word == p.name) {
-            out = p.pattern;
-            return true;
-        }
-    }
-    return false;
-}
-
-bool parse_braid_hand(std::string_view word, BraidHand& out)
-{
-    if (word == "under") out = BraidHand::Under;
-    else if (word == "over") out = BraidHand::Over;
-    else if (word == "auto") out = BraidHand::Auto;
-    else return false;
-    return true;
+    std::vector<BraidPattern> out;
+    for (const PatternName& p : kPatterns) out.push_back(p.pattern);
+    return out;
 }
 
 const char* braid_pattern_name(BraidPattern p)

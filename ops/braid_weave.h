@@ -18,7 +18,6 @@
 #pragma once
 
 #include <string>
-#include <string_view>
 #include <vector>
 
 namespace groom {
@@ -37,9 +36,9 @@ enum class BraidPattern {
 /// Over (French / English): it passes on top. Auto: under for cornrows (orient scalp), over otherwise.
 enum class BraidHand { Auto, Under, Over };
 
-/// Parse / name a pattern or a hand (the CLI's words). parse_* return false for an unknown word.
-bool parse_braid_pattern(std::string_view word, BraidPattern& out);
-bool parse_braid_hand(std::string_view word, BraidHand& out);
+/// Every pattern, in the order braid_pattern_list() names them (cli/cmd_braid.cpp parses the names).
+std::vector<BraidPattern> braid_patterns();
+/// Name a pattern (the CLI's word).
 const char* braid_pattern_name(BraidPattern p);
 /// "plait|fishtail|twist|rope|round|lissajous", for help texts and errors.
 std::string braid_pattern_list();

@@ -3,7 +3,6 @@
 #include "kernel/error.h"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <numbers>
 
@@ -104,19 +103,6 @@ int curl_shape_count() { return int(kShapes.size()); }
 std::string_view curl_shape_name(int shape)
 {
     return shape >= 0 && shape < curl_shape_count() ? kShapes[size_t(shape)].name : "unknown";
-}
-
-int curl_shape_from_string(std::string_view text)
-{
-    for (int i = 0; i < curl_shape_count(); ++i) {
-        if (text == kShapes[size_t(i)].name) return i;
-    }
-    int v = -1;
-    const auto res = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (!text.empty() && res.ec == std::errc() && res.ptr == text.data() + text.size() && v >= 0 && v < curl_shape_count()) {
-        return v;
-    }
-    return -1;
 }
 
 std::string curl_shape_list()

@@ -32,12 +32,9 @@ enum CurlShape : int { kLame = 0, kPolygon = 1, kEllipse = 2, kCircle = 3, kRose
 /// Number of shapes in the dictionary.
 int curl_shape_count();
 
-/// The shape's name as the command line spells it: "lame", "polygon", "ellipse", "circle", "rose".
+/// The shape's name as the command line spells it: "lame", "polygon", "ellipse", "circle", "rose"
+/// (cli/curl_options.h parses names and numbers).
 std::string_view curl_shape_name(int shape);
-
-/// Index of a shape given by name (case-sensitive, as above) or by its number ("0".."4");
-/// -1 when unknown.
-int curl_shape_from_string(std::string_view text);
 
 /// "0 lame, 1 polygon, ..." for messages and help text.
 std::string curl_shape_list();

@@ -1,27 +1,23 @@
-#include "ops/render.h"
-
-#include "kernel/error.h"
+// The rasteriser behind render(): the scene projected to a sample grid, triangles and tube segments
+// binned into tiles and drawn through one z-buffer, then box-filtered to pixels. Cameras, colours, the
+// font and the contact sheet are in render_camera/color/font/sheet.cpp; render_impl.h holds what they share.
 #include "kernel/parallel.h"
+#include "ops/render_impl.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <sstream>
 
 namespace groom {
 
+using namespace render_detail;
+
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 constexpr int kTile = 32;                       // tile side in samples: a few KB of z-buffer per task
-constexpr int kMaxSide = 16384;                 // pixels per side of one view
 constexpr int64_t kMaxSamples = int64_t(1) << 27;  // 128 M samples = 1 GiB of colour + depth
-
-std::string fmt(float v) { return format_number(v); }
-
-bool finite3(const float3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void check_color(const char* option, const float3& c)
 {
@@ -33,120 +29,9 @@ void check_color(const char* option, const float3& c)
     }
 }
 
-uint32_t pack(const float3& c)
-{
-    auto u8 = [](float v) { return static_cast<uint32_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
-    return u8(c.x) | (u8(c.y) << 8) | (u8(c.z) << 16);
-}
-float3 unpack(uint32_t c)
-{
-    return {float(c & 255u) / 255.0f, float((c >> 8) & 255u) / 255.0f, float((c >> 16) & 255u) / 255.0f};
-}
-
-/// Orthonormal camera basis: forward (into the picture), right, up.
-struct Basis {
-    float3 forward, right, up;
-};
-
-Basis camera_basis(const Camera& cam)
-{
-    Basis b;
-    b.forward = normalize(cam.target - cam.eye);
-    float3 up = normalize(cam.up, float3(0, 1, 0));
-    // An up along the view direction (looking straight down with +Y up) has no unique right: pick
-    // the world axis least aligned with the view instead of failing.
-    if (std::fabs(dot(up, b.forward)) > 0.999f) up = std::fabs(b.forward.z) < 0.9f ? float3(0, 0, 1) : float3(0, 1, 0);
-    b.right = normalize(cross(b.forward, up));
-    b.up = cross(b.right, b.forward);
-    return b;
-}
-
-/// Maps scene points to sample coordinates (x right, y down, pixel centres at i + 0.5) and depth.
-struct Projector {
-    Basis basis;
-    float3 origin;  // eye (perspective) or target (orthographic)
-    bool perspective = false;
-    float scale = 1.0f;  // orthographic: samples per scene unit; perspective: samples at unit depth
-    float cx = 0.0f, cy = 0.0f;
-    float near = 0.0f;
-
-    Projector(const Camera& cam, int width_samples, int height_samples)
-    {
-        basis = camera_basis(cam);
-        perspective = cam.fov_degrees > 0.0f;
-        cx = 0.5f * float(width_samples);
-        cy = 0.5f * float(height_samples);
-        if (perspective) {
-            origin = cam.eye;
-            scale = cy / std::tan(0.5f * cam.fov_degrees * kPi / 180.0f);
-            near = 1e-3f * distance(cam.eye, cam.target);
-        }
-        else {
-            origin = cam.target;
-            scale = float(height_samples) / cam.ortho_height;
-        }
-    }
-
-    /// False when the point is behind the near plane (perspective only).
-    bool project(const float3& p, float& sx, float& sy, float& depth, float& samples_per_unit) const
-    {
-        const float3 v = p - origin;
-        const float x = dot(v, basis.right), y = dot(v, basis.up);
-        depth = dot(v, basis.forward);
-        float k = scale;
-        if (perspective) {
-            if (depth < near) return false;
-            k = scale / depth;
-        }
-        sx = cx + x * k;
-        sy = cy - y * k;
-        samples_per_unit = k;
-        return true;
-    }
-};
-
 // Light directions in view coordinates (x right, y up, z into the picture).
 const float3 kViewer{0.0f, 0.0f, -1.0f};
 const float3 kKey = normalize(float3(-0.45f, 0.65f, -0.6f));  // from the upper left, in front
-
-/// One colour attribute column resolved to spans.
-struct ColorSource {
-    std::span<const int32_t> i32;
-    std::span<const int64_t> i64;
-    std::span<const float> f32;
-    bool per_point = false;
-    bool valid() const { return !i32.empty() || !i64.empty() || !f32.empty(); }
-    int64_t value(size_t i) const
-    {
-        if (!i32.empty()) return i32[i];
-        if (!i64.empty()) return i64[i];
-        return static_cast<int64_t>(std::floor(f32[i]));
-    }
-};
-
-ColorSource find_color_source(const CurveSet& curves, std::string_view name)
-{
-    ColorSource s;
-    for (Domain d : {Domain::Point, Domain::Curve}) {
-        s.i32 = curves.find<int32_t>(d, name);
-        s.i64 = curves.find<int64_t>(d, name);
-        s.f32 = curves.find<float>(d, name);
-        s.per_point = d == Domain::Point;
-        if (s.valid()) return s;
-    }
-    return {};
-}
-
-std::string_view attribute_of(ColorBy c)
-{
-    switch (c) {
-    case ColorBy::Strand: return "strand";
-    case ColorBy::Guide: return "guide";
-    case ColorBy::Shape: return "shape";
-    case ColorBy::Kind: return "kind";
-    default: return {};
-    }
-}
 
 /// Everything drawn, projected for one camera. Points of all layers are concatenated.
 struct Prepared {
@@ -400,152 +285,7 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
     }
 }
 
-float3 hsv(float h, float s, float v)
-{
-    h = (h - std::floor(h)) * 6.0f;
-    const int i = static_cast<int>(h) % 6;
-    const float f = h - std::floor(h);
-    const float a = v * (1 - s), b = v * (1 - s * f), c = v * (1 - s * (1 - f));
-    switch (i) {
-    case 0: return {v, c, a};
-    case 1: return {b, v, a};
-    case 2: return {a, v, c};
-    case 3: return {a, b, v};
-    case 4: return {c, a, v};
-    default: return {v, a, b};
-    }
-}
-
-// 5x7 glyphs, one row per byte, bit 4 = leftmost column.
-struct Glyph {
-    char c;
-    uint8_t rows[7];
-};
-constexpr Glyph kFont[] = {
-    {'A', {14, 17, 17, 31, 17, 17, 17}}, {'B', {30, 17, 17, 30, 17, 17, 30}}, {'C', {14, 17, 16, 16, 16, 17, 14}},
-    {'D', {30, 17, 17, 17, 17, 17, 30}}, {'E', {31, 16, 16, 30, 16, 16, 31}}, {'F', {31, 16, 16, 30, 16, 16, 16}},
-    {'G', {14, 17, 16, 23, 17, 17, 15}}, {'H', {17, 17, 17, 31, 17, 17, 17}}, {'I', {14, 4, 4, 4, 4, 4, 14}},
-    {'J', {7, 2, 2, 2, 2, 18, 12}},      {'K', {17, 18, 20, 24, 20, 18, 17}}, {'L', {16, 16, 16, 16, 16, 16, 31}},
-    {'M', {17, 27, 21, 21, 17, 17, 17}}, {'N', {17, 17, 25, 21, 19, 17, 17}}, {'O', {14, 17, 17, 17, 17, 17, 14}},
-    {'P', {30, 17, 17, 30, 16, 16, 16}}, {'Q', {14, 17, 17, 17, 21, 18, 13}}, {'R', {30, 17, 17, 30, 20, 18, 17}},
-    {'S', {15, 16, 16, 14, 1, 1, 30}},   {'T', {31, 4, 4, 4, 4, 4, 4}},       {'U', {17, 17, 17, 17, 17, 17, 14}},
-    {'V', {17, 17, 17, 17, 17, 10, 4}},  {'W', {17, 17, 17, 21, 21, 21, 10}}, {'X', {17, 17, 10, 4, 10, 17, 17}},
-    {'Y', {17, 17, 10, 4, 4, 4, 4}},     {'Z', {31, 1, 2, 4, 8, 16, 31}},     {'0', {14, 17, 19, 21, 25, 17, 14}},
-    {'1', {4, 12, 4, 4, 4, 4, 14}},      {'2', {14, 17, 1, 2, 4, 8, 31}},     {'3', {31, 2, 4, 2, 1, 17, 14}},
-    {'4', {2, 6, 10, 18, 31, 2, 2}},     {'5', {31, 16, 30, 1, 1, 17, 14}},   {'6', {6, 8, 16, 30, 17, 17, 14}},
-    {'7', {31, 1, 2, 4, 8, 8, 8}},       {'8', {14, 17, 17, 14, 17, 17, 14}}, {'9', {14, 17, 17, 15, 1, 2, 12}},
-    {'-', {0, 0, 0, 31, 0, 0, 0}},       {'.', {0, 0, 0, 0, 0, 12, 12}},      {':', {0, 12, 12, 0, 12, 12, 0}},
-    {',', {0, 0, 0, 0, 12, 4, 8}},       {'/', {1, 1, 2, 4, 8, 16, 16}},      {' ', {0, 0, 0, 0, 0, 0, 0}},
-};
-
-const Glyph* find_glyph(char c)
-{
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-    for (const Glyph& g : kFont)
-        if (g.c == c) return &g;
-    return nullptr;
-}
-
 }  // namespace
-
-View parse_view(std::string_view name)
-{
-    if (name == "front") return View::Front;
-    if (name == "back") return View::Back;
-    if (name == "left" || name == "side") return View::Left;
-    if (name == "right") return View::Right;
-    if (name == "top") return View::Top;
-    if (name == "three-quarter" || name == "threequarter" || name == "3/4") return View::ThreeQuarter;
-    throw InvalidParam("render: unknown view '" + std::string(name) + "' (expected front, back, left, right, top or three-quarter)");
-}
-
-std::string_view view_name(View view)
-{
-    switch (view) {
-    case View::Front: return "front";
-    case View::Back: return "back";
-    case View::Left: return "left";
-    case View::Right: return "right";
-    case View::Top: return "top";
-    case View::ThreeQuarter: return "three-quarter";
-    }
-    return "front";
-}
-
-void Camera::validate() const
-{
-    if (!finite3(eye) || !finite3(target) || !finite3(up)) {
-        throw InvalidParam("render: --camera values must be finite (got eye " + fmt(eye.x) + "," + fmt(eye.y) + "," + fmt(eye.z) +
-                           ", target " + fmt(target.x) + "," + fmt(target.y) + "," + fmt(target.z) + ")");
-    }
-    const float size = std::max({1.0f, length(eye), length(target)});
-    if (distance(eye, target) <= 1e-6f * size) {
-        throw InvalidParam("render: --camera eye and target must differ (both are " + fmt(eye.x) + "," + fmt(eye.y) + "," +
-                           fmt(eye.z) + ")");
-    }
-    if (length(up) == 0.0f) throw InvalidParam("render: camera up vector must not be zero");
-    if (!std::isfinite(fov_degrees) || fov_degrees < 0.0f || fov_degrees >= 170.0f) {
-        throw InvalidParam("render: --fov must be in (0, 170) degrees, or 0 for orthographic (got " + fmt(fov_degrees) + ")");
-    }
-    if (!std::isfinite(ortho_height) || ortho_height < 0.0f) {
-        throw InvalidParam("render: orthographic height must be >= 0 scene units (0 = fit; got " + fmt(ortho_height) + ")");
-    }
-}
-
-Camera view_camera(View view)
-{
-    Camera c;
-    c.target = {0, 0, 0};
-    c.up = {0, 1, 0};
-    switch (view) {
-    case View::Front: c.eye = {0, 0, 1}; break;
-    case View::Back: c.eye = {0, 0, -1}; break;
-    case View::Left: c.eye = {1, 0, 0}; break;
-    case View::Right: c.eye = {-1, 0, 0}; break;
-    case View::Top:
-        c.eye = {0, 1, 0};
-        c.up = {0, 0, 1};  // face at the top of the picture
-        break;
-    case View::ThreeQuarter: c.eye = normalize(float3(0.75f, 0.3f, 1.0f)); break;
-    }
-    return c;
-}
-
-ColorBy parse_color_by(std::string_view name)
-{
-    if (name == "none") return ColorBy::None;
-    if (name == "strand") return ColorBy::Strand;
-    if (name == "guide") return ColorBy::Guide;
-    if (name == "shape") return ColorBy::Shape;
-    if (name == "kind") return ColorBy::Kind;
-    if (name == "id") return ColorBy::Id;
-    if (name == "file") return ColorBy::File;
-    throw InvalidParam("render: unknown --color-by '" + std::string(name) + "' (expected none, strand, guide, shape, kind, id or file)");
-}
-
-std::string_view color_by_name(ColorBy c)
-{
-    switch (c) {
-    case ColorBy::None: return "none";
-    case ColorBy::Strand: return "strand";
-    case ColorBy::Guide: return "guide";
-    case ColorBy::Shape: return "shape";
-    case ColorBy::Kind: return "kind";
-    case ColorBy::Id: return "id";
-    case ColorBy::File: return "file";
-    }
-    return "none";
-}
-
-float3 categorical_color(int64_t value)
-{
-    // Golden-ratio hue steps (computed in double so large ids stay exact enough), alternating two
-    // brightness levels so even hues that come close again differ in value.
-    const double h = 0.08 + 0.6180339887498949 * static_cast<double>(value);
-    const float hue = static_cast<float>(h - std::floor(h));
-    const bool odd = (value & 1) != 0;
-    return hsv(hue, odd ? 0.55f : 0.70f, odd ? 0.95f : 0.82f);
-}
 
 void RenderParams::validate() const
 {
@@ -580,43 +320,6 @@ void RenderParams::validate() const
     if (!std::isfinite(margin) || margin < 0.0f || margin > 0.45f) {
         throw InvalidParam("render: --margin must be in [0, 0.45] (got " + fmt(margin) + ")");
     }
-}
-
-bool has_color_attribute(const CurveSet& curves, ColorBy color_by)
-{
-    const std::string_view name = attribute_of(color_by);
-    return name.empty() || find_color_source(curves, name).valid();
-}
-
-Camera frame_camera(const RenderScene& scene, const Camera& camera, float aspect, float margin)
-{
-    camera.validate();
-    if (camera.fov_degrees > 0.0f || camera.ortho_height > 0.0f) return camera;
-    const Basis b = camera_basis(camera);
-    float lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
-    auto extend = [&](const float3& p) {
-        const float3 v = p - camera.target;
-        const float x = dot(v, b.right), y = dot(v, b.up);
-        lo_x = std::min(lo_x, x);
-        hi_x = std::max(hi_x, x);
-        lo_y = std::min(lo_y, y);
-        hi_y = std::max(hi_y, y);
-    };
-    if (scene.mesh)
-        for (const float3& p : scene.mesh->points) extend(p);
-    for (const CurveSet* c : scene.curves)
-        for (const float3& p : c->positions()) extend(p);
-    Camera out = camera;
-    if (!(lo_x <= hi_x)) {  // nothing drawn
-        out.ortho_height = 1.0f;
-        return out;
-    }
-    const float3 shift = b.right * (0.5f * (lo_x + hi_x)) + b.up * (0.5f * (lo_y + hi_y));
-    out.target = camera.target + shift;
-    out.eye = camera.eye + shift;
-    const float need = std::max(hi_y - lo_y, (hi_x - lo_x) / aspect);
-    out.ortho_height = std::max(need, 1e-6f) / (1.0f - 2.0f * margin);
-    return out;
 }
 
 RgbImage render(const RenderScene& scene, const Camera& camera_in, const RenderParams& params, Progress* progress)
@@ -725,60 +428,6 @@ RgbImage render(const RenderScene& scene, const Camera& camera_in, const RenderP
         }
     });
     return image;
-}
-
-void draw_label(RgbImage& image, int x, int y, std::string_view text, int scale, const float3& color)
-{
-    const uint8_t rgb[3] = {static_cast<uint8_t>(pack(color) & 255u), static_cast<uint8_t>((pack(color) >> 8) & 255u),
-                            static_cast<uint8_t>((pack(color) >> 16) & 255u)};
-    scale = std::max(1, scale);
-    int pen = x;
-    for (char ch : text) {
-        const Glyph* g = find_glyph(ch);
-        if (g) {
-            for (int row = 0; row < 7; ++row)
-                for (int col = 0; col < 5; ++col) {
-                    if (!(g->rows[row] & (16 >> col))) continue;
-                    for (int dy = 0; dy < scale; ++dy)
-                        for (int dx = 0; dx < scale; ++dx) {
-                            const int px = pen + col * scale + dx, py = y + row * scale + dy;
-                            if (px < 0 || py < 0 || px >= image.width || py >= image.height) continue;
-                            std::memcpy(image.at(px, py), rgb, 3);
-                        }
-                }
-        }
-        pen += 6 * scale;
-    }
-}
-
-RgbImage render_sheet(const RenderScene& scene, std::span<const View> views, const RenderParams& params, Progress* progress)
-{
-    if (views.empty()) throw InvalidParam("render: --views needs at least one view");
-    params.validate();
-    if (int64_t(params.width) * int64_t(views.size()) > kMaxSide) {
-        throw InvalidParam("render: a sheet of " + std::to_string(views.size()) + " views of width " + std::to_string(params.width) +
-                           " is wider than " + std::to_string(kMaxSide) + " pixels; lower --size");
-    }
-    const float aspect = float(params.width) / float(params.height);
-    // One scale for every view, so sizes compare across the sheet.
-    std::vector<Camera> cams;
-    float height = 0.0f;
-    for (View v : views) {
-        cams.push_back(frame_camera(scene, view_camera(v), aspect, params.margin));
-        height = std::max(height, cams.back().ortho_height);
-    }
-    RgbImage sheet(params.width * int(views.size()), params.height);
-    const int scale = std::max(2, params.height / 200);
-    for (size_t i = 0; i < views.size(); ++i) {
-        cams[i].ortho_height = height;
-        RgbImage one = render(scene, cams[i], params, progress);
-        draw_label(one, 4 * scale, 4 * scale, view_name(views[i]), scale, float3(0.25f, 0.25f, 0.28f));
-        for (int y = 0; y < params.height; ++y) {
-            std::memcpy(sheet.at(int(i) * params.width, y), one.at(0, y), size_t(params.width) * 3u);
-            if (i > 0) std::memset(sheet.at(int(i) * params.width, y), 200, 3);  // a thin divider
-        }
-    }
-    return sheet;
 }
 
 }  // namespace groom

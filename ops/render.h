@@ -23,9 +23,7 @@ namespace groom {
 /// top: eye on +Y with the face at the top of the picture; three-quarter: front-left, slightly above.
 enum class View { Front, Back, Left, Right, Top, ThreeQuarter };
 
-/// Parses "front", "back", "left", "right", "top", "three-quarter" (also "side" = left).
-/// Throws InvalidParam listing the valid names.
-View parse_view(std::string_view name);
+/// The view's name as `groom render --view` spells it (cli/render_options.h parses it).
 std::string_view view_name(View view);
 
 /// A pinhole or orthographic camera. Scene units throughout.
@@ -45,8 +43,7 @@ Camera view_camera(View view);
 /// What gives curves their colour. Attributes are looked up on the point domain first, then on
 /// the curve domain (int32, int64 or float); a value v gets `categorical_color(v)`.
 enum class ColorBy { None, Strand, Guide, Shape, Kind, Id, File };
-ColorBy parse_color_by(std::string_view name);  ///< "none|strand|guide|shape|kind|id|file"; throws InvalidParam
-std::string_view color_by_name(ColorBy c);
+std::string_view color_by_name(ColorBy c);  ///< "none|strand|guide|shape|kind|id|file" (parsed in cli/render_options.h)
 
 /// A stable categorical colour for an integer value: hues spaced by the golden ratio, so
 /// consecutive values (strands 0, 1, 2; neighbouring guides) are always far apart. Components in [0, 1].

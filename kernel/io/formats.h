@@ -28,11 +28,11 @@ std::string write_obj_curves(const CurveSet& curves);
 PolygonSoup read_obj_mesh(const FileBytes& file);
 std::string write_obj_mesh(const PolygonSoup& soup);
 
-// --- USD ASCII BasisCurves -------------------------------------------------------------------------
+// --- USD ASCII BasisCurves (usda_lexer, usda_parser, usda_build, usda_write) -----------------------
 CurveSet read_usda(const FileBytes& file, const CurveReadOptions& options);
 std::string write_usda(const CurveSet& curves);
 
-// --- PLY -------------------------------------------------------------------------------------------
+// --- PLY (ply_parse, ply_curves, ply_mesh, ply_writer) ---------------------------------------------
 CurveSet read_ply_curves(const FileBytes& file);
 std::string write_ply_curves(const CurveSet& curves, PlyEncoding encoding);
 PolygonSoup read_ply_mesh(const FileBytes& file);

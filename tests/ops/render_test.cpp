@@ -288,8 +288,6 @@ TEST(Render, BadSizeAndParamsAreRejected)
     p = small_params();
     p.margin = 0.5f;
     rejects(p, "--margin must be in [0, 0.45]");
-    EXPECT_THROW(parse_view("sideways"), InvalidParam);
-    EXPECT_THROW(parse_color_by("colour"), InvalidParam);
     EXPECT_THROW(render_sheet(scene, {}, small_params()), InvalidParam);
 }
 

@@ -1,0 +1,344 @@
+// PLY curves: read_ply_curves / write_ply_curves and the `comment groom ...` lines that carry attribute
+// types and detail values. Apart from the mesh reader because curves need their own elements and metadata.
+#include "kernel/io/formats.h"
+#include "kernel/io/ply_data.h"
+#include "kernel/io/ply_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+
+// Curves are written the way Blender's and Open3D's PLY readers understand line sets: a `vertex`
+// element (x, y, z and one property per point attribute) and an `edge` element (vertex1, vertex2)
+// joining consecutive points of each curve. groom adds what those readers ignore but a lossless
+// round trip needs: a `curve` element (`point_count` plus one property per curve attribute) and
+// `comment groom ...` lines giving each attribute's domain and type and every detail value.
+// Files without a `curve` element (from other programs) are rebuilt from the edges as chains.
+namespace groom::io {
+
+namespace ply {
+namespace {
+
+// --- groom comments: attribute types and detail values ---------------------------------------------
+
+struct GroomComments {
+    std::map<std::string, AttrType> point_types, curve_types;
+    std::vector<std::pair<std::string, std::string>> details;  ///< name, "TYPE VALUE..."
+};
+
+std::optional<AttrType> attr_type_named(std::string_view s)
+{
+    for (AttrType t : {AttrType::Float, AttrType::Int32, AttrType::Int64, AttrType::Float3, AttrType::String})
+        if (s == type_name(t)) return t;
+    return std::nullopt;
+}
+
+GroomComments groom_comments(const PlyData& ply)
+{
+    GroomComments g;
+    for (const std::string& c : ply.comments) {
+        TextCursor cur(c);
+        if (cur.token() != "groom") continue;
+        const std::string_view kind = cur.token();
+        if (kind == "attribute") {
+            const std::string_view dom = cur.token();
+            const std::string name(cur.token());
+            const auto type = attr_type_named(cur.token());
+            if (!type) continue;
+            (dom == "curve" ? g.curve_types : g.point_types)[name] = *type;
+        }
+        else if (kind == "detail") {
+            const std::string name(cur.token());
+            std::string_view rest = cur.rest_of_line();
+            if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
+            g.details.emplace_back(name, std::string(rest));
+        }
+    }
+    return g;
+}
+
+std::string escape_line(std::string_view s)
+{
+    std::string out;
+    for (char c : s) {
+        if (c == '\\') out += "\\\\";
+        else if (c == '\n') out += "\\n";
+        else if (c == '\r') out += "\\r";
+        else out += c;
+    }
+    return out;
+}
+
+std::string unescape_line(std::string_view s)
+{
+    std::string out;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == '\\' && i + 1 < s.size()) {
+            const char e = s[++i];
+            out += e == 'n' ? '\n' : e == 'r' ? '\r' : e;
+        }
+        else {
+            out += s[i];
+        }
+    }
+    return out;
+}
+
+void add_detail(const FileBytes& file, CurveSet& cs, const std::string& name, const std::string& spec)
+{
+    TextCursor cur(spec);
+    const auto type = attr_type_named(cur.token());
+    auto bad = [&] { throw ParseError(file.name + ": malformed 'comment groom detail " + name + " " + spec + "'"); };
+    if (!type) bad();
+    switch (*type) {
+        case AttrType::String: {
+            std::string_view rest = cur.rest_of_line();
+            if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
+            cs.set_detail_string(name, unescape_line(rest));
+            break;
+        }
+        case AttrType::Float: {
+            float v;
+            if (!parse_float(cur.token(), v)) bad();
+            cs.add<float>(Domain::Detail, name)[0] = v;
+            break;
+        }
+        case AttrType::Int32:
+        case AttrType::Int64: {
+            int64_t v;
+            if (!parse_int(cur.token(), v)) bad();
+            if (*type == AttrType::Int32) cs.add<int32_t>(Domain::Detail, name)[0] = static_cast<int32_t>(v);
+            else cs.add<int64_t>(Domain::Detail, name)[0] = v;
+            break;
+        }
+        case AttrType::Float3: {
+            float3 v;
+            for (int k = 0; k < 3; ++k)
+                if (!parse_float(cur.token(), v[k])) bad();
+            cs.add<float3>(Domain::Detail, name)[0] = v;
+            break;
+        }
+    }
+}
+
+/// Turns the scalar properties of `e` (except those in `skip`) into columns on `domain`, gathering
+/// row order[i] into element i. `NAME_x NAME_y NAME_z` become one float3 column.
+void add_columns(const PlyElement& e, const std::map<std::string, AttrType>& types, Domain domain, std::span<const int64_t> order,
+                 std::initializer_list<std::string_view> skip, CurveSet& cs)
+{
+    const size_t n = order.size();
+    for (size_t k = 0; k < e.props.size(); ++k) {
+        const PlyProperty& p = e.props[k];
+        if (p.is_list || std::find(skip.begin(), skip.end(), p.name) != skip.end()) continue;
+        // float3 as three consecutive properties NAME_x, NAME_y, NAME_z.
+        if (p.name.size() > 2 && p.name.compare(p.name.size() - 2, 2, "_x") == 0 && k + 2 < e.props.size()) {
+            const std::string base = p.name.substr(0, p.name.size() - 2);
+            const PlyProperty& py = e.props[k + 1];
+            const PlyProperty& pz = e.props[k + 2];
+            const auto declared = types.find(base);
+            if (!py.is_list && !pz.is_list && py.name == base + "_y" && pz.name == base + "_z" &&
+                (declared == types.end() || declared->second == AttrType::Float3)) {
+                auto dst = cs.add<float3>(domain, base);
+                for (size_t i = 0; i < n; ++i)
+                    dst[i] = {static_cast<float>(p.values[order[i]]), static_cast<float>(py.values[order[i]]), static_cast<float>(pz.values[order[i]])};
+                k += 2;
+                continue;
+            }
+        }
+        AttrType type = is_float(p.type) ? AttrType::Float : p.type == PlyType::UInt32 ? AttrType::Int64 : AttrType::Int32;
+        if (const auto it = types.find(p.name); it != types.end() && it->second != AttrType::Float3 && it->second != AttrType::String) type = it->second;
+        Attribute& a = cs.attributes(domain).add(p.name, domain, type, n);
+        std::visit(
+            [&](auto& v) {
+                using T = typename std::decay_t<decltype(v)>::value_type;
+                if constexpr (std::is_arithmetic_v<T>)
+                    for (size_t i = 0; i < n; ++i) v[i] = static_cast<T>(p.values[order[i]]);
+            },
+            a.data);
+    }
+}
+
+/// PLY properties for the columns of one domain. int64 is stored as double (exact to 2^53).
+void columns_for(const CurveSet& cs, Domain d, std::vector<Column>& cols, std::vector<std::string>& comments)
+{
+    for (const Attribute& a : cs.attributes(d).all()) {
+        if (d == Domain::Point && a.name == attr::P) continue;
+        if (a.type() == AttrType::String) throw InvalidParam("ply: " + std::string(domain_name(d)) + " attribute '" + a.name + "' holds strings; PLY cannot store them");
+        for (char c : a.name) {
+            if (c <= ' ' || c > '~') throw InvalidParam("ply: attribute name '" + a.name + "' contains spaces or non-ASCII characters");
+        }
+        comments.push_back("groom attribute " + std::string(domain_name(d)) + " " + a.name + " " + type_name(a.type()));
+        const Attribute* ap = &a;
+        switch (a.type()) {
+            case AttrType::Float: cols.push_back({a.name, PlyType::Float32, [ap](size_t i) { return double(ap->values<float>()[i]); }}); break;
+            case AttrType::Int32: cols.push_back({a.name, PlyType::Int32, [ap](size_t i) { return double(ap->values<int32_t>()[i]); }}); break;
+            case AttrType::Int64:
+                for (int64_t v : a.values<int64_t>()) {
+                    if (v > (int64_t(1) << 53) || v < -(int64_t(1) << 53)) {
+                        throw InvalidParam("ply: int64 attribute '" + a.name + "' holds " + std::to_string(v) +
+                                           ", beyond 2^53: PLY stores it as double and would round it (use .usda)");
+                    }
+                }
+                cols.push_back({a.name, PlyType::Float64, [ap](size_t i) { return double(ap->values<int64_t>()[i]); }});
+                break;
+            case AttrType::Float3:
+                for (int k = 0; k < 3; ++k)
+                    cols.push_back({a.name + "_" + "xyz"[k], PlyType::Float32, [ap, k](size_t i) { return double(ap->values<float3>()[i][k]); }});
+                break;
+            case AttrType::String: break;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace ply
+
+CurveSet read_ply_curves(const FileBytes& file)
+{
+    using namespace ply;
+    const PlyData ply = parse_ply(file);
+    const PlyElement* v = ply.find("vertex");
+    if (!v) throw ParseError(file.name + ": expected a 'vertex' element, found none");
+    const std::vector<float3> pts = read_positions(file, *v);
+    const GroomComments g = groom_comments(ply);
+    const PlyElement* curve = ply.find("curve");
+    const PlyElement* edge = ply.find("edge");
+
+    std::vector<int64_t> order;  // point i of the result is vertex order[i]
+    std::vector<int64_t> counts;
+    if (curve && curve->find("point_count")) {
+        // groom's own files: curves are consecutive runs of vertices.
+        const PlyProperty* pc = curve->find("point_count");
+        int64_t total = 0;
+        for (double n : pc->values) {
+            if (!(n >= 0 && n == std::floor(n) && n <= static_cast<double>(v->count))) {
+                fail_at_line(file.name, curve->line, "curve point_count " + number_text(n) + " is not a count of 0 to " +
+                                                         std::to_string(v->count) + " vertices");
+            }
+            counts.push_back(static_cast<int64_t>(n));
+            total += counts.back();
+        }
+        if (total != static_cast<int64_t>(v->count)) {
+            fail_at_line(file.name, curve->line, "curve point_count values sum to " + std::to_string(total) + " but element vertex has " + std::to_string(v->count));
+        }
+        order.resize(v->count);
+        for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int64_t>(i);
+    }
+    else {
+        if (!edge) throw ParseError(file.name + ": expected an 'edge' element (vertex1, vertex2) joining curve points, found none: not curves");
+        const PlyProperty* a = edge->find("vertex1");
+        const PlyProperty* b = edge->find("vertex2");
+        if (!a || !b) fail_at_line(file.name, edge->line, "expected properties vertex1 and vertex2 on element edge");
+        // Chains: each vertex has at most one edge on each side. Edges are taken as undirected;
+        // a chain whose edges all point one way starts at its source (root to tip).
+        const int64_t n = static_cast<int64_t>(v->count);
+        std::vector<int64_t> nb0(n, -1), nb1(n, -1);
+        std::vector<char> is_target(n, 0);
+        for (size_t e = 0; e < edge->count; ++e) {
+            const double fa = a->values[e], fb = b->values[e];
+            // Written so NaN and fractions (float-typed index properties) fail too, before any cast.
+            if (!(fa >= 0 && fa < n && fa == std::floor(fa) && fb >= 0 && fb < n && fb == std::floor(fb))) {
+                throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + number_text(fa) + " and " + number_text(fb) +
+                                 ": index out of range (" + std::to_string(n) + " vertices)");
+            }
+            const int64_t ia = static_cast<int64_t>(fa), ib = static_cast<int64_t>(fb);
+            if (ia == ib) throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + std::to_string(ia) + " to itself");
+            is_target[ib] = 1;
+            for (int64_t x : {ia, ib}) {
+                const int64_t other = x == ia ? ib : ia;
+                if (nb0[x] < 0) nb0[x] = other;
+                else if (nb1[x] < 0) nb1[x] = other;
+                else throw ParseError(file.name + ": vertex " + std::to_string(x) + " has more than two edges: curves must be simple chains");
+            }
+        }
+        std::vector<char> seen(n, 0);
+        for (int64_t s = 0; s < n; ++s) {
+            if (seen[s] || nb1[s] >= 0) continue;  // start at chain ends (and isolated vertices)
+            std::vector<int64_t> chain{s};
+            seen[s] = 1;
+            for (int64_t prev = -1, at = s;;) {
+                const int64_t next = nb0[at] != prev ? nb0[at] : nb1[at];
+                if (next < 0 || seen[next]) break;
+                chain.push_back(next);
+                seen[next] = 1;
+                prev = at;
+                at = next;
+            }
+            // Walked from the end that is a target while the other end is not: reverse to root-first.
+            if (chain.size() > 1 && is_target[chain.front()] && !is_target[chain.back()]) std::reverse(chain.begin(), chain.end());
+            order.insert(order.end(), chain.begin(), chain.end());
+            counts.push_back(static_cast<int64_t>(chain.size()));
+        }
+        for (int64_t s = 0; s < n; ++s)
+            if (!seen[s]) throw ParseError(file.name + ": vertex " + std::to_string(s) + " lies on a closed loop of edges; curves must be open chains");
+    }
+
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions_for_write();
+    for (size_t i = 0; i < order.size(); ++i) P[i] = pts[order[i]];
+    add_columns(*v, g.point_types, Domain::Point, order, {"x", "y", "z"}, cs);
+    if (curve && curve->find("point_count") && curve->count == counts.size()) {
+        std::vector<int64_t> identity(counts.size());
+        for (size_t c = 0; c < identity.size(); ++c) identity[c] = static_cast<int64_t>(c);
+        add_columns(*curve, g.curve_types, Domain::Curve, identity, {"point_count"}, cs);
+    }
+    for (const auto& [name, spec] : g.details) add_detail(file, cs, name, spec);
+    return cs;
+}
+
+std::string write_ply_curves(const CurveSet& curves, PlyEncoding encoding)
+{
+    using namespace ply;
+    std::vector<Column> vcols, ccols;
+    std::vector<std::string> comments;
+    auto P = curves.positions();
+    vcols.push_back({"x", PlyType::Float32, [P](size_t i) { return double(P[i].x); }});
+    vcols.push_back({"y", PlyType::Float32, [P](size_t i) { return double(P[i].y); }});
+    vcols.push_back({"z", PlyType::Float32, [P](size_t i) { return double(P[i].z); }});
+    columns_for(curves, Domain::Point, vcols, comments);
+    const auto offsets = curves.offsets();
+    ccols.push_back({"point_count", PlyType::Int32, [offsets](size_t c) { return double(offsets[c + 1] - offsets[c]); }});
+    columns_for(curves, Domain::Curve, ccols, comments);
+
+    PlyWriter w(encoding);
+    w.begin({"groom " GROOM_VERSION " curves: edge joins consecutive points of a curve (root to tip);",
+             "groom element curve: point_count and per-curve attributes; float3 X is X_x X_y X_z"});
+    for (const std::string& c : comments) w.comment(c);
+    for (const Attribute& a : curves.attributes(Domain::Detail).all()) {
+        std::string spec = "groom detail " + a.name + " " + type_name(a.type()) + " ";
+        for (char c : a.name)
+            if (c <= ' ' || c > '~') throw InvalidParam("ply: detail attribute name '" + a.name + "' contains spaces or non-ASCII characters");
+        std::visit(
+            [&](const auto& v) {
+                using T = typename std::decay_t<decltype(v)>::value_type;
+                if constexpr (std::is_same_v<T, std::string>) spec += escape_line(v[0]);
+                else if constexpr (std::is_same_v<T, float3>) {
+                    append_number(spec, v[0].x);
+                    spec += ' ';
+                    append_number(spec, v[0].y);
+                    spec += ' ';
+                    append_number(spec, v[0].z);
+                }
+                else append_number(spec, v[0]);
+            },
+            a.data);
+        w.comment(spec);
+    }
+    std::vector<int32_t> ea, eb;
+    for (size_t c = 0; c < curves.num_curves(); ++c) {
+        const IndexRange r = curves.points_of(c);
+        for (int64_t i = r.begin; i + 1 < r.end; ++i) {
+            ea.push_back(static_cast<int32_t>(i));
+            eb.push_back(static_cast<int32_t>(i + 1));
+        }
+    }
+    if (curves.num_points() > static_cast<size_t>(INT32_MAX)) throw InvalidParam("ply: more than 2^31 points");
+    w.element("vertex", curves.num_points(), vcols);
+    w.element("edge", ea.size(), {{"vertex1", PlyType::Int32, [&ea](size_t e) { return double(ea[e]); }},
+                                   {"vertex2", PlyType::Int32, [&eb](size_t e) { return double(eb[e]); }}});
+    w.element("curve", curves.num_curves(), ccols);
+    return w.finish();
+}
+
+}  // namespace groom::io

@@ -1,0 +1,185 @@
+// The .usda writer: one linear BasisCurves prim holding every curve, point widths and one primvar
+// per attribute (../shared/NOTES.md: always write `type`). Shares only identifier rules with the
+// reader (usda_lexer.h), so it is kept apart from the parsing files.
+#include "kernel/io/formats.h"
+#include "kernel/io/usda_lexer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace groom::io {
+
+namespace {
+
+using usda::ident_start;
+
+bool valid_usd_name(std::string_view n)
+{
+    if (n.empty() || !ident_start(n[0])) return false;
+    for (size_t i = 0; i < n.size(); ++i) {
+        const char c = n[i];
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':')) return false;
+        if (c == ':' && (i + 1 == n.size() || !ident_start(n[i + 1]))) return false;
+    }
+    return true;
+}
+
+void append_escaped(std::string& out, std::string_view s)
+{
+    out += '"';
+    for (char c : s) {
+        switch (c) {
+            case '"': out += "\\\""; break;
+            case '\\': out += "\\\\"; break;
+            case '\n': out += "\\n"; break;
+            case '\r': out += "\\r"; break;
+            case '\t': out += "\\t"; break;
+            default: out += c;
+        }
+    }
+    out += '"';
+}
+
+void append_value(std::string& out, float v) { append_number(out, v); }
+void append_value(std::string& out, int32_t v) { append_number(out, v); }
+void append_value(std::string& out, int64_t v) { append_number(out, v); }
+void append_value(std::string& out, const float3& v)
+{
+    out += '(';
+    append_number(out, v.x);
+    out += ", ";
+    append_number(out, v.y);
+    out += ", ";
+    append_number(out, v.z);
+    out += ')';
+}
+void append_value(std::string& out, const std::string& v) { append_escaped(out, v); }
+
+/// `[a, b, ...]`, with a line break after each curve for point columns (per_line = curve offsets) or
+/// every 16 values otherwise, so the file stays readable and diffable.
+template <class T>
+void append_array(std::string& out, std::span<const T> values, std::span<const int64_t> breaks, const char* indent)
+{
+    out += "[";
+    size_t next_break = 1;
+    for (size_t i = 0; i < values.size(); ++i) {
+        bool brk = false;
+        if (!breaks.empty()) {
+            while (next_break < breaks.size() && breaks[next_break] <= static_cast<int64_t>(i)) {
+                brk = brk || breaks[next_break] == static_cast<int64_t>(i);
+                ++next_break;
+            }
+        }
+        else {
+            brk = i > 0 && i % 16 == 0;
+        }
+        if (i > 0) out += brk ? "," : ", ";
+        if (brk) {
+            out += '\n';
+            out += indent;
+        }
+        append_value(out, values[i]);
+    }
+    out += "]";
+}
+
+const char* usd_scalar_type(AttrType t)
+{
+    switch (t) {
+        case AttrType::Float: return "float";
+        case AttrType::Int32: return "int";
+        case AttrType::Int64: return "int64";
+        case AttrType::Float3: return "float3";
+        case AttrType::String: return "string";
+    }
+    return "?";
+}
+
+}  // namespace
+
+std::string write_usda(const CurveSet& curves)
+{
+    // Check names first so no partial text is produced for an attribute USD cannot name.
+    std::map<std::string, Domain> seen;
+    for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
+        for (const Attribute& a : curves.attributes(d).all()) {
+            if (d == Domain::Point && a.name == attr::P) continue;
+            if (!valid_usd_name(a.name)) {
+                throw InvalidParam("usda: " + std::string(domain_name(d)) + " attribute '" + a.name +
+                                   "' is not a valid USD property name (letters, digits, '_', ':' namespaces)");
+            }
+            if (a.type() == AttrType::String && d != Domain::Detail) {
+                throw InvalidParam("usda: " + std::string(domain_name(d)) + " attribute '" + a.name + "' holds strings; only detail strings can be written");
+            }
+            const bool is_widths = d == Domain::Point && a.name == attr::width && a.type() == AttrType::Float;
+            if (is_widths) continue;
+            if (auto [it, fresh] = seen.emplace(a.name, d); !fresh) {
+                throw InvalidParam("usda: attribute '" + a.name + "' exists on both the " + domain_name(it->second) + " and " + domain_name(d) +
+                                   " domains; USD primvars need distinct names");
+            }
+        }
+    }
+
+    std::string out;
+    out.reserve(curves.num_points() * 40 + curves.num_curves() * 6 + 1024);
+    out += "#usda 1.0\n(\n    defaultPrim = \"groom\"\n    doc = \"Written by groom " GROOM_VERSION "\"\n    upAxis = \"Y\"\n)\n\n";
+    out += "def BasisCurves \"groom\"\n{\n";
+    out += "    uniform token type = \"linear\"\n";
+    out += "    uniform token wrap = \"nonperiodic\"\n";
+    std::vector<int32_t> counts(curves.num_curves());
+    for (size_t c = 0; c < counts.size(); ++c) {
+        const int64_t n = curves.points_in(c);
+        if (n > INT32_MAX) throw InvalidParam("usda: curve " + std::to_string(c) + " has more than 2^31 points");
+        counts[c] = static_cast<int32_t>(n);
+    }
+    out += "    int[] curveVertexCounts = ";
+    append_array<int32_t>(out, counts, {}, "        ");
+    out += "\n    point3f[] points = ";
+    append_array<float3>(out, curves.positions(), curves.offsets(), "        ");
+    out += "\n";
+
+    // Extent: the bounds grown by the largest radius, as UsdGeomBasisCurves::ComputeExtent does.
+    const auto width = curves.find<float>(Domain::Point, attr::width);
+    Bounds3 b = curves.bounds();
+    if (!b.empty()) {
+        float r = 0;
+        for (float w : width)
+            if (std::isfinite(w)) r = std::max(r, 0.5f * w);
+        const float3 lo = b.lo - float3(r, r, r), hi = b.hi + float3(r, r, r);
+        out += "    float3[] extent = [";
+        append_value(out, lo);
+        out += ", ";
+        append_value(out, hi);
+        out += "]\n";
+    }
+    if (!width.empty()) {
+        out += "    float[] widths = ";
+        append_array<float>(out, width, curves.offsets(), "        ");
+        out += " (\n        interpolation = \"vertex\"\n    )\n";
+    }
+    for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
+        const char* interp = d == Domain::Point ? "vertex" : d == Domain::Curve ? "uniform" : "constant";
+        for (const Attribute& a : curves.attributes(d).all()) {
+            if (d == Domain::Point && (a.name == attr::P || (a.name == attr::width && a.type() == AttrType::Float))) continue;
+            out += "    ";
+            out += usd_scalar_type(a.type());
+            if (d != Domain::Detail) out += "[]";
+            out += " primvars:" + a.name + " = ";
+            std::visit(
+                [&](const auto& v) {
+                    using T = typename std::decay_t<decltype(v)>::value_type;
+                    if (d == Domain::Detail) append_value(out, v[0]);
+                    else append_array<T>(out, v, d == Domain::Point ? curves.offsets() : std::span<const int64_t>(), "        ");
+                },
+                a.data);
+            out += " (\n        interpolation = \"";
+            out += interp;
+            out += "\"\n    )\n";
+        }
+    }
+    out += "}\n";
+    return out;
+}
+
+}  // namespace groom::io

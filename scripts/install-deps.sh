@@ -7,7 +7,8 @@ packages=(
   build-essential cmake pkg-config
   libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libblosc-dev
   libcgal-dev libopenmesh-dev libeigen3-dev libtbb-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libpng-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libpng-dev nlohmann-json3-dev
+  python3-dev pybind11-dev python3-numpy python3-pytest
 )
 # Extra tools only some scripts use (sanitizers need clang's runtime). Pass --with-tools to add them.
 if [[ "${1:-}" == "--with-tools" ]]; then

@@ -1,0 +1,190 @@
+"""The groom Python module: numpy views of the container's memory, the CLI's options as keywords
+with the CLI's bytes, the scalp's queries against an analytic sphere, and errors that name the
+parameter. Run by CTest (tests/python, see CMakeLists.txt) with PYTHONPATH at the built module."""
+import math
+import os
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import groom
+
+GROOM = os.environ.get("GROOM_BINARY", "groom")
+
+
+def straight_guides(n=3, points=8, length=4.0, spacing=1.5):
+    """n vertical guides along +Y, root at y = 0, x = i * spacing."""
+    pts = np.zeros((n * points, 3), np.float32)
+    for i in range(n):
+        pts[i * points:(i + 1) * points, 0] = i * spacing
+        pts[i * points:(i + 1) * points, 1] = np.linspace(0.0, length, points)
+    return groom.CurveSet(pts, np.full(n, points, np.int64))
+
+
+def uv_sphere(radius=1.0, rings=48, segments=96):
+    """A closed UV sphere mesh: vertices (n, 3) and triangles (m, 3)."""
+    verts = [(0.0, radius, 0.0)]
+    for r in range(1, rings):
+        theta = math.pi * r / rings
+        for s in range(segments):
+            phi = 2 * math.pi * s / segments
+            verts.append((radius * math.sin(theta) * math.cos(phi), radius * math.cos(theta), radius * math.sin(theta) * math.sin(phi)))
+    verts.append((0.0, -radius, 0.0))
+    tris = []
+    ring = lambda r, s: 1 + (r - 1) * segments + (s % segments)
+    for s in range(segments):
+        tris.append((0, ring(1, s + 1), ring(1, s)))
+        tris.append((len(verts) - 1, ring(rings - 1, s), ring(rings - 1, s + 1)))
+    for r in range(1, rings - 1):
+        for s in range(segments):
+            a, b, c, d = ring(r, s), ring(r, s + 1), ring(r + 1, s), ring(r + 1, s + 1)
+            tris += [(a, b, d), (a, d, c)]
+    return np.array(verts, np.float32), np.array(tris, np.int32)
+
+
+@pytest.fixture(scope="module")
+def sphere():
+    v, f = uv_sphere()
+    return groom.Scalp.from_mesh(v, f, voxel=0.02)
+
+
+def test_points_share_the_containers_memory(tmp_path):
+    cs = straight_guides()
+    assert (cs.num_curves, cs.num_points) == (3, 24)
+    assert cs.points.dtype == np.float32 and cs.points.shape == (24, 3)
+    view = cs.points
+    view[0] = (7.0, 8.0, 9.0)  # writes through to the container: the file written has it
+    groom.write(cs, str(tmp_path / "a.usda"))
+    back = groom.read(str(tmp_path / "a.usda"))
+    assert tuple(back.points[0]) == (7.0, 8.0, 9.0)
+    assert list(back.counts) == [8, 8, 8] and list(back.offsets) == [0, 8, 16, 24]
+    # The view keeps the set alive after the last other reference goes.
+    del cs, back
+    assert view[0, 2] == 9.0
+
+
+def test_attributes_are_numpy_columns_on_three_domains(tmp_path):
+    cs = straight_guides()
+    cs.point_attributes["width"] = np.linspace(0.1, 0.2, cs.num_points)
+    cs.curve_attributes["id"] = np.array([10, 11, 12], np.int64)
+    cs.curve_attributes["Cd"] = np.ones((3, 3))
+    cs.detail_attributes["hair_type"] = "4a"
+    groom.write(cs, str(tmp_path / "a.usda"))
+    back = groom.read(str(tmp_path / "a.usda"))
+    assert set(back.point_attributes.keys()) == {"P", "width"}
+    assert back.point_attributes["width"].dtype == np.float32
+    np.testing.assert_allclose(back.point_attributes["width"], np.linspace(0.1, 0.2, 24), rtol=1e-6)
+    assert list(back.curve_attributes["id"]) == [10, 11, 12]
+    assert back.curve_attributes["Cd"].shape == (3, 3)
+    assert back.detail_attributes["hair_type"] == "4a"
+    assert "width" in back.point_attributes and "nope" not in back.point_attributes
+    del back.point_attributes["width"]
+    assert "width" not in back.point_attributes
+    with pytest.raises(KeyError):
+        back.curve_attributes["nope"]
+    with pytest.raises(groom.ParamError, match="expected 3 values"):
+        back.curve_attributes["bad"] = np.zeros(5)
+
+
+def test_bad_arrays_name_what_is_wrong():
+    with pytest.raises(ValueError, match=r"counts add up to 5 points but points has 4 rows"):
+        groom.CurveSet(np.zeros((4, 3)), np.array([2, 3]))
+    with pytest.raises(groom.ParamError, match=r"shape \(n, 3\)"):
+        groom.CurveSet(np.zeros((4, 2)), np.array([4]))
+    with pytest.raises(groom.Error, match="nan"):
+        groom.CurveSet(np.full((2, 3), np.nan), np.array([2]))
+
+
+@pytest.mark.parametrize("op,kwargs,options", [
+    ("braid", dict(strands=3, knot_length=1.3, initial_normal=(0, 0, 1)), ["--strands", "3", "--knot-length", "1.3", "--initial-normal", "0,0,1"]),
+    ("braid", dict(pattern="fishtail", fibers=6, seed=4), ["--pattern", "fishtail", "--fibers", "6", "--seed", "4"]),
+    ("curl", dict(type="4a", seed=2), ["--type", "4a", "--seed", "2"]),
+    ("resample", dict(count=12), ["--count", "12"]),
+])
+def test_an_op_gives_the_clis_bytes(tmp_path, op, kwargs, options):
+    guides = tmp_path / "guides.usda"
+    groom.write(straight_guides(), str(guides))
+    cli_out, py_out = tmp_path / "cli.usda", tmp_path / "py.usda"
+    subprocess.run([GROOM, op, str(guides), "-o", str(cli_out), "--quiet"] + options, check=True)
+    groom.write(getattr(groom, op)(groom.read(str(guides)), **kwargs), str(py_out))
+    assert py_out.read_bytes() == cli_out.read_bytes()
+
+
+def test_scalp_ops_take_a_scalp_object_or_a_path(tmp_path, sphere):
+    v, f = uv_sphere()
+    mesh = tmp_path / "sphere.obj"
+    with open(mesh, "w") as out:
+        out.writelines(f"v {x} {y} {z}\n" for x, y, z in v)
+        out.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f)
+    guides = straight_guides(n=2, spacing=0.3)
+    guides.points[:, 1] += 1.0  # roots on the sphere's north pole region, growing up
+    by_path = groom.generate(guides, scalp=str(mesh), count=50, scalp_voxel=0.02, seed=3)
+    by_object = groom.generate(guides, scalp=sphere, count=50, seed=3)
+    assert by_path.num_curves == by_object.num_curves == 50
+    np.testing.assert_array_equal(by_path.points, by_object.points)
+    # No hair point inside the scalp (the op's promise, checked on the output).
+    assert (np.linalg.norm(by_object.points, axis=1) >= 1.0 - 0.02).all()
+
+
+def test_scalp_queries_match_the_analytic_sphere(sphere):
+    rng = np.random.default_rng(1)
+    dirs = rng.normal(size=(2000, 3))
+    dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
+    radii = rng.uniform(0.9, 1.1, size=(2000, 1))
+    pts = (dirs * radii).astype(np.float32)
+    # The mesh is a 48 x 96 UV sphere: it lies within R (1 - cos(pi / 48)) = 0.0021 of the sphere;
+    # trilinear distances in a 0.02 band add a few thousandths more.
+    np.testing.assert_allclose(sphere.distance(pts), radii[:, 0] - 1.0, atol=0.006)
+    cosines = np.sum(sphere.normal(pts) * dirs, axis=1)
+    assert np.degrees(np.arccos(np.clip(cosines, -1, 1))).max() < 3.0
+    np.testing.assert_allclose(np.linalg.norm(sphere.closest(pts), axis=1), 1.0, atol=0.006)
+    inside = sphere.inside(np.array([[0, 0, 0], [0.5, 0, 0], [1.5, 0, 0], [0, -3, 0]], np.float32))
+    assert inside.dtype == bool and list(inside) == [True, True, False, False]
+
+
+def test_errors_name_the_parameter_and_the_value():
+    cs = straight_guides()
+    with pytest.raises(ValueError) as e:
+        groom.braid(cs, knot_length=-1)
+    assert isinstance(e.value, groom.ParamError) and isinstance(e.value, groom.Error)
+    assert "knot_length" in str(e.value) and "-1" in str(e.value) and "--" not in str(e.value)
+    with pytest.raises(groom.ParamError, match="did you mean 'knot_length'"):
+        groom.braid(cs, knot_lenght=1.0)
+    with pytest.raises(groom.Error, match="scalp"):
+        groom.generate(cs, count=5)
+    with pytest.raises(groom.Error, match="no such file|cannot open"):
+        groom.read("/nonexistent/guides.usda")
+
+
+def test_threads_do_not_change_the_result():
+    cs = straight_guides()
+    one = groom.braid(cs, fibers=12, flyaways=0.2, threads=1)
+    two = groom.braid(cs, fibers=12, flyaways=0.2, threads=2)
+    np.testing.assert_array_equal(one.points, two.points)
+
+
+def test_the_gil_is_released_while_an_op_runs():
+    cs = straight_guides(n=120, points=64, length=40.0)
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    t = threading.Thread(target=tick)
+    t.start()
+    time.sleep(0.01)
+    start = time.perf_counter()
+    groom.braid(cs, fibers=100)
+    end = time.perf_counter()
+    done.set()
+    t.join()
+    during = [x for x in ticks if start < x < end]
+    # With the GIL held for the whole op the other thread could not tick at all meanwhile.
+    assert end - start > 0.05, "the op was too quick to tell"
+    assert len(during) >= 5

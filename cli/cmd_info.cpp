@@ -8,6 +8,8 @@
 #include "kernel/io/mesh_io.h"
 #include "kernel/math/polyline.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
@@ -28,29 +30,14 @@ std::string num(double v)
     return std::string(buf, std::to_chars(buf, buf + sizeof buf, static_cast<float>(v)).ptr);
 }
 
-std::string json_string(std::string_view s)
+/// A float as JSON shows it: the shortest decimal that reads back as the same float (a float widened
+/// to double would print 0.30000001192092896 for 0.3f).
+double json_number(double v)
 {
-    std::string out = "\"";
-    for (char c : s) {
-        switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\r': out += "\\r"; break;
-            case '\t': out += "\\t"; break;
-            default:
-                if (static_cast<unsigned char>(c) < 0x20) {
-                    char buf[8];
-                    std::snprintf(buf, sizeof buf, "\\u%04x", c);
-                    out += buf;
-                }
-                else {
-                    out += c;
-                }
-        }
-    }
-    return out + "\"";
+    return std::stod(num(v));
 }
+
+nlohmann::ordered_json json_triple(const float3& p) { return {json_number(p.x), json_number(p.y), json_number(p.z)}; }
 
 /// min, median (mean of the two middle values for an even count), max of `v` (which it sorts).
 struct Summary {
@@ -87,25 +74,25 @@ void info_curves(const Args& a)
     const Bounds3 b = cs.bounds();
     std::ostringstream o;
     if (a.json) {
-        o << "{\n  \"file\": " << json_string(a.input) << ",\n  \"kind\": \"curves\",\n  \"curves\": " << cs.num_curves()
-          << ",\n  \"points\": " << cs.num_points() << ",\n";
+        nlohmann::ordered_json j;
+        j["file"] = a.input;
+        j["kind"] = "curves";
+        j["curves"] = cs.num_curves();
+        j["points"] = cs.num_points();
         if (cs.num_curves() > 0) {
-            o << "  \"points_per_curve\": {\"min\": " << sc.min << ", \"median\": " << sc.median << ", \"max\": " << sc.max << "},\n";
-            o << "  \"length\": {\"min\": " << num(sl.min) << ", \"median\": " << num(sl.median) << ", \"max\": " << num(sl.max) << "},\n";
+            j["points_per_curve"] = {{"min", int64_t(sc.min)}, {"median", sc.median}, {"max", int64_t(sc.max)}};
+            j["length"] = {{"min", json_number(sl.min)}, {"median", json_number(sl.median)}, {"max", json_number(sl.max)}};
         }
-        if (!b.empty()) o << "  \"bounds\": {\"min\": " << triple(b.lo, "[", "]") << ", \"max\": " << triple(b.hi, "[", "]") << "},\n";
-        o << "  \"attributes\": [";
-        bool first = true;
+        if (!b.empty()) j["bounds"] = {{"min", json_triple(b.lo)}, {"max", json_triple(b.hi)}};
+        j["attributes"] = nlohmann::ordered_json::array();
         for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
             for (const Attribute& at : cs.attributes(d).all()) {
-                o << (first ? "\n" : ",\n") << "    {\"name\": " << json_string(at.name) << ", \"domain\": \"" << domain_name(d) << "\", \"type\": \""
-                  << type_name(at.type()) << "\"";
-                if (d == Domain::Detail && at.type() == AttrType::String) o << ", \"value\": " << json_string(at.values<std::string>()[0]);
-                o << "}";
-                first = false;
+                nlohmann::ordered_json e = {{"name", at.name}, {"domain", domain_name(d)}, {"type", type_name(at.type())}};
+                if (d == Domain::Detail && at.type() == AttrType::String) e["value"] = at.values<std::string>()[0];
+                j["attributes"].push_back(e);
             }
         }
-        o << (first ? "]\n}\n" : "\n  ]\n}\n");
+        o << j.dump(2) << "\n";
     }
     else {
         o << a.input << ": curves\n";
@@ -126,7 +113,7 @@ void info_curves(const Args& a)
                     std::visit(
                         [&](const auto& v) {
                             using T = typename std::decay_t<decltype(v)>::value_type;
-                            if constexpr (std::is_same_v<T, std::string>) o << " = " << json_string(v[0]);
+                            if constexpr (std::is_same_v<T, std::string>) o << " = " << nlohmann::json(v[0]).dump();
                             else if constexpr (std::is_same_v<T, float3>) o << " = " << triple(v[0]);
                             else if constexpr (std::is_same_v<T, float>) o << " = " << num(v[0]);
                             else o << " = " << v[0];
@@ -148,12 +135,21 @@ void info_mesh(const Args& a)
     for (const float3& p : soup.points) b.extend(p);
     std::ostringstream o;
     if (a.json) {
-        o << "{\n  \"file\": " << json_string(a.input) << ",\n  \"kind\": \"mesh\",\n  \"vertices\": " << s.vertices << ",\n  \"faces\": " << s.faces
-          << ",\n  \"triangles\": " << s.triangles << ",\n  \"quads\": " << s.quads << ",\n  \"ngons\": " << s.ngons << ",\n  \"shells\": " << s.shells
-          << ",\n  \"boundary_edges\": " << s.boundary_edges << ",\n  \"non_manifold_edges\": " << s.non_manifold_edges
-          << ",\n  \"duplicate_vertices\": " << s.duplicate_vertices << ",\n  \"degenerate_faces\": " << s.degenerate_faces;
-        if (!b.empty()) o << ",\n  \"bounds\": {\"min\": " << triple(b.lo, "[", "]") << ", \"max\": " << triple(b.hi, "[", "]") << "}";
-        o << "\n}\n";
+        nlohmann::ordered_json j;
+        j["file"] = a.input;
+        j["kind"] = "mesh";
+        j["vertices"] = s.vertices;
+        j["faces"] = s.faces;
+        j["triangles"] = s.triangles;
+        j["quads"] = s.quads;
+        j["ngons"] = s.ngons;
+        j["shells"] = s.shells;
+        j["boundary_edges"] = s.boundary_edges;
+        j["non_manifold_edges"] = s.non_manifold_edges;
+        j["duplicate_vertices"] = s.duplicate_vertices;
+        j["degenerate_faces"] = s.degenerate_faces;
+        if (!b.empty()) j["bounds"] = {{"min", json_triple(b.lo)}, {"max", json_triple(b.hi)}};
+        o << j.dump(2) << "\n";
     }
     else {
         o << a.input << ": mesh\n";

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <sys/wait.h>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 using namespace groom;
 using groom::test::read_bytes;
@@ -153,9 +154,16 @@ TEST(CliInfo, CurvesTextAndJson)
     EXPECT_NE(text.out.find("bounds            (0, 0, 0) to (1, 3, 4)"), std::string::npos) << text.out;
     const auto json = run_groom({"info", dir.file("a.usda"), "--json"});
     EXPECT_EQ(json.exit_code, 0);
-    EXPECT_NE(json.out.find("\"points_per_curve\": {\"min\": 2, \"median\": 2.5, \"max\": 3}"), std::string::npos) << json.out;
-    EXPECT_NE(json.out.find("{\"name\": \"width\", \"domain\": \"point\", \"type\": \"float\"}"), std::string::npos) << json.out;
-    EXPECT_NE(json.out.find("{\"name\": \"id\", \"domain\": \"curve\", \"type\": \"int64\"}"), std::string::npos) << json.out;
+    // Parsed, not matched as text: what a script reading it gets.
+    const nlohmann::json j = nlohmann::json::parse(json.out);
+    EXPECT_EQ(j["points_per_curve"], nlohmann::json::parse(R"({"min": 2, "median": 2.5, "max": 3})")) << json.out;
+    EXPECT_EQ(j["length"]["median"], 3.5);
+    EXPECT_EQ(j["bounds"]["max"], nlohmann::json::parse("[1, 3, 4]"));
+    const auto has = [&](const char* column) {
+        return std::count(j["attributes"].begin(), j["attributes"].end(), nlohmann::json::parse(column)) == 1;
+    };
+    EXPECT_TRUE(has(R"({"name": "width", "domain": "point", "type": "float"})")) << json.out;
+    EXPECT_TRUE(has(R"({"name": "id", "domain": "curve", "type": "int64"})")) << json.out;
 }
 
 TEST(CliInfo, MeshByContentAndForcedKinds)
@@ -165,9 +173,11 @@ TEST(CliInfo, MeshByContentAndForcedKinds)
                                      "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
     const auto r = run_groom({"info", dir.file("cube.obj"), "--json"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    for (const char* s : {"\"kind\": \"mesh\"", "\"vertices\": 8", "\"faces\": 6", "\"quads\": 6", "\"shells\": 1", "\"boundary_edges\": 0",
-                          "\"non_manifold_edges\": 0", "\"duplicate_vertices\": 0"})
-        EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["kind"], "mesh");
+    for (const auto& [key, value] : std::initializer_list<std::pair<const char*, int>>{
+             {"vertices", 8}, {"faces", 6}, {"quads", 6}, {"shells", 1}, {"boundary_edges", 0}, {"non_manifold_edges", 0}, {"duplicate_vertices", 0}})
+        EXPECT_EQ(j[key], value) << key << "\n" << r.out;
     const auto forced = run_groom({"info", dir.file("cube.obj"), "--curves"});
     EXPECT_EQ(forced.exit_code, 1);
     EXPECT_NE(forced.err.find("this is a mesh"), std::string::npos) << forced.err;

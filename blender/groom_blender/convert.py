@@ -1,0 +1,98 @@
+"""Blender objects <-> groom arrays: guides from curve objects, the scalp from a mesh object, and
+groom's curves back as a hair Curves object. World space throughout: groom works on positions as the
+artist sees them, so an object's transform is applied on the way in and the result is made in world
+space."""
+
+import bpy
+import numpy as np
+
+import groom
+
+
+def _world(points, matrix):
+    """(n, 3) points through a 4x4 object matrix."""
+    m = np.array(matrix, dtype=np.float64)
+    return (points @ m[:3, :3].T + m[:3, 3]).astype(np.float32)
+
+
+def guides_from_objects(objects):
+    """A groom.CurveSet from hair Curves objects and legacy curve objects (every spline's control
+    points, poly or not, root first). Raises ValueError naming the object when it has no curves."""
+    chunks, counts = [], []
+    for ob in objects:
+        if ob.type == 'CURVES':
+            data = ob.data
+            n = len(data.points)
+            pos = np.empty(n * 3, np.float32)
+            data.attributes['position'].data.foreach_get('vector', pos)
+            offsets = np.empty(len(data.curves) + 1, np.int32)
+            data.curve_offset_data.foreach_get('value', offsets)
+            chunks.append(_world(pos.reshape(-1, 3), ob.matrix_world))
+            counts.extend(np.diff(offsets).tolist())
+        elif ob.type == 'CURVE':
+            for spline in ob.data.splines:
+                pts = spline.points if spline.type in {'POLY', 'NURBS'} else spline.bezier_points
+                n = len(pts)
+                if n == 0:
+                    continue
+                if spline.type == 'BEZIER':
+                    co = np.empty(n * 3, np.float32)
+                    pts.foreach_get('co', co)
+                else:
+                    co4 = np.empty(n * 4, np.float32)
+                    pts.foreach_get('co', co4)
+                    co = co4.reshape(-1, 4)[:, :3].ravel()
+                chunks.append(_world(co.reshape(-1, 3), ob.matrix_world))
+                counts.append(n)
+    if not counts:
+        names = ", ".join(ob.name for ob in objects) or "nothing"
+        raise ValueError(f"guides: no curves in the selection ({names}); select hair Curves or curve objects")
+    return groom.CurveSet(np.concatenate(chunks), np.array(counts, np.int64))
+
+
+def scalp_from_object(ob, voxel=0.0):
+    """groom.Scalp from a mesh object's evaluated triangles, in world space."""
+    if ob is None or ob.type != 'MESH':
+        raise ValueError(f"scalp: expected a mesh object, got {ob.name + ' (' + ob.type + ')' if ob else 'none'}")
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    mesh = ob.evaluated_get(depsgraph).to_mesh()
+    try:
+        mesh.calc_loop_triangles()
+        verts = np.empty(len(mesh.vertices) * 3, np.float32)
+        mesh.vertices.foreach_get('co', verts)
+        tris = np.empty(len(mesh.loop_triangles) * 3, np.int32)
+        mesh.loop_triangles.foreach_get('vertices', tris)
+    finally:
+        ob.evaluated_get(depsgraph).to_mesh_clear()
+    return groom.Scalp.from_mesh(_world(verts.reshape(-1, 3), ob.matrix_world), tris.reshape(-1, 3), voxel=voxel)
+
+
+def curves_object(curves, name, collection):
+    """A new hair Curves object holding `curves` (groom.CurveSet), its `radius` half of groom's
+    `width` where the curves have one. Blender 3.4's Python cannot size a Curves datablock, so the
+    curves go in as a poly curve and are converted (the conversion keeps curve and point order)."""
+    counts = np.asarray(curves.counts)
+    points = np.asarray(curves.points, np.float32)
+    cu = bpy.data.curves.new(name, 'CURVE')
+    cu.dimensions = '3D'
+    start = 0
+    for n in counts.tolist():
+        spline = cu.splines.new('POLY')
+        spline.points.add(n - 1)
+        co = np.ones((n, 4), np.float32)
+        co[:, :3] = points[start:start + n]
+        spline.points.foreach_set('co', co.ravel())
+        start += n
+    ob = bpy.data.objects.new(name, cu)
+    collection.objects.link(ob)
+    view_layer = bpy.context.view_layer
+    for other in view_layer.objects.selected:
+        other.select_set(False)
+    view_layer.objects.active = ob
+    ob.select_set(True)
+    bpy.ops.object.convert(target='CURVES')
+    ob = view_layer.objects.active
+    if 'width' in curves.point_attributes:
+        radius = ob.data.attributes.get('radius') or ob.data.attributes.new('radius', 'FLOAT', 'POINT')
+        radius.data.foreach_set('value', 0.5 * np.asarray(curves.point_attributes['width'], np.float32))
+    return ob

@@ -10,9 +10,10 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libpng-dev nlohmann-json3-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
 )
-# Extra tools only some scripts use (sanitizers need clang's runtime). Pass --with-tools to add them.
+# Extra tools only some scripts use (sanitizers need clang's runtime; the add-on test needs Blender,
+# its screenshot Xvfb). Pass --with-tools to add them.
 if [[ "${1:-}" == "--with-tools" ]]; then
-  packages+=(clang libclang-rt-14-dev python3-openvdb)
+  packages+=(clang libclang-rt-14-dev python3-openvdb blender xvfb xauth)
 fi
 
 missing=()

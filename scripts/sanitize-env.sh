@@ -17,10 +17,12 @@ configure_sanitize_build() {
     launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
     export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(dirname "$root")}
   fi
+  # No Python module: an ASan-instrumented extension cannot load into an uninstrumented python3.
   # -O1: sanitizer reports stay readable and the heavy OpenVDB/CGAL units compile in reasonable time.
   cmake -S "$root" -B "$sbuild" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" \
-    -DGROOM_SANITIZE=ON -DGROOM_FUZZ=ON -DGROOM_BUILD_TESTS=ON -DGROOM_BUILD_BENCHMARKS=OFF "${launcher[@]}" >/dev/null
+    -DGROOM_SANITIZE=ON -DGROOM_FUZZ=ON -DGROOM_BUILD_TESTS=ON -DGROOM_BUILD_BENCHMARKS=OFF \
+    -DGROOM_BUILD_PYTHON=OFF "${launcher[@]}" >/dev/null
 }
 
 # Sanitizer behaviour for everything run from the build: stop at the first report, with a stack.

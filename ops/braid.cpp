@@ -1,5 +1,6 @@
 #include "ops/braid.h"
 
+#include "fields/keep_outside.h"
 #include "kernel/error.h"
 #include "kernel/math/frames.h"
 #include "kernel/math/polyline.h"
@@ -372,25 +373,15 @@ LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const
 
     LiftStats stats;
     if (!ctx.scalp) return stats;
-    // Scalp intersections: move each whole cross-section along the scalp normal (so the braid keeps its
+    // Scalp intersections: each whole cross-section moves along the scalp normal (so the braid keeps its
     // shape) by the least amount that puts every strand's hair `clearance` off the scalp; with `rest`,
-    // sections above that are lowered onto it. Iterated because off-centre strands move by less than
-    // the lift where the scalp curves.
+    // sections above that are lowered onto it (lift_outside, fields/keep_outside.h).
+    const KeepOutside rule{p.clearance, ctx.margin, 32};
+    std::vector<float3> section(N);
     for (int64_t j = 0; j < S; ++j) {
         const float3 dir = ctx.scalp->normal(C[j]);
-        const float need = p.clearance + section_reach[j] + ctx.margin;
-        double lift = 0.0;
-        for (int iter = 0; iter < 32; ++iter) {
-            float worst = std::numeric_limits<float>::infinity();
-            for (int i = 0; i < N; ++i) {
-                const int64_t q = dst.points_of(first_curve + i).begin + j;
-                worst = std::min(worst, ctx.scalp->distance(P[q] + dir * float(lift)) - need);
-            }
-            const double next = p.rest ? lift - worst : std::max(lift - worst, 0.0);
-            const bool done = std::fabs(next - lift) <= ctx.margin;
-            lift = next;
-            if (done) break;
-        }
+        for (int i = 0; i < N; ++i) section[i] = P[dst.points_of(first_curve + i).begin + j];
+        const double lift = lift_outside(section, dir, *ctx.scalp, rule, section_reach[j], p.rest);
         if (lift == 0.0) continue;
         for (int i = 0; i < N; ++i) {
             const int64_t q = dst.points_of(first_curve + i).begin + j;
@@ -447,35 +438,6 @@ void tie_band(const BraidParams& p, const CurveSet& strands, const StrandSection
         const double ang = 2.0 * std::numbers::pi * p.tie_turns * f;
         out[k] = c + b * float(rx * std::cos(ang)) + n * float(ry * std::sin(ang)) + tan * float((f - 0.5) * span);
     }
-}
-
-/// Last resort after section lifts: any point still closer than clearance + half its width is pushed
-/// out along the scalp normal alone. Points flagged in `known_clear` (may be empty) are not queried.
-/// Returns how many points moved.
-int64_t push_out(CurveSet& cs, const Surface& scalp, float clearance, float margin, std::span<const uint8_t> known_clear,
-                 Progress* progress)
-{
-    auto P = cs.positions_for_write();
-    const auto W = cs.find<float>(Domain::Point, attr::width);
-    const int64_t n = int64_t(cs.num_points());
-    std::vector<uint8_t> moved(n, 0);
-    const ProgressStep step(progress, "scalp clearance", n);
-    parallel_for(n, 4096, [&](int64_t begin, int64_t end) {
-        for (int64_t q = begin; q < end; ++q) {
-            if (!known_clear.empty() && known_clear[q]) continue;
-            const float need = clearance + 0.5f * W[q];
-            for (int iter = 0; iter < 8; ++iter) {
-                const float d = scalp.distance(P[q]);
-                if (d >= need) break;
-                P[q] += scalp.normal(P[q]) * (need + margin - d);
-                moved[q] = 1;
-            }
-        }
-        step.advance(end - begin);
-    });
-    int64_t count = 0;
-    for (const uint8_t m : moved) count += m;
-    return count;
 }
 
 }  // namespace
@@ -780,7 +742,10 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
                 }
             });
         }
-        report.pushed_points = push_out(out, *scalp, params.clearance, ctx.margin, known_clear, progress);
+        // Last resort after the section lifts: a point still closer than clearance + half its width
+        // moves out on its own.
+        report.pushed_points = keep_outside(out.positions_for_write(), *scalp, KeepOutside{params.clearance, ctx.margin, 8},
+                                            out.find<float>(Domain::Point, attr::width), known_clear, progress);
     }
     report.curves = int64_t(out.num_curves());
     report.points = int64_t(out.num_points());

@@ -1,5 +1,6 @@
 #include "ops/curl.h"
 
+#include "fields/keep_outside.h"
 #include "kernel/error.h"
 #include "kernel/math/frames.h"
 #include "kernel/math/polyline.h"
@@ -105,14 +106,34 @@ float root_envelope(double u, float ramp)
     return smoothstep(float(u / double(ramp)));
 }
 
+/// Where centreline arc length s falls on a grid of points spaced ds: between j and j1, fraction f.
+struct GridSpot {
+    int64_t j = 0, j1 = 0;
+    float f = 0.0f;
+};
+
+GridSpot grid_spot(size_t points, double ds, double s)
+{
+    const int64_t last = int64_t(points) - 1;
+    const double x = ds > 0.0 ? s / ds : 0.0;
+    GridSpot g;
+    g.j = std::clamp<int64_t>(int64_t(std::floor(x)), 0, std::max<int64_t>(last - 1, 0));
+    g.f = last > 0 ? float(std::clamp(x - double(g.j), 0.0, 1.0)) : 0.0f;
+    g.j1 = std::min(g.j + 1, last);
+    return g;
+}
+
+/// Centre at centreline arc length s (a curled point's anchor: the place it curls around).
+float3 centre_point_at(std::span<const float3> centre, double ds, double s)
+{
+    const GridSpot g = grid_spot(centre.size(), ds, s);
+    return lerp(centre[size_t(g.j)], centre[size_t(g.j1)], g.f);
+}
+
 /// Frame and centre at centreline arc length s, interpolated between grid points spaced ds.
 void centre_at(std::span<const float3> centre, std::span<const Frame> frames, double ds, double s, float3& c, float3& n, float3& b)
 {
-    const int64_t last = int64_t(centre.size()) - 1;
-    const double x = ds > 0.0 ? s / ds : 0.0;
-    const int64_t j = std::clamp<int64_t>(int64_t(std::floor(x)), 0, std::max<int64_t>(last - 1, 0));
-    const float f = last > 0 ? float(std::clamp(x - double(j), 0.0, 1.0)) : 0.0f;
-    const int64_t j1 = std::min(j + 1, last);
+    const auto [j, j1, f] = grid_spot(centre.size(), ds, s);
     c = lerp(centre[size_t(j)], centre[size_t(j1)], f);
     const float3 t = normalize(lerp(frames[size_t(j)].t, frames[size_t(j1)].t, f), frames[size_t(j)].t);
     float3 nn = lerp(frames[size_t(j)].n, frames[size_t(j1)].n, f);
@@ -425,26 +446,13 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
             }
 
             if (scalp) {
-                // No curled point inside the scalp: pull it back towards the centreline while that is
-                // outside (bisection keeps the curl's direction), else push it out along the normal.
-                const float eps = 1e-3f * std::max(res.amplitude_mid, 1e-6f);
+                // No curled point inside the scalp (fields/keep_outside.h): pulled back toward its
+                // centreline point while that is outside, which keeps the curl's direction, else moved
+                // out with a margin of a thousandth of the curl, doubled on each of up to four tries.
+                const KeepOutside rule{0.0f, 1e-3f * std::max(res.amplitude_mid, 1e-6f), 4};
                 for (int64_t j = 0; j < n; ++j) {
-                    float3& p = out[size_t(j)];
-                    if (!scalp->inside(p)) continue;
-                    float3 cpos, nn, bb;
-                    centre_at(centre, frames, ds, s_of[size_t(j)], cpos, nn, bb);
-                    if (!scalp->inside(cpos)) {
-                        float lo = 0.0f, hi = 1.0f;
-                        const float3 off = p - cpos;
-                        for (int it = 0; it < 24; ++it) {
-                            const float mid = 0.5f * (lo + hi);
-                            (scalp->inside(cpos + off * mid) ? hi : lo) = mid;
-                        }
-                        p = cpos + off * lo;
-                    }
-                    for (int it = 0; it < 4 && scalp->inside(p); ++it) {
-                        p = scalp->closest_point(p) + scalp->normal(p) * eps * float(1 << it);
-                    }
+                    const float3 anchor = centre_point_at(centre, ds, s_of[size_t(j)]);
+                    keep_outside(out[size_t(j)], *scalp, rule, 0.0f, &anchor);
                 }
             }
 

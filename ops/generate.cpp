@@ -1,5 +1,6 @@
 #include "ops/generate.h"
 
+#include "fields/keep_outside.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
@@ -335,7 +336,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
 
     carry_curve_attributes(guides, dst, src_curve);
     carry_point_attributes(guides, dst, src_point, {attr::P});
-    push_out_of_scalp(dst, scalp, params.clearance);
+    keep_outside(dst, scalp, KeepOutside{params.clearance});
     return dst;
 }
 
@@ -349,35 +350,6 @@ CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSample
         normals[i] = samples[i].normal;
     }
     return generate_at_roots(guides, scalp, roots, normals, params, progress);
-}
-
-int64_t push_out_of_scalp(CurveSet& curves, const Surface& scalp, float clearance)
-{
-    auto P = curves.positions_for_write();
-    const int64_t nc = int64_t(curves.num_curves());
-    std::vector<int64_t> moved(static_cast<size_t>(nc), 0);
-    parallel_for(nc, 256, [&](int64_t b, int64_t e) {
-        for (int64_t c = b; c < e; ++c) {
-            const IndexRange r = curves.points_of(c);
-            // A signed distance changes by at most the distance moved, so a point whose predecessor
-            // was far enough out cannot be inside: skip its query (far from the scalp, past the
-            // level set's narrow band, each query is an exact mesh search).
-            float lower = -INFINITY;
-            for (int64_t p = r.begin + 1; p < r.end; ++p) {
-                lower -= distance(P[p], P[p - 1]);
-                if (lower > clearance) continue;
-                const float d = scalp.distance(P[p]);
-                lower = d;
-                if (d >= clearance) continue;
-                P[p] = scalp.closest_point(P[p]) + scalp.normal(P[p]) * clearance;
-                lower = clearance;
-                ++moved[c];
-            }
-        }
-    });
-    int64_t total = 0;
-    for (int64_t m : moved) total += m;
-    return total;
 }
 
 }  // namespace groom

@@ -1,17 +1,11 @@
 #include "ops/generate.h"
 
 #include "fields/keep_outside.h"
+#include "fields/point_index.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
-
-#include <CGAL/Orthogonal_k_neighbor_search.h>
-#include <CGAL/Search_traits_3.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/property_map.h>
-#include <boost/iterator/counting_iterator.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -23,53 +17,6 @@ namespace groom {
 namespace {
 
 std::string str(float v) { return format_number(v); }
-
-// Guide roots in a CGAL kd-tree; queries are const and safe from many threads once built.
-class GuideIndex {
-public:
-    struct Hit {
-        int64_t guide;
-        double distance;
-    };
-
-    explicit GuideIndex(std::span<const float3> roots)
-    {
-        points_.reserve(roots.size());
-        for (const float3& r : roots) points_.emplace_back(r.x, r.y, r.z);
-        tree_ = std::make_unique<Tree>(boost::counting_iterator<std::size_t>(0),
-                                       boost::counting_iterator<std::size_t>(points_.size()), Tree::Splitter(),
-                                       Traits(CGAL::make_property_map(points_)));
-        // The tree builds lazily on the first query; build now so concurrent queries only read.
-        tree_->build();
-        distance_ = std::make_unique<Distance>(CGAL::make_property_map(points_));
-    }
-
-    /// Up to k nearest guides, nearest first; ties broken by guide index so the order is canonical.
-    void nearest(const float3& q, int k, std::vector<Hit>& out) const
-    {
-        out.clear();
-        Search search(*tree_, Point(q.x, q.y, q.z), static_cast<unsigned>(k), 0.0, true, *distance_);
-        for (auto it = search.begin(); it != search.end(); ++it) {
-            out.push_back({int64_t(it->first), std::sqrt(it->second)});
-        }
-        std::stable_sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) {
-            return a.distance < b.distance || (a.distance == b.distance && a.guide < b.guide);
-        });
-    }
-
-private:
-    using Kernel = CGAL::Simple_cartesian<double>;
-    using Point = Kernel::Point_3;
-    using Traits = CGAL::Search_traits_adapter<std::size_t, CGAL::Pointer_property_map<Point>::type,
-                                               CGAL::Search_traits_3<Kernel>>;
-    using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
-    using Tree = Search::Tree;
-    using Distance = Search::Distance;
-
-    std::vector<Point> points_;
-    std::unique_ptr<Tree> tree_;
-    std::unique_ptr<Distance> distance_;
-};
 
 std::vector<float3> guide_roots(const CurveSet& guides)
 {
@@ -196,7 +143,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
     params.validate();
     if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
     const std::vector<float3> roots = guide_roots(guides);
-    const GuideIndex index(roots);
+    const PointIndex index(roots);
     std::vector<float3> guide_normals(roots.size());
     for (size_t g = 0; g < roots.size(); ++g) guide_normals[g] = scalp.normal(roots[g]);
     const float min_cos = params.max_angle >= 180.0f ? -2.0f : float(std::cos(double(params.max_angle) * 3.14159265358979 / 180.0));
@@ -210,7 +157,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
         if (roots.size() < 2) {
             throw InvalidParam("generate: one guide has no footprint; give --region X,Y,Z,R for where roots go");
         }
-        std::vector<GuideIndex::Hit> hits;
+        std::vector<PointIndex::Neighbour> hits;
         Bounds3 box;
         for (const float3& r : roots) {
             box.extend(r);
@@ -222,18 +169,18 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
         center = box.center();
         radius = 0.5f * length(box.size()) + float(footprint);
     }
-    auto accept = [&](const SurfaceSample& s, std::vector<GuideIndex::Hit>& hits) {
+    auto accept = [&](const SurfaceSample& s, std::vector<PointIndex::Neighbour>& hits) {
         if (!use_footprint && !(double(distance(s.position, center)) <= double(radius))) return false;
         index.nearest(s.position, 1, hits);
         if (use_footprint && !(hits.front().distance <= footprint)) return false;
-        return min_cos < -1.0f || dot(normalize(s.normal), guide_normals[hits.front().guide]) >= min_cos;
+        return min_cos < -1.0f || dot(normalize(s.normal), guide_normals[hits.front().index]) >= min_cos;
     };
 
     // Rejection from an area-uniform superset stays area-uniform; batches use fresh seeds so the
     // result depends only on params.seed.
     std::vector<SurfaceSample> out;
     out.reserve(size_t(params.count));
-    std::vector<GuideIndex::Hit> hits;
+    std::vector<PointIndex::Neighbour> hits;
     double rate = 1.0;
     for (uint64_t batch = 0; int64_t(out.size()) < params.count; ++batch) {
         if (batch == 64) {
@@ -268,7 +215,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     }
     if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
     const PreparedGuides pg = prepare(guides, scalp, params.points);
-    const GuideIndex index(pg.roots);
+    const PointIndex index(pg.roots);
     const int np = pg.points;
     const int64_t ng = int64_t(guides.num_curves());
     const int64_t nc = int64_t(roots.size());
@@ -284,13 +231,13 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
 
     ProgressStep step(progress, "generate", nc);
     parallel_for(nc, 256, [&](int64_t b, int64_t e) {
-        std::vector<GuideIndex::Hit> hits;
+        std::vector<PointIndex::Neighbour> hits;
         std::vector<double> w;
         for (int64_t c = b; c < e; ++c) {
             const float3 x = roots[c];
             float3* out = P.data() + c * np;
             index.nearest(x, query, hits);
-            const int64_t g0 = hits.front().guide;
+            const int64_t g0 = hits.front().index;
             ids[c] = params.first_id + c;
             nearest_guide[c] = int32_t(g0);
             src_curve[c] = g0;
@@ -320,7 +267,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
             const float3 n = normals.empty() ? scalp.normal(x) : normalize(normals[c], scalp.normal(x));
             for (int i = 0; i < np; ++i) out[i] = float3();
             for (int j = 0; j < k; ++j) {
-                const int64_t g = hits[j].guide;
+                const int64_t g = hits[j].index;
                 const float wj = float(w[j] / total);
                 if (wj == 0.0f) continue;
                 const float3& ng_ = pg.normals[g];

@@ -79,7 +79,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
                                          const GenerateParams& params);
 
 /// @brief One curve per root, shaped from the K = params.neighbours guides whose roots are nearest
-/// (CGAL kd-tree search).
+/// (a kd-tree search, PointIndex in fields/point_index.h).
 ///
 /// Each guide is first resampled to the common point count (params.points). A guide's shape is its
 /// points relative to its root, expressed in its root frame (normal = scalp normal at the guide root);

@@ -109,11 +109,8 @@ float3 tangent_at_length(std::span<const float3> pts, std::span<const double> cu
     if (pts.size() < 2) return {0, 1, 0};
     if (s <= 0.0) return tangents.front();
     if (s >= cumulative.back()) return tangents.back();
-    const size_t hi = std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin();
-    const size_t lo = hi - 1;
-    const double seg = cumulative[hi] - cumulative[lo];
-    const float t = seg > 0.0 ? float((s - cumulative[lo]) / seg) : 0.0f;
-    return normalize(lerp(tangents[lo], tangents[hi], t), tangents[lo]);
+    const ArcSpot a = locate_at_length(cumulative, s);
+    return normalize(lerp(tangents[a.lo], tangents[a.hi], float(a.t)), tangents[a.lo]);
 }
 
 float3 left_direction(const float3& normal, const float3& tangent)

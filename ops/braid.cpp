@@ -286,10 +286,7 @@ LiftStats braid_guide(const Context& ctx, const GuidePlan& plan, std::span<const
         t[j] = float(double(j) / double(S - 1));
         C[j] = j == S - 1 ? guide.back() : point_at_length(guide, cum, len * double(j) / double(S - 1));
         // Nearest guide point in arc length, for carrying the guide's point attributes.
-        const double s = len * double(j) / double(S - 1);
-        const size_t k = std::lower_bound(cum.begin(), cum.end(), s) - cum.begin();
-        size_t best = std::min(k, cum.size() - 1);
-        if (k > 0 && (k == cum.size() || s - cum[k - 1] < cum[k] - s)) best = k - 1;
+        const size_t best = locate_at_length(cum, len * double(j) / double(S - 1)).nearest;
         for (int i = 0; i < N; ++i) src_point[dst.points_of(first_curve + i).begin + j] = guide_point0 + int64_t(best);
     }
 

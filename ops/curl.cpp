@@ -466,16 +466,11 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
                 dshape[o] = cycles[size_t(k)].shape;
                 if (!dwidth.empty() || gather) {
                     // Where this point's centreline position falls on the input curve, by arc length.
-                    const double s_in = std::clamp(s_of[size_t(j)] * to_input, 0.0, in_len);
-                    const size_t hi = std::min<size_t>(size_t(std::upper_bound(in_cum.begin(), in_cum.end(), s_in) - in_cum.begin()),
-                                                       in_cum.size() - 1);
-                    const size_t lo = hi > 0 ? hi - 1 : 0;
-                    const double span = in_cum[hi] - in_cum[lo];
-                    const double f = span > 0.0 ? (s_in - in_cum[lo]) / span : 0.0;
+                    const ArcSpot a = locate_at_length(in_cum, s_of[size_t(j)] * to_input);
                     if (!dwidth.empty()) {
-                        dwidth[o] = float((1.0 - f) * src_width[size_t(r.begin) + lo] + f * src_width[size_t(r.begin) + hi]);
+                        dwidth[o] = float((1.0 - a.t) * src_width[size_t(r.begin) + a.lo] + a.t * src_width[size_t(r.begin) + a.hi]);
                     }
-                    if (gather) src_point[o] = r.begin + int64_t(f < 0.5 ? lo : hi);
+                    if (gather) src_point[o] = r.begin + int64_t(a.nearest);
                 }
             }
             step.advance(1);

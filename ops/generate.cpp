@@ -93,11 +93,7 @@ PreparedGuides prepare(const CurveSet& guides, const Surface& scalp, int points_
                 const auto res = resample_by_count(in, np);
                 std::copy(res.begin(), res.end(), out);
                 for (int i = 0; i < np; ++i) {
-                    const double s = cum.back() * double(i) / double(np - 1);
-                    const size_t k = std::lower_bound(cum.begin(), cum.end(), s) - cum.begin();
-                    size_t best = std::min(k, cum.size() - 1);
-                    if (k > 0 && (k == cum.size() || s - cum[k - 1] < cum[k] - s)) best = k - 1;
-                    src[i] = r.begin + int64_t(best);
+                    src[i] = r.begin + int64_t(locate_at_length(cum, cum.back() * double(i) / double(np - 1)).nearest);
                 }
             }
             pg.normals[g] = scalp.normal(pg.roots[g]);

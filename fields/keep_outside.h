@@ -53,7 +53,8 @@ struct KeepOutside {
 /// @return true when p moved
 bool keep_outside(float3& p, const Surface& scalp, const KeepOutside& rule, float extra = 0.0f, const float3* anchor = nullptr);
 
-/// @brief The rule on every point of `points`, each on its own. Thread-safe over the points.
+/// @brief The rule on every point of `points`, each on its own, in parallel (the result does not
+/// depend on the thread count).
 /// @param widths  per point (#points, or empty): hair widths, scene units; half of each is the
 ///                point's extra, so the hair's surface keeps the clearance, not its centreline
 /// @param known_clear  per point (#points, or empty): 1 where the caller has shown the point is at
@@ -73,7 +74,7 @@ struct KeepOutsideCount {
 /// the scalp, and stays there (a root inside the scalp stays inside). Walking from the root, a point
 /// whose predecessor's distance less the segment between them is above `need` is clear without a
 /// query (far from a level set's narrow band each query is an exact mesh search); a moved point
-/// counts as being at `need`. Writes point P only. Thread-safe over the curves.
+/// counts as being at `need`. Writes point P only. Parallel over the curves.
 KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const KeepOutside& rule);
 
 /// @brief The rule for a group that moves as one: the least lift along `direction` (unit) that puts

@@ -3,6 +3,7 @@
 // (ops/head.h) when the shared datasets are absent. The scalp field is built once, outside the timing.
 // Measured in stages, so the split between guides, centreline interpolation (generate) and the curl
 // op, which is the reference cost every curled groom pays, shows in the same run.
+#include "fields/keep_outside.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/mesh_io.h"
 #include "ops/curl.h"
@@ -109,7 +110,7 @@ void BM_TwoPuffsCentrelinesOnly(benchmark::State& state)
 
 // The curl step alone on the two puffs' centrelines, two ways to keep hairs out of the head: the
 // curl op's own scalp check (every point queried; the reference) against what puff does (curl
-// freely, then push_out_of_scalp, which skips points provably outside).
+// freely, then keep_outside on the curves, which skips points provably outside).
 const std::vector<CurveSet>& centrelines()
 {
     static const std::vector<CurveSet> c = [] {
@@ -139,7 +140,7 @@ void curl_step(benchmark::State& state, bool op_checks_scalp)
             CurlParams p = (k == 0 ? s.left : s.right).curl;
             p.preserve_length = false;
             CurveSet out = curl(c[k], p, op_checks_scalp ? s.scalp.get() : nullptr);
-            if (!op_checks_scalp) push_out_of_scalp(out, *s.scalp);
+            if (!op_checks_scalp) keep_outside(out, *s.scalp, KeepOutside{});
             points += out.num_points();
             benchmark::DoNotOptimize(out.positions().data());
         }

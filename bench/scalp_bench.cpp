@@ -3,10 +3,10 @@
 // to build the scalp. Mesh: ../shared/datasets/nefertiti_scan/nefertiti-lowres.obj (70k triangles)
 // when present, else an icosphere of 82k triangles. Points: 200k within +-2 voxels of the surface.
 #include "fields/scalp_field.h"
-#include "fields/sphere_mesh.h"
 #include "kernel/io/mesh_io.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
+#include "support/sphere_mesh.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

@@ -19,7 +19,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <sstream>
 
 namespace groom {
 
@@ -27,80 +26,6 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = K::Point_3;
 using Polygon = std::vector<std::size_t>;
-
-std::string RepairReport::summary() const
-{
-    std::ostringstream s;
-    auto line = [&](int64_t n, const char* what) {
-        if (n) s << "  " << n << " " << what << "\n";
-    };
-    s << "repair: " << input_vertices << " vertices, " << input_faces << " faces in; " << output_vertices << " vertices, "
-      << output_faces << " triangles out\n";
-    line(duplicate_vertices_merged, "duplicate vertices merged");
-    line(degenerate_faces_removed, "degenerate faces removed");
-    line(duplicate_faces_removed, "duplicate faces removed");
-    line(pinched_faces_split, "pinched faces split");
-    line(isolated_vertices_removed, "unused vertices removed");
-    line(ngons_triangulated, "quads/n-gons triangulated");
-    line(non_manifold_edges, "non-manifold edges cut");
-    line(non_manifold_vertices, "non-manifold vertices split");
-    line(faces_flipped, "faces flipped to a consistent, outward winding");
-    s << "  " << shells << " shells (" << closed_shells << " closed), " << boundary_loops << " boundary loops\n";
-    line(shells_flipped, "shells turned outward");
-    line(enclosed_shells_removed, "enclosed shells removed");
-    if (flipped_by_user) s << "  all faces flipped (--flip)\n";
-    for (const std::string& n : notes) s << "  note: " << n << "\n";
-    std::string out = s.str();
-    if (!out.empty()) out.pop_back();
-    return out;
-}
-
-std::string RepairReport::to_json() const
-{
-    std::ostringstream s;
-    s << "{\n";
-    auto field = [&](const char* k, int64_t v) { s << "  \"" << k << "\": " << v << ",\n"; };
-    field("input_vertices", input_vertices);
-    field("input_faces", input_faces);
-    field("duplicate_vertices_merged", duplicate_vertices_merged);
-    field("degenerate_faces_removed", degenerate_faces_removed);
-    field("duplicate_faces_removed", duplicate_faces_removed);
-    field("pinched_faces_split", pinched_faces_split);
-    field("isolated_vertices_removed", isolated_vertices_removed);
-    field("ngons_triangulated", ngons_triangulated);
-    field("triangles_from_ngons", triangles_from_ngons);
-    field("non_manifold_edges", non_manifold_edges);
-    field("non_manifold_vertices", non_manifold_vertices);
-    field("vertices_added_by_split", vertices_added_by_split);
-    field("faces_flipped", faces_flipped);
-    field("shells", shells);
-    field("closed_shells", closed_shells);
-    field("shells_flipped", shells_flipped);
-    field("enclosed_shells_removed", enclosed_shells_removed);
-    field("faces_in_removed_shells", faces_in_removed_shells);
-    field("boundary_loops", boundary_loops);
-    field("output_vertices", output_vertices);
-    field("output_faces", output_faces);
-    s << "  \"flipped_by_user\": " << (flipped_by_user ? "true" : "false") << ",\n  \"notes\": [";
-    for (size_t i = 0; i < notes.size(); ++i) {
-        s << (i ? ", " : "") << '"';
-        for (char c : notes[i]) {
-            if (c == '"' || c == '\\') s << '\\';
-            s << c;
-        }
-        s << '"';
-    }
-    s << "],\n  \"shell_list\": [";
-    for (size_t i = 0; i < shell_list.size(); ++i) {
-        const Shell& sh = shell_list[i];
-        s << (i ? ",\n    " : "\n    ") << "{\"faces\": " << sh.faces << ", \"area\": " << sh.area << ", \"closed\": " << (sh.closed ? "true" : "false")
-          << ", \"flipped\": " << (sh.flipped ? "true" : "false") << ", \"removed\": " << (sh.removed ? "true" : "false")
-          << ", \"winding\": " << sh.winding << ", \"bbox\": [" << sh.lo[0] << ", " << sh.lo[1] << ", " << sh.lo[2] << ", " << sh.hi[0]
-          << ", " << sh.hi[1] << ", " << sh.hi[2] << "]}";
-    }
-    s << "\n  ]\n}\n";
-    return s.str();
-}
 
 namespace detail {
 
@@ -203,100 +128,48 @@ void triangulate_polygon(const std::vector<Point>& pts, const Polygon& poly, std
     }
 }
 
-}  // namespace
-
-/// True when the triangles form an oriented manifold: every directed edge used at most once (so an
-/// edge has at most two faces, wound oppositely) and the faces around every vertex one fan. That is
-/// what PMP::orient_polygon_soup leaves unchanged and polygon_soup_to_polygon_mesh needs; most meshes
-/// users bring already are, and this check is linear where CGAL's orient and is_polygon_soup_a_polygon_mesh
-/// (ordered sets of edges) cost 70% of the repair on a clean 70k-face head.
-bool is_oriented_manifold(const std::vector<std::vector<size_t>>& tris, size_t num_points)
+/// The soup in CGAL's types: points in double, polygons as index lists.
+void to_cgal(const PolygonSoup& soup, std::vector<Point>& pts, std::vector<Polygon>& polys)
 {
-    // The link of vertex v: for each face (v, a, b) in rotation, the arc a -> b.
-    std::vector<uint32_t> offsets(num_points + 1, 0);
-    for (const Polygon& t : tris) {
-        if (t.size() != 3) return false;
-        for (size_t v : t) ++offsets[v + 1];
-    }
-    for (size_t v = 0; v < num_points; ++v) offsets[v + 1] += offsets[v];
-    std::vector<std::pair<uint32_t, uint32_t>> arcs(offsets.back());
-    {
-        std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-        for (const Polygon& t : tris) {
-            for (int k = 0; k < 3; ++k) arcs[fill[t[k]]++] = {uint32_t(t[(k + 1) % 3]), uint32_t(t[(k + 2) % 3])};
-        }
-    }
-    std::vector<uint32_t> targets;
-    for (size_t v = 0; v < num_points; ++v) {
-        const auto first = arcs.begin() + offsets[v], last = arcs.begin() + offsets[v + 1];
-        const size_t n = size_t(last - first);
-        if (n == 0) continue;
-        std::sort(first, last);
-        targets.clear();
-        for (auto it = first; it != last; ++it) targets.push_back(it->second);
-        std::sort(targets.begin(), targets.end());
-        // A repeated source is directed edge v -> a twice, a repeated target b -> v twice.
-        for (size_t i = 1; i < n; ++i) {
-            if (first[i].first == first[i - 1].first || targets[i] == targets[i - 1]) return false;
-        }
-        // Unique sources and targets make the link paths and cycles; a fan is exactly one of them.
-        size_t start = 0, starts = 0;
-        for (size_t i = 0; i < n; ++i) {
-            if (!std::binary_search(targets.begin(), targets.end(), first[i].first)) {
-                start = i;
-                ++starts;
-            }
-        }
-        if (starts > 1) return false;
-        size_t steps = 0;
-        for (size_t i = start;;) {
-            ++steps;
-            const uint32_t next = first[i].second;
-            const auto it = std::lower_bound(first, last, std::make_pair(next, uint32_t(0)));
-            if (it == last || it->first != next) break;  // the end of a path
-            i = size_t(it - first);
-            if (i == start) break;  // back round a cycle
-        }
-        if (steps != n) return false;
-    }
-    return true;
-}
-
-TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, RepairReport& report, Progress* progress)
-{
-    validate_soup(soup, options.what);
-    ProgressStep step(progress, "repair mesh", 6);
-    report = RepairReport{};
-    report.input_vertices = static_cast<int64_t>(soup.points.size());
-    report.input_faces = static_cast<int64_t>(soup.num_faces());
-    report.flipped_by_user = options.flip;
-
-    std::vector<Point> pts;
     pts.reserve(soup.points.size());
     for (const float3& p : soup.points) pts.emplace_back(p.x, p.y, p.z);
-    std::vector<Polygon> polys(soup.num_faces());
+    polys.resize(soup.num_faces());
     for (size_t f = 0; f < soup.num_faces(); ++f) {
         const auto idx = soup.face(f);
         polys[f].assign(idx.begin(), idx.end());
     }
+}
 
-    // Soup clean-up: the steps of PMP::repair_polygon_soup one by one (three live in PMP::internal in
-    // CGAL 5.5) so each can be counted.
-    const size_t polys_in = polys.size();
+/// Soup clean-up: the steps of PMP::repair_polygon_soup one by one, so each can be counted. Three of
+/// them (simplify, split pinched, remove invalid) are only in PMP::internal in CGAL 5.5: the public
+/// repair_polygon_soup runs the same six in this order but reports no counts, and no public function
+/// does any of the three alone, so they stay. Returns the invalid polygons removed (fewer than 3
+/// distinct vertices), which the report counts as degenerate faces.
+size_t clean_soup(std::vector<Point>& pts, std::vector<Polygon>& polys, RepairReport& report)
+{
     report.duplicate_vertices_merged = static_cast<int64_t>(PMP::merge_duplicate_points_in_polygon_soup(pts, polys));
     PMP::internal::simplify_polygons_in_polygon_soup<K>(pts, polys, K());
     report.pinched_faces_split = static_cast<int64_t>(PMP::internal::split_pinched_polygons_in_polygon_soup<K>(pts, polys, K()));
     const size_t invalid = PMP::internal::remove_invalid_polygons_in_polygon_soup(pts, polys);
     report.duplicate_faces_removed = static_cast<int64_t>(PMP::merge_duplicate_polygons_in_polygon_soup(pts, polys));
     report.isolated_vertices_removed = static_cast<int64_t>(PMP::remove_isolated_points_in_polygon_soup(pts, polys));
-    (void)polys_in;
-    step.advance(1);
+    return invalid;
+}
 
-    // Triangulate, then drop zero-area triangles (collinear vertices): they carry no surface and
-    // have no normal to sign a distance with.
+/// The squared diagonal of the points' bounding box: the scale the repair's tolerances are relative to.
+double squared_diagonal(const std::vector<Point>& pts)
+{
     CGAL::Bbox_3 box;
     for (const Point& p : pts) box += p.bbox();
-    const double diag2 = CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin());
+    return CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin());
+}
+
+/// Triangulates every polygon, then drops zero-area triangles (collinear vertices): they carry no
+/// surface and have no normal to sign a distance with. `invalid` polygons were dropped already and
+/// count as degenerate too. Throws InvalidGeometry when nothing is left.
+std::vector<Polygon> triangulate(std::vector<Point>& pts, const std::vector<Polygon>& polys, size_t invalid, double diag2,
+                                 const std::string& what, RepairReport& report)
+{
     const double min_area2 = diag2 * diag2 * 1e-24;  // (area * 2)^2 below (1e-12 diag^2)^2
     std::vector<Polygon> tris;
     tris.reserve(polys.size() * 2);
@@ -324,44 +197,68 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
     report.degenerate_faces_removed = degenerate;
     report.isolated_vertices_removed += static_cast<int64_t>(PMP::remove_isolated_points_in_polygon_soup(pts, tris));
     if (tris.empty()) {
-        throw InvalidGeometry(options.what + ": no face with a non-zero area is left after removing " +
+        throw InvalidGeometry(what + ": no face with a non-zero area is left after removing " +
                               std::to_string(report.degenerate_faces_removed) + " degenerate faces");
     }
-    step.advance(1);
+    return tris;
+}
 
-    // Consistent orientation per component; non-manifold vertices and edges are cut apart so the
-    // soup becomes a valid manifold mesh.
-    std::vector<char> reversed(tris.size(), 0);
+/// Hands the triangles to options.on_triangles, if set, in groom's types.
+void report_triangles(const RepairOptions& options, const std::vector<Point>& at, const std::vector<Polygon>& faces)
+{
+    if (!options.on_triangles) return;
+    std::vector<float3> points(at.size());
+    for (size_t i = 0; i < at.size(); ++i) points[i] = float3(float(at[i].x()), float(at[i].y()), float(at[i].z()));
+    std::vector<std::array<int32_t, 3>> triangles(faces.size());
+    for (size_t t = 0; t < faces.size(); ++t) triangles[t] = {int32_t(faces[t][0]), int32_t(faces[t][1]), int32_t(faces[t][2])};
+    options.on_triangles(std::move(points), std::move(triangles));
+}
+
+/// Consistent orientation per component; non-manifold vertices and edges are cut apart so the soup
+/// becomes a valid manifold mesh. A soup that is an oriented manifold already is left alone (the
+/// linear check is far cheaper than CGAL's orientation). reversed[t] records the triangles CGAL
+/// turned. Returns whether the soup was an oriented manifold on arrival.
+bool orient(std::vector<Point>& pts, std::vector<Polygon>& tris, const RepairOptions& options, RepairReport& report,
+            std::vector<char>& reversed)
+{
+    reversed.assign(tris.size(), 0);
     OrientVisitor visitor;
     visitor.nm_edges = &report.non_manifold_edges;
     visitor.nm_vertices = &report.non_manifold_vertices;
     visitor.duplicated = &report.vertices_added_by_split;
     visitor.reversed = &reversed;
-    auto report_triangles = [&](const std::vector<Point>& at, const std::vector<Polygon>& faces) {
-        if (!options.on_triangles) return;
-        std::vector<float3> points(at.size());
-        for (size_t i = 0; i < at.size(); ++i) points[i] = float3(float(at[i].x()), float(at[i].y()), float(at[i].z()));
-        std::vector<std::array<int32_t, 3>> triangles(faces.size());
-        for (size_t t = 0; t < faces.size(); ++t) triangles[t] = {int32_t(faces[t][0]), int32_t(faces[t][1]), int32_t(faces[t][2])};
-        options.on_triangles(std::move(points), std::move(triangles));
-    };
     const bool manifold_in = is_oriented_manifold(tris, pts.size());
     if (!manifold_in) {
         // CGAL reverses polygons and duplicates pinched vertices in place: positions and face
         // order are final already, so the caller can start on them while CGAL works.
-        report_triangles(pts, tris);
+        report_triangles(options, pts, tris);
         PMP::orient_polygon_soup(pts, tris, CGAL::parameters::visitor(visitor));
     }
-    step.advance(1);
+    return manifold_in;
+}
 
-    // Shells: components over shared vertices, each with its area, signed volume and boundary edges.
+/// A connected component of the triangles (over shared vertices) and what the repair decides of it.
+struct Shell {
+    double area = 0, volume = 0, scale = 0;
+    K::Vector_3 centroid{0, 0, 0};
+    size_t vertex_count = 0, faces = 0, boundary_edges = 0;
+    CGAL::Bbox_3 box;
+    bool flip = false, removed = false;
+    double winding = 0.0;
+};
+
+/// The shells: shell[t] for each triangle, and per shell its area, signed volume about its
+/// centroid, size and boundary edges. Counts shells, closed shells and boundary loops into `report`.
+std::vector<Shell> find_shells(const std::vector<Point>& pts, const std::vector<Polygon>& tris, std::vector<int32_t>& shell,
+                               RepairReport& report)
+{
     UnionFind uf(pts.size());
     for (const Polygon& t : tris) {
         uf.unite(t[0], t[1]);
         uf.unite(t[0], t[2]);
     }
     std::vector<int32_t> shell_of_root(pts.size(), -1);
-    std::vector<int32_t> shell(tris.size());
+    shell.assign(tris.size(), 0);
     size_t nshells = 0;
     for (size_t t = 0; t < tris.size(); ++t) {
         int32_t& id = shell_of_root[uf.find(tris[t][0])];
@@ -369,14 +266,6 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         shell[t] = id;
     }
     report.shells = static_cast<int64_t>(nshells);
-    struct Shell {
-        double area = 0, volume = 0, scale = 0;
-        K::Vector_3 centroid{0, 0, 0};
-        size_t vertex_count = 0, faces = 0, boundary_edges = 0;
-        CGAL::Bbox_3 box;
-        bool flip = false, removed = false;
-        double winding = 0.0;
-    };
     std::vector<Shell> shells(nshells);
     for (size_t t = 0; t < tris.size(); ++t) {
         Shell& s = shells[shell[t]];
@@ -395,177 +284,191 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         s.volume += CGAL::determinant(pts[tris[t][0]] - c, pts[tris[t][1]] - c, pts[tris[t][2]] - c) / 6.0;
         for (size_t v : tris[t]) s.scale = std::max(s.scale, std::sqrt(CGAL::squared_distance(pts[v], c)));
     }
+    // Boundary edges: edges used by one triangle. The soup is an oriented manifold by now (each
+    // directed edge at most once), so that is a directed edge a -> b without b -> a, found in b's
+    // short list of outgoing edges.
+    std::vector<uint32_t> out_offsets(pts.size() + 1, 0), out_to(tris.size() * 3);
+    for (const Polygon& t : tris)
+        for (size_t v : t) ++out_offsets[v + 1];
+    for (size_t v = 0; v < pts.size(); ++v) out_offsets[v + 1] += out_offsets[v];
     {
-        // Boundary edges: edges used by one triangle. The soup is an oriented manifold by now (each
-        // directed edge at most once), so that is a directed edge a -> b without b -> a, found in
-        // b's short list of outgoing edges.
-        std::vector<uint32_t> out_offsets(pts.size() + 1, 0), out_to(tris.size() * 3);
+        std::vector<uint32_t> fill(out_offsets.begin(), out_offsets.end() - 1);
         for (const Polygon& t : tris)
-            for (size_t v : t) ++out_offsets[v + 1];
-        for (size_t v = 0; v < pts.size(); ++v) out_offsets[v + 1] += out_offsets[v];
-        {
-            std::vector<uint32_t> fill(out_offsets.begin(), out_offsets.end() - 1);
-            for (const Polygon& t : tris)
-                for (int k = 0; k < 3; ++k) out_to[fill[t[k]]++] = uint32_t(t[(k + 1) % 3]);
-        }
-        auto has_edge = [&](size_t a, size_t b) {
-            for (uint32_t i = out_offsets[a]; i < out_offsets[a + 1]; ++i)
-                if (out_to[i] == b) return true;
-            return false;
-        };
-        UnionFind loops(pts.size());
-        std::vector<char> on_boundary(pts.size(), 0);
-        for (size_t t = 0; t < tris.size(); ++t) {
-            for (int k = 0; k < 3; ++k) {
-                const size_t a = tris[t][k], b = tris[t][(k + 1) % 3];
-                if (!has_edge(b, a)) {
-                    ++shells[shell[t]].boundary_edges;
-                    loops.unite(a, b);
-                    on_boundary[a] = on_boundary[b] = 1;
-                }
+            for (int k = 0; k < 3; ++k) out_to[fill[t[k]]++] = uint32_t(t[(k + 1) % 3]);
+    }
+    auto has_edge = [&](size_t a, size_t b) {
+        for (uint32_t i = out_offsets[a]; i < out_offsets[a + 1]; ++i)
+            if (out_to[i] == b) return true;
+        return false;
+    };
+    UnionFind loops(pts.size());
+    std::vector<char> on_boundary(pts.size(), 0);
+    for (size_t t = 0; t < tris.size(); ++t) {
+        for (int k = 0; k < 3; ++k) {
+            const size_t a = tris[t][k], b = tris[t][(k + 1) % 3];
+            if (!has_edge(b, a)) {
+                ++shells[shell[t]].boundary_edges;
+                loops.unite(a, b);
+                on_boundary[a] = on_boundary[b] = 1;
             }
         }
-        for (size_t v = 0; v < pts.size(); ++v) report.boundary_loops += (on_boundary[v] && loops.find(v) == v);
     }
+    for (size_t v = 0; v < pts.size(); ++v) report.boundary_loops += (on_boundary[v] && loops.find(v) == v);
     for (const Shell& s : shells) report.closed_shells += (s.boundary_edges == 0);
+    return shells;
+}
 
-    // Outward orientation. A closed shell is outward when its signed volume is positive. An open
-    // shell (a scalp patch, a bust open at the neck) is judged the same way when its volume about
-    // its centroid is decisive (a cap, a nearly closed head); a nearly flat patch keeps the winding
-    // most of its area had in the file.
-    if (options.orient_outward) {
-        std::vector<double> agree(nshells, 0.0);
-        for (size_t t = 0; t < tris.size(); ++t) {
-            const double a = std::sqrt(tri_cross(pts, tris[t]).squared_length());
-            agree[shell[t]] += reversed[t] ? -a : a;
-        }
-        // Open shells: which side of the shell can the world see? Rays from sample faces along +n and
-        // -n that escape without hitting any geometry (ambient visibility) decide: an eye socket or a
-        // bowl-shaped patch faces where its opening is, which no local rule can tell.
-        // The tree is built only when some shell is open (closed heads need none).
-        std::vector<K::Triangle_3> all;
-        using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<K::Triangle_3>::const_iterator>;
-        CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree;
-        if (std::any_of(shells.begin(), shells.end(), [](const Shell& s) { return s.boundary_edges > 0; })) {
-            all.reserve(tris.size());
-            for (const Polygon& t : tris) all.emplace_back(pts[t[0]], pts[t[1]], pts[t[2]]);
-            tree.insert(all.cbegin(), all.cend());
-            tree.build();
-        }
-        std::vector<std::vector<size_t>> faces_of(nshells);
-        for (size_t t = 0; t < tris.size(); ++t) faces_of[shell[t]].push_back(t);
-        const double eps = 1e-5 * std::sqrt(diag2);
-        for (size_t i = 0; i < nshells; ++i) {
-            Shell& s = shells[i];
-            const double decisive = 0.25 * s.area * s.scale / 3.0;
-            if (s.boundary_edges == 0) {
-                s.flip = s.volume < 0.0;
-            }
-            else {
-                const auto& fs = faces_of[i];
-                const size_t samples = std::min<size_t>(fs.size(), 64);
-                int escape_out = 0, escape_in = 0;
-                for (size_t k = 0; k < samples; ++k) {
-                    const size_t t = fs[k * fs.size() / samples];
-                    const K::Vector_3 n = tri_cross(pts, tris[t]);
-                    const K::Vector_3 u = n / std::sqrt(n.squared_length());
-                    const Point c = CGAL::centroid(pts[tris[t][0]], pts[tris[t][1]], pts[tris[t][2]]);
-                    escape_out += !tree.do_intersect(K::Ray_3(c + u * eps, u));
-                    escape_in += !tree.do_intersect(K::Ray_3(c - u * eps, -u));
-                }
-                // n here is the winding after PMP's orientation: reversed[t] says how it relates to the file.
-                if (std::abs(escape_out - escape_in) >= std::max<int>(2, int(samples) / 10)) s.flip = escape_in > escape_out;
-                else if (std::fabs(s.volume) > decisive) s.flip = s.volume < 0.0;
-                else s.flip = agree[i] < 0.0;
-            }
-            report.shells_flipped += s.flip;
-        }
+/// Outward orientation: decides Shell::flip. A closed shell is outward when its signed volume is
+/// positive. An open shell (a scalp patch, a bust open at the neck) is judged by which side the world
+/// can see (below); failing that by its volume about its centroid when that is decisive (a cap, a
+/// nearly closed head); a nearly flat patch keeps the winding most of its area had in the file.
+void orient_outward(const std::vector<Point>& pts, const std::vector<Polygon>& tris, const std::vector<int32_t>& shell,
+                    const std::vector<char>& reversed, double diag2, std::vector<Shell>& shells, RepairReport& report)
+{
+    const size_t nshells = shells.size();
+    std::vector<double> agree(nshells, 0.0);
+    for (size_t t = 0; t < tris.size(); ++t) {
+        const double a = std::sqrt(tri_cross(pts, tris[t]).squared_length());
+        agree[shell[t]] += reversed[t] ? -a : a;
     }
+    // Open shells: which side of the shell can the world see? Rays from sample faces along +n and
+    // -n that escape without hitting any geometry (ambient visibility) decide: an eye socket or a
+    // bowl-shaped patch faces where its opening is, which no local rule can tell.
+    // The tree is built only when some shell is open (closed heads need none).
+    std::vector<K::Triangle_3> all;
+    using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<K::Triangle_3>::const_iterator>;
+    CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree;
+    if (std::any_of(shells.begin(), shells.end(), [](const Shell& s) { return s.boundary_edges > 0; })) {
+        all.reserve(tris.size());
+        for (const Polygon& t : tris) all.emplace_back(pts[t[0]], pts[t[1]], pts[t[2]]);
+        tree.insert(all.cbegin(), all.cend());
+        tree.build();
+    }
+    std::vector<std::vector<size_t>> faces_of(nshells);
+    for (size_t t = 0; t < tris.size(); ++t) faces_of[shell[t]].push_back(t);
+    const double eps = 1e-5 * std::sqrt(diag2);
+    for (size_t i = 0; i < nshells; ++i) {
+        Shell& s = shells[i];
+        const double decisive = 0.25 * s.area * s.scale / 3.0;
+        if (s.boundary_edges == 0) {
+            s.flip = s.volume < 0.0;
+        }
+        else {
+            const auto& fs = faces_of[i];
+            const size_t samples = std::min<size_t>(fs.size(), 64);
+            int escape_out = 0, escape_in = 0;
+            for (size_t k = 0; k < samples; ++k) {
+                const size_t t = fs[k * fs.size() / samples];
+                const K::Vector_3 n = tri_cross(pts, tris[t]);
+                const K::Vector_3 u = n / std::sqrt(n.squared_length());
+                const Point c = CGAL::centroid(pts[tris[t][0]], pts[tris[t][1]], pts[tris[t][2]]);
+                escape_out += !tree.do_intersect(K::Ray_3(c + u * eps, u));
+                escape_in += !tree.do_intersect(K::Ray_3(c - u * eps, -u));
+            }
+            // n here is the winding after PMP's orientation: reversed[t] says how it relates to the file.
+            if (std::abs(escape_out - escape_in) >= std::max<int>(2, int(samples) / 10)) s.flip = escape_in > escape_out;
+            else if (std::fabs(s.volume) > decisive) s.flip = s.volume < 0.0;
+            else s.flip = agree[i] < 0.0;
+        }
+        report.shells_flipped += s.flip;
+    }
+}
 
-    // Enclosed shells: a shell whose sampled vertices all have |winding number| > 1/2 with respect
-    // to a larger shell lies inside it (eyes and teeth in a head, joint helpers in a body). Hair
-    // never reaches them, and they would give the inside of the head a false outside.
+/// Enclosed shells: a shell whose sampled vertices all have |winding number| > 1/2 with respect to a
+/// larger shell lies inside it (eyes and teeth in a head, joint helpers in a body). Hair never
+/// reaches them, and they would give the inside of the head a false outside. Decides Shell::removed.
+void remove_enclosed(const std::vector<Point>& pts, const std::vector<Polygon>& tris, const std::vector<int32_t>& shell,
+                     std::vector<Shell>& shells, RepairReport& report)
+{
+    const size_t nshells = shells.size();
     std::vector<std::vector<size_t>> tris_of_shell(nshells);
     for (size_t t = 0; t < tris.size(); ++t) tris_of_shell[shell[t]].push_back(t);
-    if (options.remove_enclosed && nshells > 1) {
-        std::vector<size_t> order(nshells);
-        std::iota(order.begin(), order.end(), size_t(0));
-        std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shells[a].area > shells[b].area; });
-        auto contains = [](const CGAL::Bbox_3& o, const CGAL::Bbox_3& i) {
-            return o.xmin() <= i.xmin() && o.ymin() <= i.ymin() && o.zmin() <= i.zmin() && o.xmax() >= i.xmax() &&
-                   o.ymax() >= i.ymax() && o.zmax() >= i.zmax();
-        };
-        // |winding number| of vertex v with respect to shell b: the hierarchical estimate (built once
-        // per host shell), and where it lies within 0.02 of the 1/2 threshold, the exact sum.
-        // Brute force alone took 150 ms for makehuman's 104 helper cubes inside a 27k-face body.
-        std::vector<float3> points(pts.size());
-        for (size_t i = 0; i < pts.size(); ++i) points[i] = float3(float(pts[i].x()), float(pts[i].y()), float(pts[i].z()));
-        std::vector<std::unique_ptr<WindingNumber>> estimate(nshells);
-        auto host_winding = [&](size_t b, size_t v) {
-            const auto& host = tris_of_shell[b];
-            if (!estimate[b]) {
-                std::vector<std::array<int32_t, 3>> faces(host.size());
-                for (size_t i = 0; i < host.size(); ++i) faces[i] = {int32_t(tris[host[i]][0]), int32_t(tris[host[i]][1]), int32_t(tris[host[i]][2])};
-                estimate[b] = std::make_unique<WindingNumber>(points, faces);
-            }
-            const double w = std::fabs((*estimate[b])(points[v], 8.0));
-            return std::fabs(w - 0.5) > 0.02 ? w : std::fabs(estimate[b]->exact(points[v]));
-        };
-        size_t biggest_host = order[0];
-        for (size_t ai = 1; ai < nshells; ++ai) {
-            const size_t a = order[ai];
-            const auto& ta = tris_of_shell[a];
-            const size_t samples[3] = {tris[ta.front()][0], tris[ta[ta.size() / 2]][1], tris[ta.back()][2]};
-            for (size_t bi = 0; bi < ai && !shells[a].removed; ++bi) {
-                const size_t b = order[bi];
-                if (shells[b].removed || !contains(shells[b].box, shells[a].box)) continue;
-                bool inside = true;
-                double wmin = 1e30;
-                for (size_t v : samples) {
-                    const double w = host_winding(b, v);
-                    wmin = std::min(wmin, std::fabs(w));
-                    if (wmin <= 0.5) {
-                        inside = false;
-                        break;
-                    }
-                }
-                shells[a].winding = std::max(shells[a].winding, wmin);
-                if (inside) {
-                    shells[a].removed = true;
-                    biggest_host = b;
-                    ++report.enclosed_shells_removed;
-                    report.faces_in_removed_shells += static_cast<int64_t>(shells[a].faces);
-                }
-            }
+    std::vector<size_t> order(nshells);
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shells[a].area > shells[b].area; });
+    auto contains = [](const CGAL::Bbox_3& o, const CGAL::Bbox_3& i) {
+        return o.xmin() <= i.xmin() && o.ymin() <= i.ymin() && o.zmin() <= i.zmin() && o.xmax() >= i.xmax() &&
+               o.ymax() >= i.ymax() && o.zmax() >= i.zmax();
+    };
+    // |winding number| of vertex v with respect to shell b: the hierarchical estimate (built once
+    // per host shell), and where it lies within 0.02 of the 1/2 threshold, the exact sum.
+    // Brute force alone took 150 ms for makehuman's 104 helper cubes inside a 27k-face body.
+    std::vector<float3> points(pts.size());
+    for (size_t i = 0; i < pts.size(); ++i) points[i] = float3(float(pts[i].x()), float(pts[i].y()), float(pts[i].z()));
+    std::vector<std::unique_ptr<WindingNumber>> estimate(nshells);
+    auto host_winding = [&](size_t b, size_t v) {
+        const auto& host = tris_of_shell[b];
+        if (!estimate[b]) {
+            std::vector<std::array<int32_t, 3>> faces(host.size());
+            for (size_t i = 0; i < host.size(); ++i) faces[i] = {int32_t(tris[host[i]][0]), int32_t(tris[host[i]][1]), int32_t(tris[host[i]][2])};
+            estimate[b] = std::make_unique<WindingNumber>(points, faces);
         }
-        if (report.enclosed_shells_removed > 0) {
-            report.notes.push_back("removed " + std::to_string(report.enclosed_shells_removed) + " shells (" +
-                                   std::to_string(report.faces_in_removed_shells) +
-                                   " faces) lying entirely inside a larger shell (e.g. one of " +
-                                   std::to_string(shells[biggest_host].faces) +
-                                   " faces): eyes, teeth or helpers inside a head would make its inside read as outside");
+        const double w = std::fabs((*estimate[b])(points[v], 8.0));
+        return std::fabs(w - 0.5) > 0.02 ? w : std::fabs(estimate[b]->exact(points[v]));
+    };
+    size_t biggest_host = order[0];
+    for (size_t ai = 1; ai < nshells; ++ai) {
+        const size_t a = order[ai];
+        const auto& ta = tris_of_shell[a];
+        const size_t samples[3] = {tris[ta.front()][0], tris[ta[ta.size() / 2]][1], tris[ta.back()][2]};
+        for (size_t bi = 0; bi < ai && !shells[a].removed; ++bi) {
+            const size_t b = order[bi];
+            if (shells[b].removed || !contains(shells[b].box, shells[a].box)) continue;
+            bool inside = true;
+            double wmin = 1e30;
+            for (size_t v : samples) {
+                const double w = host_winding(b, v);
+                wmin = std::min(wmin, std::fabs(w));
+                if (wmin <= 0.5) {
+                    inside = false;
+                    break;
+                }
+            }
+            shells[a].winding = std::max(shells[a].winding, wmin);
+            if (inside) {
+                shells[a].removed = true;
+                biggest_host = b;
+                ++report.enclosed_shells_removed;
+                report.faces_in_removed_shells += static_cast<int64_t>(shells[a].faces);
+            }
         }
     }
-    step.advance(1);
+    if (report.enclosed_shells_removed > 0) {
+        report.notes.push_back("removed " + std::to_string(report.enclosed_shells_removed) + " shells (" +
+                               std::to_string(report.faces_in_removed_shells) +
+                               " faces) lying entirely inside a larger shell (e.g. one of " +
+                               std::to_string(shells[biggest_host].faces) +
+                               " faces): eyes, teeth or helpers inside a head would make its inside read as outside");
+    }
+}
 
-    {
-        std::vector<size_t> order(nshells);
-        std::iota(order.begin(), order.end(), size_t(0));
-        std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shells[a].area > shells[b].area; });
-        for (size_t i : order) {
-            const Shell& s = shells[i];
-            RepairReport::Shell out;
-            out.faces = static_cast<int64_t>(s.faces);
-            out.area = s.area;
-            out.lo[0] = float(s.box.xmin()), out.lo[1] = float(s.box.ymin()), out.lo[2] = float(s.box.zmin());
-            out.hi[0] = float(s.box.xmax()), out.hi[1] = float(s.box.ymax()), out.hi[2] = float(s.box.zmax());
-            out.closed = s.boundary_edges == 0;
-            out.flipped = s.flip;
-            out.removed = s.removed;
-            out.winding = s.winding;
-            report.shell_list.push_back(out);
-        }
+/// The shells into the report, largest first.
+void list_shells(const std::vector<Shell>& shells, RepairReport& report)
+{
+    std::vector<size_t> order(shells.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shells[a].area > shells[b].area; });
+    for (size_t i : order) {
+        const Shell& s = shells[i];
+        RepairReport::Shell out;
+        out.faces = static_cast<int64_t>(s.faces);
+        out.area = s.area;
+        out.lo[0] = float(s.box.xmin()), out.lo[1] = float(s.box.ymin()), out.lo[2] = float(s.box.zmin());
+        out.hi[0] = float(s.box.xmax()), out.hi[1] = float(s.box.ymax()), out.hi[2] = float(s.box.zmax());
+        out.closed = s.boundary_edges == 0;
+        out.flipped = s.flip;
+        out.removed = s.removed;
+        out.winding = s.winding;
+        report.shell_list.push_back(out);
     }
+}
+
+/// The triangles of the shells kept, each wound as its shell was decided (and all reversed with
+/// options.flip); counts the faces whose winding ends up other than in the file.
+std::vector<Polygon> kept_triangles(const std::vector<Polygon>& tris, const std::vector<int32_t>& shell,
+                                    const std::vector<char>& reversed, const std::vector<Shell>& shells,
+                                    const RepairOptions& options, RepairReport& report)
+{
     std::vector<Polygon> kept;
     kept.reserve(tris.size());
     for (size_t t = 0; t < tris.size(); ++t) {
@@ -577,13 +480,49 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         if (s.flip != options.flip) std::swap(tri[1], tri[2]);
         kept.push_back(std::move(tri));
     }
+    return kept;
+}
+
+}  // namespace
+
+TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, RepairReport& report, Progress* progress)
+{
+    validate_soup(soup, options.what);
+    ProgressStep step(progress, "repair mesh", 6);
+    report = RepairReport{};
+    report.input_vertices = static_cast<int64_t>(soup.points.size());
+    report.input_faces = static_cast<int64_t>(soup.num_faces());
+    report.flipped_by_user = options.flip;
+
+    std::vector<Point> pts;
+    std::vector<Polygon> polys;
+    to_cgal(soup, pts, polys);
+    const size_t invalid = clean_soup(pts, polys, report);
+    step.advance(1);
+
+    const double diag2 = squared_diagonal(pts);
+    std::vector<Polygon> tris = triangulate(pts, polys, invalid, diag2, options.what, report);
+    step.advance(1);
+
+    std::vector<char> reversed;
+    const bool manifold_in = orient(pts, tris, options, report, reversed);
+    step.advance(1);
+
+    std::vector<int32_t> shell;
+    std::vector<Shell> shells = find_shells(pts, tris, shell, report);
+    if (options.orient_outward) orient_outward(pts, tris, shell, reversed, diag2, shells, report);
+    if (options.remove_enclosed && shells.size() > 1) remove_enclosed(pts, tris, shell, shells, report);
+    step.advance(1);
+
+    list_shells(shells, report);
+    std::vector<Polygon> kept = kept_triangles(tris, shell, reversed, shells, options, report);
     PMP::remove_isolated_points_in_polygon_soup(pts, kept);
     // Whole shells were removed or turned, which keeps an oriented manifold one.
     if (!manifold_in && !is_oriented_manifold(kept, pts.size())) {
         throw InvalidGeometry(options.what + ": repair could not make a manifold mesh (CGAL orient_polygon_soup left a "
                               "non-manifold configuration); please report this mesh");
     }
-    if (manifold_in || report.enclosed_shells_removed > 0) report_triangles(pts, kept);
+    if (manifold_in || report.enclosed_shells_removed > 0) report_triangles(options, pts, kept);
     TriMesh mesh;  // vertices and faces in the soup's order
     PMP::polygon_soup_to_polygon_mesh(pts, kept, mesh);
     report.output_vertices = static_cast<int64_t>(mesh.n_vertices());

@@ -54,7 +54,7 @@ public:
     /// point on the mesh outside it.
     float3 closest_point(const float3& p) const override;
     /// Signed distance, unit normal and closest point in one call (cheaper than three).
-    float query(const float3& p, float3& normal, float3& closest) const;
+    float query(const float3& p, float3& normal, float3& closest) const override;
 
     float voxel_size() const;
     float band_voxels() const;

@@ -5,6 +5,13 @@
 
 namespace groom {
 
+float Surface::query(const float3& p, float3& n, float3& closest) const
+{
+    n = normal(p);
+    closest = closest_point(p);
+    return distance(p);
+}
+
 bool Surface::first_intersection(const float3& a, const float3& b, float3& hit, float tolerance) const
 {
     const float len = groom::distance(a, b);

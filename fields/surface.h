@@ -17,6 +17,9 @@ public:
     virtual float3 normal(const float3& p) const = 0;
     /// The closest point on the surface to p.
     virtual float3 closest_point(const float3& p) const = 0;
+    /// Signed distance, unit normal and closest point in one call; the same answers as the three
+    /// above. The default asks each; ScalpField answers from one read of its grid.
+    virtual float query(const float3& p, float3& normal, float3& closest) const;
 
     bool inside(const float3& p) const { return distance(p) < 0.0f; }
 

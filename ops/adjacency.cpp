@@ -1,13 +1,9 @@
 #include "ops/adjacency.h"
 
+#include "fields/point_index.h"
 #include "fields/surface.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
-
-#include <CGAL/Orthogonal_incremental_neighbor_search.h>
-#include <CGAL/Search_traits_3.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,38 +12,6 @@
 namespace groom {
 
 namespace {
-
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point3 = Kernel::Point_3;
-
-/// The kd-trees store point indices; this map turns an index into its position, so the tree carries
-/// the tag (guide, point) for free.
-struct IndexPointMap {
-    const std::vector<Point3>* points = nullptr;
-    using key_type = uint32_t;
-    using value_type = Point3;
-    using reference = const Point3&;
-    using category = boost::readable_property_map_tag;
-    friend reference get(const IndexPointMap& m, key_type i) { return (*m.points)[i]; }
-};
-
-using Traits = CGAL::Search_traits_adapter<uint32_t, IndexPointMap, CGAL::Search_traits_3<Kernel>>;
-using Incremental = CGAL::Orthogonal_incremental_neighbor_search<Traits>;
-using Tree = Incremental::Tree;
-using TreeDistance = Incremental::Distance;
-
-Point3 to_point(const float3& p) { return {p.x, p.y, p.z}; }
-
-/// Builds a tree over `points` (which must outlive it) eagerly: CGAL builds lazily on the first
-/// query, which is not safe when the first queries come from several threads at once.
-std::unique_ptr<Tree> build_tree(const std::vector<Point3>& points)
-{
-    std::vector<uint32_t> keys(points.size());
-    for (size_t i = 0; i < keys.size(); ++i) keys[i] = uint32_t(i);
-    auto tree = std::make_unique<Tree>(keys.begin(), keys.end(), Tree::Splitter(), Traits(IndexPointMap{&points}));
-    tree->build();
-    return tree;
-}
 
 struct SegmentHit {
     double d2 = INFINITY, t = 0.0;
@@ -71,18 +35,14 @@ SegmentHit closest_on_segment(const float3& a, const float3& b, const float3& q)
 
 struct PolylineNearest::Impl {
     std::vector<float3> pts;
-    std::vector<Point3> points;
-    std::unique_ptr<Tree> tree;
+    PointIndex index;
     double half_longest = 0.0;  // half the longest segment: the search radius beyond the best distance
+    explicit Impl(std::span<const float3> p) : pts(p.begin(), p.end()), index(p) {}
 };
 
-PolylineNearest::PolylineNearest(std::span<const float3> pts) : impl_(std::make_unique<Impl>())
+PolylineNearest::PolylineNearest(std::span<const float3> pts) : impl_(std::make_unique<Impl>(pts))
 {
-    impl_->pts.assign(pts.begin(), pts.end());
-    impl_->points.reserve(pts.size());
-    for (const float3& p : pts) impl_->points.push_back(to_point(p));
     for (size_t i = 1; i < pts.size(); ++i) impl_->half_longest = std::max(impl_->half_longest, 0.5 * double(distance(pts[i - 1], pts[i])));
-    if (!pts.empty()) impl_->tree = build_tree(impl_->points);
 }
 
 PolylineNearest::~PolylineNearest() = default;
@@ -112,15 +72,14 @@ PolylineNearest::Hit PolylineNearest::closest(const float3& q) const
             best_seg = s;
         }
     };
-    Incremental search(*impl_->tree, to_point(q), 0.0, true, TreeDistance(IndexPointMap{&impl_->points}));
-    for (auto it = search.begin(); it != search.end(); ++it) {
+    impl_->index.walk(q, [&](uint32_t v, double d2) {
         // The closest segment's nearer end lies within best + half_longest of q: stop past that.
         const double reach = std::sqrt(best_d2) + impl_->half_longest;
-        if (best_seg >= 0 && it->second > reach * reach) break;
-        const int64_t v = it->first;
-        test(v - 1);
-        test(v);
-    }
+        if (best_seg >= 0 && d2 > reach * reach) return false;
+        test(int64_t(v) - 1);
+        test(int64_t(v));
+        return true;
+    });
     hit.segment = best_seg;
     hit.t = float(best_t);
     hit.point = lerp(pts[best_seg], pts[best_seg + 1], hit.t);
@@ -150,11 +109,8 @@ float3 tangent_at_length(std::span<const float3> pts, std::span<const double> cu
     if (pts.size() < 2) return {0, 1, 0};
     if (s <= 0.0) return tangents.front();
     if (s >= cumulative.back()) return tangents.back();
-    const size_t hi = std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin();
-    const size_t lo = hi - 1;
-    const double seg = cumulative[hi] - cumulative[lo];
-    const float t = seg > 0.0 ? float((s - cumulative[lo]) / seg) : 0.0f;
-    return normalize(lerp(tangents[lo], tangents[hi], t), tangents[lo]);
+    const ArcSpot a = locate_at_length(cumulative, s);
+    return normalize(lerp(tangents[a.lo], tangents[a.hi], float(a.t)), tangents[a.lo]);
 }
 
 float3 left_direction(const float3& normal, const float3& tangent)
@@ -164,24 +120,19 @@ float3 left_direction(const float3& normal, const float3& tangent)
 }
 
 struct GuidePointIndex::Impl {
-    std::vector<Point3> points;
     std::vector<float3> positions;
     std::vector<int32_t> guide_of;
-    std::unique_ptr<Tree> tree;
+    PointIndex index;
+    explicit Impl(std::span<const float3> P) : positions(P.begin(), P.end()), index(P) {}
 };
 
-GuidePointIndex::GuidePointIndex(const CurveSet& guides) : impl_(std::make_unique<Impl>())
+GuidePointIndex::GuidePointIndex(const CurveSet& guides) : impl_(std::make_unique<Impl>(guides.positions()))
 {
-    const auto P = guides.positions();
-    impl_->positions.assign(P.begin(), P.end());
-    impl_->points.reserve(P.size());
-    for (const float3& p : P) impl_->points.push_back(to_point(p));
-    impl_->guide_of.resize(P.size());
+    impl_->guide_of.resize(impl_->positions.size());
     for (size_t c = 0; c < guides.num_curves(); ++c) {
         const IndexRange r = guides.points_of(c);
         std::fill(impl_->guide_of.begin() + r.begin, impl_->guide_of.begin() + r.end, int32_t(c));
     }
-    if (!P.empty()) impl_->tree = build_tree(impl_->points);
 }
 
 GuidePointIndex::~GuidePointIndex() = default;
@@ -193,33 +144,29 @@ std::array<GuidePointIndex::SideHit, 2> GuidePointIndex::nearest_on_sides(const 
                                                                            float max_gap) const
 {
     std::array<SideHit, 2> out;
-    if (!impl_->tree) return out;
     const double limit2 = max_gap > 0.0f ? double(max_gap) * max_gap : INFINITY;
-    Incremental search(*impl_->tree, to_point(p), 0.0, true, TreeDistance(IndexPointMap{&impl_->points}));
     int found = 0;
-    for (auto it = search.begin(); it != search.end() && found < 2; ++it) {
-        if (it->second > limit2) break;
-        const uint32_t i = it->first;
+    impl_->index.walk(p, [&](uint32_t i, double d2) {
+        if (d2 > limit2) return false;
         const int32_t g = impl_->guide_of[i];
-        if (g == exclude) continue;
+        if (g == exclude) return true;
         const int side = classify_side(impl_->positions[i] - p, normal, left);
-        if (side < 0 || out[side].guide >= 0) continue;
-        out[side] = {g, int64_t(i), float(std::sqrt(it->second))};
-        ++found;
-    }
+        if (side < 0 || out[side].guide >= 0) return true;
+        out[side] = {g, int64_t(i), float(std::sqrt(d2))};
+        return ++found < 2;
+    });
     return out;
 }
 
 GuidePointIndex::SideHit GuidePointIndex::nearest_other(const float3& p, int32_t exclude) const
 {
     SideHit out;
-    if (!impl_->tree) return out;
-    Incremental search(*impl_->tree, to_point(p), 0.0, true, TreeDistance(IndexPointMap{&impl_->points}));
-    for (auto it = search.begin(); it != search.end(); ++it) {
-        const int32_t g = impl_->guide_of[it->first];
-        if (g == exclude) continue;
-        return {g, int64_t(it->first), float(std::sqrt(it->second))};
-    }
+    impl_->index.walk(p, [&](uint32_t i, double d2) {
+        const int32_t g = impl_->guide_of[i];
+        if (g == exclude) return true;
+        out = {g, int64_t(i), float(std::sqrt(d2))};
+        return false;
+    });
     return out;
 }
 

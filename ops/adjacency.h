@@ -1,7 +1,6 @@
 // Neighbour search between guide curves, for `groom partition` (talk, Sec. 2.2): which guide lies
 // beside a source guide on its left and on its right, and the exact closest point on a guide to a
-// query point. Both are CGAL kd-tree searches (Orthogonal_incremental_neighbor_search); CGAL stays
-// behind pimpls so this header is cheap to include.
+// query point. Both walk a kd-tree outward from the query (PointIndex, fields/point_index.h).
 #pragma once
 
 #include "kernel/curve_set.h"

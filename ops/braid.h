@@ -160,6 +160,10 @@ private:
 /// (guide_length less params.loose_length) / params.knot_length, or kDefaultFrequency.
 double braid_frequency(const BraidParams& params, double guide_length);
 
+/// t_b for one guide of arc length `guide_length`: the arc-length fraction that is woven, 1 - loose
+/// length / guide length clamped to [0, 1] (1 with no loose length).
+double braid_woven_fraction(const BraidParams& params, double guide_length);
+
 /// Knot centres along a guide of arc length `guide_length`, as arc-length fractions t_k in [0,1]
 /// (multiply by the length for a distance from the root), increasing from root to tip: the t where
 /// F alpha(t / t_b) = k + 1/2, k = 0, 1, ... (see the file comment). Empty when F < 1/2. Throws

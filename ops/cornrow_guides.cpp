@@ -1,5 +1,6 @@
 #include "ops/cornrow_guides.h"
 
+#include "fields/keep_outside.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
@@ -126,9 +127,8 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
                 const float w = std::min(1.0f, float(k) / (0.33f * float(m - 1)));
                 const float3 d = normalize(dir0 * (1.0f - w) + down * w, down);
                 p = p + d * step;
-                // Hanging hair rests against the neck rather than entering it.
-                const float dist = scalp.distance(p);
-                if (dist < params.offset) p = p + scalp.normal(p) * (params.offset - dist);
+                // Hanging hair rests against the neck rather than entering it; the march goes on from there.
+                keep_outside(p, scalp, KeepOutside{params.offset});
                 T[size_t(i) * m + k] = p;
             }
         }

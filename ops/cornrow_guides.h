@@ -43,8 +43,9 @@ struct CornrowGuides {
     /// (int32, = index, left to right seen from the front: -x first).
     CurveSet guides;
     /// One tail per guide when tail_length > 0, rooted at its guide's last point, leaving along the
-    /// guide's end direction and bending down under gravity; no point ends up inside the scalp
-    /// (pushed out to `offset`). Same `id` and `guide` as its guide. Empty otherwise.
+    /// guide's end direction and bending down under gravity; each step is kept `offset` out of the
+    /// scalp (keep_outside, fields/keep_outside.h) before the next. Same `id` and `guide` as its
+    /// guide. Empty otherwise.
     CurveSet tails;
 };
 

@@ -1,5 +1,6 @@
 #include "ops/cull.h"
 
+#include "fields/keep_outside.h"
 #include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
 #include "kernel/parallel.h"
@@ -66,27 +67,11 @@ CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& param
 
     if (params.mode == CullMode::Push) {
         CurveSet dst = src;
-        const auto Q = dst.positions_for_write();
-        std::vector<int64_t> pushed(nc, 0);
-        parallel_for(nc, 64, [&](int64_t b, int64_t e) {
-            for (int64_t c = b; c < e; ++c) {
-                const IndexRange r = src.points_of(size_t(c));
-                for (int64_t i = r.begin + 1; i < r.end; ++i) {
-                    const float d = scalp.distance(P[i]);
-                    if (d >= D) continue;
-                    // Along the normal by the missing distance: exact for a locally flat surface; the
-                    // normal at p points from its closest surface point straight out.
-                    Q[i] = P[i] + scalp.normal(P[i]) * (D - d);
-                    ++pushed[c];
-                }
-            }
-        });
+        const KeepOutsideCount moved = keep_outside(dst, scalp, KeepOutside{D});
         if (stats) {
             *stats = CullStats{};
-            for (int64_t c = 0; c < nc; ++c) {
-                stats->points_pushed += pushed[c];
-                stats->curves_affected += pushed[c] > 0;
-            }
+            stats->points_pushed = moved.points;
+            stats->curves_affected = moved.curves;
         }
         return dst;
     }

@@ -1,5 +1,5 @@
 // cull: keep hair out of the head. Points closer than a clearance to the inside of the scalp are
-// pushed out along the normal, or each offending curve is cut at its first entry, or deleted.
+// moved out to it (fields/keep_outside.h), or each offending curve is cut at its first entry, or deleted.
 // Roots are exempt: they sit on the scalp by design (place them with `project`).
 #pragma once
 
@@ -25,7 +25,9 @@ struct CullStats {
 };
 
 /// @brief Enforce distance(p) >= clearance for every non-root point.
-/// Reads point P. Writes point P. Push: p += n(p) * (clearance - d(p)), topology unchanged. Trim: a
+/// Reads point P. Writes point P. Push: keep_outside on the curves (fields/keep_outside.h: a point
+/// closer than the clearance goes to closest_point(p) + n(p) * clearance, one move, roots stay),
+/// topology unchanged. Trim: a
 /// curve ends at its first segment entering the clearance zone, the new tip placed where the
 /// distance, linear along the segment, equals the clearance (point attributes of the new tip come
 /// from the segment's outer point); a curve left with no length is deleted. Delete: curves with any

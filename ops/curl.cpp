@@ -1,5 +1,6 @@
 #include "ops/curl.h"
 
+#include "fields/keep_outside.h"
 #include "kernel/error.h"
 #include "kernel/math/frames.h"
 #include "kernel/math/polyline.h"
@@ -105,21 +106,47 @@ float root_envelope(double u, float ramp)
     return smoothstep(float(u / double(ramp)));
 }
 
-/// Frame and centre at centreline arc length s, interpolated between grid points spaced ds.
-void centre_at(std::span<const float3> centre, std::span<const Frame> frames, double ds, double s, float3& c, float3& n, float3& b)
-{
-    const int64_t last = int64_t(centre.size()) - 1;
-    const double x = ds > 0.0 ? s / ds : 0.0;
-    const int64_t j = std::clamp<int64_t>(int64_t(std::floor(x)), 0, std::max<int64_t>(last - 1, 0));
-    const float f = last > 0 ? float(std::clamp(x - double(j), 0.0, 1.0)) : 0.0f;
-    const int64_t j1 = std::min(j + 1, last);
-    c = lerp(centre[size_t(j)], centre[size_t(j1)], f);
-    const float3 t = normalize(lerp(frames[size_t(j)].t, frames[size_t(j1)].t, f), frames[size_t(j)].t);
-    float3 nn = lerp(frames[size_t(j)].n, frames[size_t(j1)].n, f);
-    nn = normalize(nn - t * dot(nn, t), frames[size_t(j)].n);
-    n = nn;
-    b = cross(t, nn);
-}
+/// A curve's centreline: points evenly spaced (ds apart) in arc length with rotation-minimising
+/// frames, what the curl winds around.
+struct Centreline {
+    std::vector<float3> points;
+    std::vector<Frame> frames;
+    double length = 0.0;
+    double ds = 0.0;
+
+    /// Where arc length s falls on the grid: between points j and j1, fraction f.
+    void spot(double s, int64_t& j, int64_t& j1, float& f) const
+    {
+        const int64_t last = int64_t(points.size()) - 1;
+        const double x = ds > 0.0 ? s / ds : 0.0;
+        j = std::clamp<int64_t>(int64_t(std::floor(x)), 0, std::max<int64_t>(last - 1, 0));
+        f = last > 0 ? float(std::clamp(x - double(j), 0.0, 1.0)) : 0.0f;
+        j1 = std::min(j + 1, last);
+    }
+
+    /// The centre at arc length s (a curled point's anchor: the place it curls around).
+    float3 point_at(double s) const
+    {
+        int64_t j = 0, j1 = 0;
+        float f = 0.0f;
+        spot(s, j, j1, f);
+        return lerp(points[size_t(j)], points[size_t(j1)], f);
+    }
+
+    /// Centre c and frame (normal n, binormal b) at arc length s, interpolated between grid points.
+    void at(double s, float3& c, float3& n, float3& b) const
+    {
+        int64_t j = 0, j1 = 0;
+        float f = 0.0f;
+        spot(s, j, j1, f);
+        c = lerp(points[size_t(j)], points[size_t(j1)], f);
+        const float3 t = normalize(lerp(frames[size_t(j)].t, frames[size_t(j1)].t, f), frames[size_t(j)].t);
+        float3 nn = lerp(frames[size_t(j)].n, frames[size_t(j1)].n, f);
+        nn = normalize(nn - t * dot(nn, t), frames[size_t(j)].n);
+        n = nn;
+        b = cross(t, nn);
+    }
+};
 
 Resolved resolve(const CurlParams& p)
 {
@@ -135,6 +162,151 @@ Resolved resolve(const CurlParams& p)
     }
     r.amplitude_mid = 0.5f * (r.amplitude.lo + r.amplitude.hi);
     return r;
+}
+
+/// Count pass: a curve's frequency (a per-curve draw) and length fix its output point count.
+CurveSetup setup_curve(const CurlParams& params, const Resolved& res, std::span<const float3> in, uint64_t id)
+{
+    CurveSetup setup;
+    const double len = in.size() >= 2 ? double(polyline_length(in)) : 0.0;
+    Rng rng(params.seed, id, kStreamCurve);
+    const bool freq_default = params.frequency.lo == 0.0f && params.frequency.hi == 0.0f;
+    setup.frequency = freq_default ? res.preset->ratio / res.amplitude_mid : rng.uniform(params.frequency.lo, params.frequency.hi);
+    if (!(len > 0.0)) {
+        setup.points = int64_t(in.size());
+        return setup;
+    }
+    const double want = std::ceil(len * double(setup.frequency) * double(params.samples)) + 1.0;
+    // Clamped before the integer conversion so absurd frequencies reach the limit check.
+    setup.points = std::max<int64_t>(int64_t(in.size()), int64_t(std::min(want, double(kMaxPoints))));
+    return setup;
+}
+
+/// The centreline of input curve `in` with `n` points: a Catmull-Rom through it (smooth even for
+/// coarse guides), resampled evenly in arc length.
+void build_centreline(std::span<const float3> in, int64_t n, Centreline& cl)
+{
+    const int64_t m = int64_t(in.size());
+    if (m >= 4) {
+        const int per_segment = int(std::clamp<int64_t>((n + m - 2) / (m - 1), 1, 64));
+        cl.points = resample_by_count(evaluate_cubic(in, CubicBasis::CatmullRom, true, per_segment), int(n));
+    }
+    else {
+        cl.points = resample_by_count(in, int(n));
+    }
+    cl.frames = rotation_minimising_frames(cl.points);
+    cl.length = polyline_length(cl.points);
+    cl.ds = cl.length / double(n - 1);
+}
+
+/// One curve's draws (Sec. 3.1): its frequency and phase, and per cycle a shape, an amplitude and an
+/// offset of the cross-section's centre.
+struct CurveDraws {
+    float frequency = 0.0f;
+    float cos_phase = 1.0f, sin_phase = 0.0f;
+    std::vector<Cycle> cycles;
+};
+
+/// The draws of curve `id` (frequency from the count pass), enough cycles for `centre_len`.
+void draw_curve(const CurlParams& params, const Resolved& res, uint64_t id, float frequency, double centre_len, CurveDraws& d)
+{
+    Rng curve_rng(params.seed, id, kStreamCurve);
+    curve_rng.next_u64();  // the frequency draw (count pass)
+    d.frequency = frequency;
+    const float phase = curve_rng.uniform(params.phase.lo, params.phase.hi);
+    const float angle = 2.0f * std::numbers::pi_v<float> * phase;
+    d.cos_phase = std::cos(angle);
+    d.sin_phase = std::sin(angle);
+    const double curl_len = std::max(0.0, centre_len - double(params.root_ease));
+    const int64_t ncycles = std::max<int64_t>(1, int64_t(std::floor(curl_len * double(frequency))) + 2);
+    d.cycles.resize(size_t(ncycles));
+    const Rng shape_rng(params.seed, id, kStreamShape), amp_rng(params.seed, id, kStreamAmp), offset_rng(params.seed, id, kStreamOffset);
+    auto unit = [](uint64_t v) { return double(v >> 11) * (1.0 / 9007199254740992.0); };
+    for (int64_t k = 0; k < ncycles; ++k) {
+        Cycle& cy = d.cycles[size_t(k)];
+        cy.shape = pick_curl_shape(res.tiers, unit(shape_rng.at(uint64_t(k))));
+        cy.amplitude = res.amplitude.lo + (res.amplitude.hi - res.amplitude.lo) * float(unit(amp_rng.at(uint64_t(k))));
+        const float orad = params.offset.lo + (params.offset.hi - params.offset.lo) * float(unit(offset_rng.at(2 * uint64_t(k))));
+        const float oang = 2.0f * std::numbers::pi_v<float> * float(unit(offset_rng.at(2 * uint64_t(k) + 1)));
+        cy.ox = orad * std::cos(oang);
+        cy.oy = orad * std::sin(oang);
+    }
+}
+
+/// Cycle coordinate at centreline arc length s: 0 where the curl starts, after the root ease.
+double cycle_u(const CurveDraws& d, const CurlParams& p, double s) { return double(d.frequency) * (s - double(p.root_ease)); }
+
+/// The curled point at centreline arc length s, from the centre c and frame (n, b) there.
+float3 curled_point(const CurveDraws& d, const CurlParams& p, const float3& c, const float3& n, const float3& b, double s)
+{
+    const double u = cycle_u(d, p, s);
+    const float env = root_envelope(u, p.root_ramp);
+    if (env == 0.0f) return c;
+    const ShapePoint q = curl_offset(d.cycles, p.shape, d.cos_phase, d.sin_phase, p.blend, u);
+    return c + n * (env * q.x) + b * (env * q.y);
+}
+
+/// Curls the centreline over arc lengths [0, end] with as many points as it has, evenly spaced:
+/// out[j], and its centreline arc length s_of[j].
+void curl_prefix(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double end, std::vector<float3>& out,
+                 std::vector<double>& s_of)
+{
+    const int64_t n = int64_t(cl.points.size());
+    const double ds2 = end / double(n - 1);
+    for (int64_t j = 0; j < n; ++j) {
+        const double s = double(j) * ds2;
+        float3 c, nn, bb;
+        cl.at(s, c, nn, bb);
+        out[size_t(j)] = curled_point(d, p, c, nn, bb, s);
+        s_of[size_t(j)] = s;
+    }
+}
+
+/// The curled curve: as many points as the centreline into `out`, their centreline arc lengths into
+/// `s_of` (`grid` is scratch). Pass 1 curls the centreline on its own grid, and (Sec. 3.1 says nothing
+/// of length; real curls shrink, the curl index) finds where the curled hair reaches the input's
+/// length `in_len`: it then covers only that part of its centreline, which pass 2 re-samples with all
+/// the points. Without length preservation pass 1 is the result.
+void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double in_len, std::vector<float3>& grid,
+                std::vector<float3>& out, std::vector<double>& s_of)
+{
+    const int64_t n = int64_t(cl.points.size());
+    grid.resize(size_t(n));
+    double s_end = cl.length, acc = 0.0;
+    for (int64_t j = 0; j < n; ++j) {
+        grid[size_t(j)] = curled_point(d, p, cl.points[size_t(j)], cl.frames[size_t(j)].n, cl.frames[size_t(j)].b, double(j) * cl.ds);
+        if (!p.preserve_length || j == 0) continue;
+        const double seg = distance(grid[size_t(j - 1)], grid[size_t(j)]);
+        if (acc + seg >= in_len) {
+            s_end = (double(j - 1) + (seg > 0.0 ? (in_len - acc) / seg : 0.0)) * cl.ds;
+            break;
+        }
+        acc += seg;
+    }
+    out.resize(size_t(n));
+    s_of.resize(size_t(n));
+    if (!(s_end < cl.length)) {
+        out = grid;
+        for (int64_t j = 0; j < n; ++j) s_of[size_t(j)] = double(j) * cl.ds;
+        return;
+    }
+    curl_prefix(cl, d, p, s_end, out, s_of);
+    // Pass 2 samples each cycle more densely than pass 1 did (by the curl index), so its polyline
+    // measures longer; for tight curls correct the cut on pass 2's own polyline (at most twice) until
+    // the length is within 0.2%.
+    for (int iter = 0; iter < 2; ++iter) {
+        double len = 0.0, cut = -1.0;
+        for (int64_t j = 1; j < n; ++j) {
+            const double seg = distance(out[size_t(j - 1)], out[size_t(j)]);
+            if (cut < 0.0 && len + seg >= in_len) {
+                cut = s_of[size_t(j - 1)] + (seg > 0.0 ? (in_len - len) / seg : 0.0) * (s_of[size_t(j)] - s_of[size_t(j - 1)]);
+            }
+            len += seg;
+        }
+        if (std::fabs(len - in_len) <= 2e-3 * in_len) break;
+        s_end = cut >= 0.0 ? cut : std::min(cl.length, s_end * in_len / std::max(len, 1e-30));
+        curl_prefix(cl, d, p, s_end, out, s_of);
+    }
 }
 
 }  // namespace
@@ -259,24 +431,12 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     const auto src_width = src.find<float>(Domain::Point, attr::width);
     ProgressStep step(progress, "curl", int64_t(nc));
 
-    // Count: each curve's frequency (a per-curve draw) and length fix its output point count.
+    // Count -> scan -> fill.
     std::vector<CurveSetup> setup(nc);
     parallel_for(int64_t(nc), 256, [&](int64_t b, int64_t e) {
         for (int64_t c = b; c < e; ++c) {
             const IndexRange r = src.points_of(size_t(c));
-            const auto in = P.subspan(size_t(r.begin), size_t(r.size()));
-            const double len = r.size() >= 2 ? double(polyline_length(in)) : 0.0;
-            Rng rng(params.seed, uint64_t(ids[size_t(c)]), kStreamCurve);
-            const bool freq_default = params.frequency.lo == 0.0f && params.frequency.hi == 0.0f;
-            const float f = freq_default ? res.preset->ratio / res.amplitude_mid : rng.uniform(params.frequency.lo, params.frequency.hi);
-            setup[size_t(c)].frequency = f;
-            if (!(len > 0.0)) {
-                setup[size_t(c)].points = r.size();
-                continue;
-            }
-            const double want = std::ceil(len * double(f) * double(params.samples)) + 1.0;
-            // Clamped before the integer conversion so absurd frequencies reach the limit check.
-            setup[size_t(c)].points = std::max<int64_t>(r.size(), int64_t(std::min(want, double(kMaxPoints))));
+            setup[size_t(c)] = setup_curve(params, res, P.subspan(size_t(r.begin), size_t(r.size())), uint64_t(ids[size_t(c)]));
         }
     });
     int64_t total = 0;
@@ -302,8 +462,9 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     std::vector<int64_t> src_point(gather ? dst.num_points() : 0);
 
     parallel_for(int64_t(nc), 64, [&](int64_t b, int64_t e) {
-        std::vector<Cycle> cycles;
-        std::vector<float3> centre, grid, out;
+        Centreline cl;
+        CurveDraws draws;
+        std::vector<float3> grid, out;
         std::vector<double> in_cum, s_of;
         for (int64_t c = b; c < e; ++c) {
             const IndexRange r = src.points_of(size_t(c));
@@ -311,8 +472,6 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
             const auto in = P.subspan(size_t(r.begin), size_t(r.size()));
             in_cum = cumulative_lengths(in);
             const double in_len = in_cum.empty() ? 0.0 : in_cum.back();
-            const uint64_t id = uint64_t(ids[size_t(c)]);
-
             if (!(in_len > 0.0) || r.size() < 2) {
                 // Nothing to curl: the curve passes through unchanged.
                 for (int64_t i = 0; i < d.size(); ++i) {
@@ -327,147 +486,37 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
             }
 
             const int64_t n = d.size();
-            // The centreline: a Catmull-Rom through the guide (smooth even for coarse guides),
-            // resampled to n points evenly spaced in arc length.
-            if (r.size() >= 4) {
-                const int per_segment = int(std::clamp<int64_t>((n + r.size() - 2) / (r.size() - 1), 1, 64));
-                centre = resample_by_count(evaluate_cubic(in, CubicBasis::CatmullRom, true, per_segment), int(n));
-            }
-            else {
-                centre = resample_by_count(in, int(n));
-            }
-            const std::vector<Frame> frames = rotation_minimising_frames(centre);
-            const double centre_len = polyline_length(centre);
-            const double ds = centre_len / double(n - 1);
-
-            // Per-curve and per-cycle draws.
-            Rng curve_rng(params.seed, id, kStreamCurve);
-            curve_rng.next_u64();  // the frequency draw (count pass)
-            const float frequency = setup[size_t(c)].frequency;
-            const float phase = curve_rng.uniform(params.phase.lo, params.phase.hi);
-            const float angle = 2.0f * std::numbers::pi_v<float> * phase;
-            const float cp = std::cos(angle), sp = std::sin(angle);
-            const double curl_len = std::max(0.0, centre_len - double(params.root_ease));
-            const int64_t ncycles = std::max<int64_t>(1, int64_t(std::floor(curl_len * double(frequency))) + 2);
-            cycles.resize(size_t(ncycles));
-            const Rng shape_rng(params.seed, id, kStreamShape), amp_rng(params.seed, id, kStreamAmp),
-                offset_rng(params.seed, id, kStreamOffset);
-            auto unit = [](uint64_t v) { return double(v >> 11) * (1.0 / 9007199254740992.0); };
-            for (int64_t k = 0; k < ncycles; ++k) {
-                Cycle& cy = cycles[size_t(k)];
-                cy.shape = pick_curl_shape(res.tiers, unit(shape_rng.at(uint64_t(k))));
-                cy.amplitude = res.amplitude.lo + (res.amplitude.hi - res.amplitude.lo) * float(unit(amp_rng.at(uint64_t(k))));
-                const float orad = params.offset.lo + (params.offset.hi - params.offset.lo) * float(unit(offset_rng.at(2 * uint64_t(k))));
-                const float oang = 2.0f * std::numbers::pi_v<float> * float(unit(offset_rng.at(2 * uint64_t(k) + 1)));
-                cy.ox = orad * std::cos(oang);
-                cy.oy = orad * std::sin(oang);
-            }
-
-            auto cycle_u = [&](double s) { return double(frequency) * (s - double(params.root_ease)); };
-            auto curled = [&](const float3& cpos, const float3& nn, const float3& bb, double s) {
-                const double u = cycle_u(s);
-                const float env = root_envelope(u, params.root_ramp);
-                if (env == 0.0f) return cpos;
-                const ShapePoint q = curl_offset(cycles, params.shape, cp, sp, params.blend, u);
-                return cpos + nn * (env * q.x) + bb * (env * q.y);
-            };
-
-            // Pass 1: curl the centreline on its own grid, and (Sec. 3.1 says nothing of length; real
-            // curls shrink, the curl index) find where the curled hair reaches the input's length:
-            // it then covers only that part of its centreline, which pass 2 re-samples with all n
-            // points. Without length preservation pass 1 is the result.
-            grid.resize(size_t(n));
-            double s_end = centre_len, acc = 0.0;
-            for (int64_t j = 0; j < n; ++j) {
-                grid[size_t(j)] = curled(centre[size_t(j)], frames[size_t(j)].n, frames[size_t(j)].b, double(j) * ds);
-                if (!params.preserve_length || j == 0) continue;
-                const double seg = distance(grid[size_t(j - 1)], grid[size_t(j)]);
-                if (acc + seg >= in_len) {
-                    s_end = (double(j - 1) + (seg > 0.0 ? (in_len - acc) / seg : 0.0)) * ds;
-                    break;
-                }
-                acc += seg;
-            }
-            out.resize(size_t(n));
-            s_of.resize(size_t(n));
-            auto curl_prefix = [&](double end) {
-                const double ds2 = end / double(n - 1);
-                for (int64_t j = 0; j < n; ++j) {
-                    const double s = double(j) * ds2;
-                    float3 cpos, nn, bb;
-                    centre_at(centre, frames, ds, s, cpos, nn, bb);
-                    out[size_t(j)] = curled(cpos, nn, bb, s);
-                    s_of[size_t(j)] = s;
-                }
-            };
-            if (s_end < centre_len) {
-                curl_prefix(s_end);
-                // Pass 2 samples each cycle more densely than pass 1 did (by the curl index), so its
-                // polyline measures longer; for tight curls correct the cut on pass 2's own polyline
-                // (at most twice) until the length is within 0.2%.
-                for (int iter = 0; iter < 2; ++iter) {
-                    double len = 0.0, cut = -1.0;
-                    for (int64_t j = 1; j < n; ++j) {
-                        const double seg = distance(out[size_t(j - 1)], out[size_t(j)]);
-                        if (cut < 0.0 && len + seg >= in_len) {
-                            cut = s_of[size_t(j - 1)] + (seg > 0.0 ? (in_len - len) / seg : 0.0) * (s_of[size_t(j)] - s_of[size_t(j - 1)]);
-                        }
-                        len += seg;
-                    }
-                    if (std::fabs(len - in_len) <= 2e-3 * in_len) break;
-                    s_end = cut >= 0.0 ? cut : std::min(centre_len, s_end * in_len / std::max(len, 1e-30));
-                    curl_prefix(s_end);
-                }
-            }
-            else {
-                out = grid;
-                for (int64_t j = 0; j < n; ++j) s_of[size_t(j)] = double(j) * ds;
-            }
+            build_centreline(in, n, cl);
+            draw_curve(params, res, uint64_t(ids[size_t(c)]), setup[size_t(c)].frequency, cl.length, draws);
+            curl_curve(cl, draws, params, in_len, grid, out, s_of);
 
             if (scalp) {
-                // No curled point inside the scalp: pull it back towards the centreline while that is
-                // outside (bisection keeps the curl's direction), else push it out along the normal.
-                const float eps = 1e-3f * std::max(res.amplitude_mid, 1e-6f);
+                // No curled point inside the scalp (fields/keep_outside.h): pulled back toward its
+                // centreline point while that is outside, which keeps the curl's direction, else moved
+                // out with a margin of a thousandth of the curl, doubled on each of up to four tries.
+                const KeepOutside rule{0.0f, 1e-3f * std::max(res.amplitude_mid, 1e-6f), 4};
                 for (int64_t j = 0; j < n; ++j) {
-                    float3& p = out[size_t(j)];
-                    if (!scalp->inside(p)) continue;
-                    float3 cpos, nn, bb;
-                    centre_at(centre, frames, ds, s_of[size_t(j)], cpos, nn, bb);
-                    if (!scalp->inside(cpos)) {
-                        float lo = 0.0f, hi = 1.0f;
-                        const float3 off = p - cpos;
-                        for (int it = 0; it < 24; ++it) {
-                            const float mid = 0.5f * (lo + hi);
-                            (scalp->inside(cpos + off * mid) ? hi : lo) = mid;
-                        }
-                        p = cpos + off * lo;
-                    }
-                    for (int it = 0; it < 4 && scalp->inside(p); ++it) {
-                        p = scalp->closest_point(p) + scalp->normal(p) * eps * float(1 << it);
-                    }
+                    const float3 anchor = cl.point_at(s_of[size_t(j)]);
+                    keep_outside(out[size_t(j)], *scalp, rule, 0.0f, &anchor);
                 }
             }
 
-            const double to_input = centre_len > 0.0 ? in_len / centre_len : 0.0;
+            const double to_input = cl.length > 0.0 ? in_len / cl.length : 0.0;
+            const int64_t ncycles = int64_t(draws.cycles.size());
             for (int64_t j = 0; j < n; ++j) {
                 const size_t o = size_t(d.begin + j);
                 dP[o] = out[size_t(j)];
-                const double u = cycle_u(s_of[size_t(j)]);
+                const double u = cycle_u(draws, params, s_of[size_t(j)]);
                 const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, ncycles - 1);
                 dcycle[o] = int32_t(k);
-                dshape[o] = cycles[size_t(k)].shape;
+                dshape[o] = draws.cycles[size_t(k)].shape;
                 if (!dwidth.empty() || gather) {
                     // Where this point's centreline position falls on the input curve, by arc length.
-                    const double s_in = std::clamp(s_of[size_t(j)] * to_input, 0.0, in_len);
-                    const size_t hi = std::min<size_t>(size_t(std::upper_bound(in_cum.begin(), in_cum.end(), s_in) - in_cum.begin()),
-                                                       in_cum.size() - 1);
-                    const size_t lo = hi > 0 ? hi - 1 : 0;
-                    const double span = in_cum[hi] - in_cum[lo];
-                    const double f = span > 0.0 ? (s_in - in_cum[lo]) / span : 0.0;
+                    const ArcSpot a = locate_at_length(in_cum, s_of[size_t(j)] * to_input);
                     if (!dwidth.empty()) {
-                        dwidth[o] = float((1.0 - f) * src_width[size_t(r.begin) + lo] + f * src_width[size_t(r.begin) + hi]);
+                        dwidth[o] = float((1.0 - a.t) * src_width[size_t(r.begin) + a.lo] + a.t * src_width[size_t(r.begin) + a.hi]);
                     }
-                    if (gather) src_point[o] = r.begin + int64_t(f < 0.5 ? lo : hi);
+                    if (gather) src_point[o] = r.begin + int64_t(a.nearest);
                 }
             }
             step.advance(1);

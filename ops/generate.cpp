@@ -1,16 +1,11 @@
 #include "ops/generate.h"
 
+#include "fields/keep_outside.h"
+#include "fields/point_index.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
-
-#include <CGAL/Orthogonal_k_neighbor_search.h>
-#include <CGAL/Search_traits_3.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/property_map.h>
-#include <boost/iterator/counting_iterator.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -22,53 +17,6 @@ namespace groom {
 namespace {
 
 std::string str(float v) { return format_number(v); }
-
-// Guide roots in a CGAL kd-tree; queries are const and safe from many threads once built.
-class GuideIndex {
-public:
-    struct Hit {
-        int64_t guide;
-        double distance;
-    };
-
-    explicit GuideIndex(std::span<const float3> roots)
-    {
-        points_.reserve(roots.size());
-        for (const float3& r : roots) points_.emplace_back(r.x, r.y, r.z);
-        tree_ = std::make_unique<Tree>(boost::counting_iterator<std::size_t>(0),
-                                       boost::counting_iterator<std::size_t>(points_.size()), Tree::Splitter(),
-                                       Traits(CGAL::make_property_map(points_)));
-        // The tree builds lazily on the first query; build now so concurrent queries only read.
-        tree_->build();
-        distance_ = std::make_unique<Distance>(CGAL::make_property_map(points_));
-    }
-
-    /// Up to k nearest guides, nearest first; ties broken by guide index so the order is canonical.
-    void nearest(const float3& q, int k, std::vector<Hit>& out) const
-    {
-        out.clear();
-        Search search(*tree_, Point(q.x, q.y, q.z), static_cast<unsigned>(k), 0.0, true, *distance_);
-        for (auto it = search.begin(); it != search.end(); ++it) {
-            out.push_back({int64_t(it->first), std::sqrt(it->second)});
-        }
-        std::stable_sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) {
-            return a.distance < b.distance || (a.distance == b.distance && a.guide < b.guide);
-        });
-    }
-
-private:
-    using Kernel = CGAL::Simple_cartesian<double>;
-    using Point = Kernel::Point_3;
-    using Traits = CGAL::Search_traits_adapter<std::size_t, CGAL::Pointer_property_map<Point>::type,
-                                               CGAL::Search_traits_3<Kernel>>;
-    using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
-    using Tree = Search::Tree;
-    using Distance = Search::Distance;
-
-    std::vector<Point> points_;
-    std::unique_ptr<Tree> tree_;
-    std::unique_ptr<Distance> distance_;
-};
 
 std::vector<float3> guide_roots(const CurveSet& guides)
 {
@@ -145,11 +93,7 @@ PreparedGuides prepare(const CurveSet& guides, const Surface& scalp, int points_
                 const auto res = resample_by_count(in, np);
                 std::copy(res.begin(), res.end(), out);
                 for (int i = 0; i < np; ++i) {
-                    const double s = cum.back() * double(i) / double(np - 1);
-                    const size_t k = std::lower_bound(cum.begin(), cum.end(), s) - cum.begin();
-                    size_t best = std::min(k, cum.size() - 1);
-                    if (k > 0 && (k == cum.size() || s - cum[k - 1] < cum[k] - s)) best = k - 1;
-                    src[i] = r.begin + int64_t(best);
+                    src[i] = r.begin + int64_t(locate_at_length(cum, cum.back() * double(i) / double(np - 1)).nearest);
                 }
             }
             pg.normals[g] = scalp.normal(pg.roots[g]);
@@ -195,7 +139,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
     params.validate();
     if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
     const std::vector<float3> roots = guide_roots(guides);
-    const GuideIndex index(roots);
+    const PointIndex index(roots);
     std::vector<float3> guide_normals(roots.size());
     for (size_t g = 0; g < roots.size(); ++g) guide_normals[g] = scalp.normal(roots[g]);
     const float min_cos = params.max_angle >= 180.0f ? -2.0f : float(std::cos(double(params.max_angle) * 3.14159265358979 / 180.0));
@@ -209,7 +153,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
         if (roots.size() < 2) {
             throw InvalidParam("generate: one guide has no footprint; give --region X,Y,Z,R for where roots go");
         }
-        std::vector<GuideIndex::Hit> hits;
+        std::vector<PointIndex::Neighbour> hits;
         Bounds3 box;
         for (const float3& r : roots) {
             box.extend(r);
@@ -221,18 +165,18 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
         center = box.center();
         radius = 0.5f * length(box.size()) + float(footprint);
     }
-    auto accept = [&](const SurfaceSample& s, std::vector<GuideIndex::Hit>& hits) {
+    auto accept = [&](const SurfaceSample& s, std::vector<PointIndex::Neighbour>& hits) {
         if (!use_footprint && !(double(distance(s.position, center)) <= double(radius))) return false;
         index.nearest(s.position, 1, hits);
         if (use_footprint && !(hits.front().distance <= footprint)) return false;
-        return min_cos < -1.0f || dot(normalize(s.normal), guide_normals[hits.front().guide]) >= min_cos;
+        return min_cos < -1.0f || dot(normalize(s.normal), guide_normals[hits.front().index]) >= min_cos;
     };
 
     // Rejection from an area-uniform superset stays area-uniform; batches use fresh seeds so the
     // result depends only on params.seed.
     std::vector<SurfaceSample> out;
     out.reserve(size_t(params.count));
-    std::vector<GuideIndex::Hit> hits;
+    std::vector<PointIndex::Neighbour> hits;
     double rate = 1.0;
     for (uint64_t batch = 0; int64_t(out.size()) < params.count; ++batch) {
         if (batch == 64) {
@@ -267,7 +211,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     }
     if (guides.num_curves() == 0) throw InvalidParam("generate: no guide curves in the input");
     const PreparedGuides pg = prepare(guides, scalp, params.points);
-    const GuideIndex index(pg.roots);
+    const PointIndex index(pg.roots);
     const int np = pg.points;
     const int64_t ng = int64_t(guides.num_curves());
     const int64_t nc = int64_t(roots.size());
@@ -283,13 +227,13 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
 
     ProgressStep step(progress, "generate", nc);
     parallel_for(nc, 256, [&](int64_t b, int64_t e) {
-        std::vector<GuideIndex::Hit> hits;
+        std::vector<PointIndex::Neighbour> hits;
         std::vector<double> w;
         for (int64_t c = b; c < e; ++c) {
             const float3 x = roots[c];
             float3* out = P.data() + c * np;
             index.nearest(x, query, hits);
-            const int64_t g0 = hits.front().guide;
+            const int64_t g0 = hits.front().index;
             ids[c] = params.first_id + c;
             nearest_guide[c] = int32_t(g0);
             src_curve[c] = g0;
@@ -319,7 +263,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
             const float3 n = normals.empty() ? scalp.normal(x) : normalize(normals[c], scalp.normal(x));
             for (int i = 0; i < np; ++i) out[i] = float3();
             for (int j = 0; j < k; ++j) {
-                const int64_t g = hits[j].guide;
+                const int64_t g = hits[j].index;
                 const float wj = float(w[j] / total);
                 if (wj == 0.0f) continue;
                 const float3& ng_ = pg.normals[g];
@@ -335,7 +279,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
 
     carry_curve_attributes(guides, dst, src_curve);
     carry_point_attributes(guides, dst, src_point, {attr::P});
-    push_out_of_scalp(dst, scalp, params.clearance);
+    keep_outside(dst, scalp, KeepOutside{params.clearance});
     return dst;
 }
 
@@ -349,35 +293,6 @@ CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSample
         normals[i] = samples[i].normal;
     }
     return generate_at_roots(guides, scalp, roots, normals, params, progress);
-}
-
-int64_t push_out_of_scalp(CurveSet& curves, const Surface& scalp, float clearance)
-{
-    auto P = curves.positions_for_write();
-    const int64_t nc = int64_t(curves.num_curves());
-    std::vector<int64_t> moved(static_cast<size_t>(nc), 0);
-    parallel_for(nc, 256, [&](int64_t b, int64_t e) {
-        for (int64_t c = b; c < e; ++c) {
-            const IndexRange r = curves.points_of(c);
-            // A signed distance changes by at most the distance moved, so a point whose predecessor
-            // was far enough out cannot be inside: skip its query (far from the scalp, past the
-            // level set's narrow band, each query is an exact mesh search).
-            float lower = -INFINITY;
-            for (int64_t p = r.begin + 1; p < r.end; ++p) {
-                lower -= distance(P[p], P[p - 1]);
-                if (lower > clearance) continue;
-                const float d = scalp.distance(P[p]);
-                lower = d;
-                if (d >= clearance) continue;
-                P[p] = scalp.closest_point(P[p]) + scalp.normal(P[p]) * clearance;
-                lower = clearance;
-                ++moved[c];
-            }
-        }
-    });
-    int64_t total = 0;
-    for (int64_t m : moved) total += m;
-    return total;
 }
 
 }  // namespace groom

@@ -79,7 +79,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
                                          const GenerateParams& params);
 
 /// @brief One curve per root, shaped from the K = params.neighbours guides whose roots are nearest
-/// (CGAL kd-tree search).
+/// (a kd-tree search, PointIndex in fields/point_index.h).
 ///
 /// Each guide is first resampled to the common point count (params.points). A guide's shape is its
 /// points relative to its root, expressed in its root frame (normal = scalp normal at the guide root);
@@ -88,13 +88,10 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
 /// inverse-distance weights w_g = ((d_{K+1} - d_g) / (d_{K+1} d_g))^power (d_{K+1}: the next guide
 /// out, so a guide's weight falls to zero as it leaves the K nearest and shapes vary continuously).
 /// A root exactly on a guide's root (distance 0) takes that guide alone, copied bit for bit. Points
-/// (all but the root) found inside the scalp are pushed out to params.clearance.
+/// (all but the root) closer to the scalp than params.clearance are moved out to it by keep_outside
+/// (fields/keep_outside.h: one move each, no margin).
 /// Uses params: neighbours, power, points, clearance, first_id. Attributes as for generate().
 CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
                            std::span<const float3> normals, const GenerateParams& params, Progress* progress = nullptr);
-
-/// Moves every point but each curve's root that lies inside `scalp` (distance < clearance) out to
-/// distance `clearance` along the surface normal. Returns the number of points moved.
-int64_t push_out_of_scalp(CurveSet& curves, const Surface& scalp, float clearance = 0.0f);
 
 }  // namespace groom

@@ -1,5 +1,6 @@
 #include "ops/partition.h"
 
+#include "fields/keep_outside.h"
 #include "fields/surface.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
@@ -243,14 +244,9 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                     if (j == 0) x = plan.root;
                     else if (j == samples - 1) x = plan.end;
                     else {
-                        const float target = u * end_height;
-                        // Two steps along the normal: exact for analytic surfaces, and a level set's
-                        // distance is accurate enough near the surface that a second step settles it.
-                        for (int iter = 0; iter < 2; ++iter) {
-                            const float d = scalp.distance(x);
-                            if (!(d < target)) break;
-                            x += scalp.normal(x) * (target - d);
-                        }
+                        // Two moves: exact for analytic surfaces, and a level set's distance is
+                        // accurate enough near the surface that a second move settles it.
+                        keep_outside(x, scalp, KeepOutside{0.0f, 0.0f, 2}, u * end_height);
                     }
                     out_P[first + j] = x;
                     out_width[first + j] = params.width;

@@ -77,8 +77,8 @@ struct PartitionParams {
 /// scalp.closest_point(lerp(p, q, mediate)) and its end is p, or the group's centroid on the source
 /// with CentroidMode::Every/Knots/Points. Between them the segment follows the scalp: each sample of the
 /// straight root-to-end line that is lower than a height rising linearly from 0 at the root to the
-/// end's height is pushed out along the scalp normal to that height, so no point but possibly the end
-/// (when the source itself dips inside) lies inside the scalp.
+/// end's height is moved out to that height (keep_outside, fields/keep_outside.h, two moves), so no
+/// point but possibly the end (when the source itself dips inside) lies inside the scalp.
 ///
 /// Reads guide point P and every curve attribute. Writes one curve per segment with curve attributes
 /// `guide` (int32 source index), `side` (int32, 0 left = normal x tangent side, 1 right), `group`

@@ -1,5 +1,6 @@
 #include "ops/puff.h"
 
+#include "fields/keep_outside.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
@@ -226,11 +227,8 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     });
 
     // Interior points only: roots stay on the scalp and tips on the sphere.
-    for (int g = 0; g < ng; ++g) {
-        for (int k = 1; k + 1 < np; ++k) {
-            float3& p = P[size_t(g) * np + k];
-            if (scalp.distance(p) < 0.0f) p = scalp.closest_point(p);
-        }
+    for (int g = 0; g < ng && np > 2; ++g) {
+        keep_outside(P.subspan(size_t(g) * np + 1, size_t(np - 2)), scalp, KeepOutside{});
     }
 
     const double sep = min_curve_separation(dst);
@@ -279,16 +277,16 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
             pts.back() = C + normalize(tip - C, normalize(tip - pts.front())) * R;  // exact, not up to rounding
         }
     });
-    push_out_of_scalp(centres, scalp);
+    keep_outside(centres, scalp, KeepOutside{});
 
     CurlParams curl_params = params.curl;
     curl_params.preserve_length = false;
     // The curl op can keep points out of the scalp itself, but it asks the scalp about every
     // point, and far from a ScalpField's narrow band each answer is an exact mesh search (two
     // thirds of the time of a two-puff groom). Only points near the root can end up inside, so
-    // curl freely and push out afterwards, skipping the points provably outside.
+    // curl freely and keep the result outside afterwards, which skips the points provably outside.
     result.hairs = curl(centres, curl_params, nullptr, progress);
-    push_out_of_scalp(result.hairs, scalp);
+    keep_outside(result.hairs, scalp, KeepOutside{});
     for (int32_t& k : result.hairs.add<int32_t>(Domain::Curve, "kind")) k = 1;
     return result;
 }

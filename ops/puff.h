@@ -60,7 +60,8 @@ struct PuffParams {
 /// evenly and keep the grid's neighbourhoods (no guide crosses another). Each guide is the cubic
 /// Bezier root -> tip with root tangent the scalp normal and tip tangent d, resampled to
 /// guide_points points evenly spaced in arc length; its tip is sphere_center + sphere_radius * d
-/// (on the sphere to float rounding). Interior points inside the scalp are pushed out.
+/// (on the sphere to float rounding). Interior points inside the scalp are moved onto it (keep_outside,
+/// fields/keep_outside.h, clearance 0).
 /// Writes point P, curve int64 `id`, int32 `kind` (0 = guide), int32 `guide` (its own index).
 /// Throws InvalidParam (params; a tip that would lie inside the scalp), InvalidGeometry (the region
 /// has no scalp within `radius` of c0 along the grid, or guides would cross).
@@ -79,7 +80,7 @@ struct PuffResult {
 /// generate_at_roots() (so it follows them), its tip is then moved onto the sphere along the
 /// direction from the sphere centre (a smooth warp, p += (tip' - tip) s^2 for arc-length fraction
 /// s, which keeps the root and the root direction), and it is curled by curl(); curled points that
-/// fall inside the scalp are then pushed out along its normal (push_out_of_scalp).
+/// fall inside the scalp are then moved onto it (keep_outside on the curves, clearance 0: roots stay).
 /// A curl moves points at most curl_reach(curl) off the centreline, so every hair tip lies within
 /// that distance of the sphere.
 /// Hairs: point P (+ the curl op's point `shape`, `cycle`), curve `id` (after the guides' ids),

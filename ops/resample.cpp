@@ -55,10 +55,7 @@ CurveSet resample(const CurveSet& src, const ResampleParams& params)
             const auto cum = cumulative_lengths(in);
             for (int64_t i = 0; i < d.size(); ++i) {
                 const double s = d.size() > 1 ? cum.back() * double(i) / double(d.size() - 1) : 0.0;
-                const size_t k = std::lower_bound(cum.begin(), cum.end(), s) - cum.begin();
-                size_t best = std::min(k, cum.size() - 1);
-                if (k > 0 && (k == cum.size() || s - cum[k - 1] < cum[k] - s)) best = k - 1;
-                src_point[d.begin + i] = r.begin + int64_t(best);
+                src_point[d.begin + i] = r.begin + int64_t(locate_at_length(cum, s).nearest);
             }
         }
     });

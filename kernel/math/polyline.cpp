@@ -23,17 +23,27 @@ std::vector<double> cumulative_lengths(std::span<const float3> pts)
     return out;
 }
 
+ArcSpot locate_at_length(std::span<const double> cumulative, double s)
+{
+    s = std::clamp(s, 0.0, cumulative.back());
+    // First point whose cumulative length exceeds s; the segment before it holds s.
+    ArcSpot a;
+    a.hi = std::min<size_t>(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin()),
+                            cumulative.size() - 1);
+    a.lo = a.hi > 0 ? a.hi - 1 : 0;
+    const double seg = cumulative[a.hi] - cumulative[a.lo];
+    a.t = seg > 0.0 ? (s - cumulative[a.lo]) / seg : 0.0;
+    a.nearest = s - cumulative[a.lo] < cumulative[a.hi] - s ? a.lo : a.hi;
+    return a;
+}
+
 float3 point_at_length(std::span<const float3> pts, std::span<const double> cumulative, double s)
 {
     if (pts.empty()) return {};
     if (pts.size() == 1 || s <= 0.0) return pts.front();
     if (s >= cumulative.back()) return pts.back();
-    // First point whose cumulative length exceeds s; the segment before it holds s.
-    const size_t hi = std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin();
-    const size_t lo = hi - 1;
-    const double seg = cumulative[hi] - cumulative[lo];
-    const float t = seg > 0.0 ? static_cast<float>((s - cumulative[lo]) / seg) : 0.0f;
-    return lerp(pts[lo], pts[hi], t);
+    const ArcSpot a = locate_at_length(cumulative, s);
+    return lerp(pts[a.lo], pts[a.hi], static_cast<float>(a.t));
 }
 
 std::vector<float3> resample_by_count(std::span<const float3> pts, int count)

@@ -15,6 +15,20 @@ float polyline_length(std::span<const float3> pts);
 /// so long curves do not drift.
 std::vector<double> cumulative_lengths(std::span<const float3> pts);
 
+/// Where arc length `s` falls along a polyline, found from its cumulative lengths.
+struct ArcSpot {
+    size_t lo = 0, hi = 0;  ///< the segment from point lo to point hi = lo + 1 (both 0 for one point)
+    double t = 0.0;         ///< fraction along it, [0, 1]; 0 on a zero-length segment
+    size_t nearest = 0;     ///< lo or hi, whichever is nearer s in arc length; hi on a tie
+};
+
+/// The arc-length lookup every "where along the curve" question uses. `cumulative` from
+/// cumulative_lengths (not empty); s is clamped to [0, length]. The segment is the last that starts
+/// at or before s, so s at a point's own arc length gives that point as lo with t = 0 (and the tip,
+/// hi of the last segment with t = 1); of points at the same arc length (a zero-length segment) the
+/// last is the nearest.
+ArcSpot locate_at_length(std::span<const double> cumulative, double s);
+
 /// Position at arc length `s` (clamped to [0, length]) given the cumulative lengths of `pts`.
 float3 point_at_length(std::span<const float3> pts, std::span<const double> cumulative, double s);
 

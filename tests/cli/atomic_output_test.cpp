@@ -6,9 +6,9 @@
 // output's size, so its write fails part-way exactly as on a full disk.
 #include "test_support.h"
 
-#include "fields/sphere_mesh.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
+#include "support/sphere_mesh.h"
 
 
 #include <filesystem>

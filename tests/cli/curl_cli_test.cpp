@@ -1,10 +1,10 @@
 // `groom curl` end to end: files in, files out, exit codes and messages.
 #include "test_support.h"
 
-#include "fields/sphere_mesh.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
 #include "kernel/math/polyline.h"
+#include "support/sphere_mesh.h"
 
 #include <filesystem>
 #include <numbers>

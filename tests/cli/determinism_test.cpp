@@ -5,9 +5,9 @@
 // (`groom scalp` is not compared: OpenVDB stamps every .vdb file with a fresh UUID.)
 #include "test_support.h"
 
-#include "fields/sphere_mesh.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
+#include "support/sphere_mesh.h"
 
 #include <cmath>
 #include <filesystem>

@@ -2,9 +2,9 @@
 // codes and messages. Geometry is checked against the exact sphere the mesh approximates.
 #include "test_support.h"
 
-#include "fields/sphere_mesh.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
+#include "support/sphere_mesh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,9 +2,9 @@
 // sphere mesh; and every kind of bad input: clear error, non-zero exit, no output file.
 #include "test_support.h"
 
-#include "fields/sphere_mesh.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
+#include "support/sphere_mesh.h"
 
 #include <cmath>
 #include <filesystem>

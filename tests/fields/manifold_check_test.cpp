@@ -3,8 +3,8 @@
 // each defect the repair meets, and on many random soups over a few vertices (where every
 // configuration of shared edges and pinched fans turns up).
 #include "fields/scalp_impl.h"
-#include "fields/sphere_mesh.h"
 #include "kernel/rng.h"
+#include "support/sphere_mesh.h"
 
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <gtest/gtest.h>

@@ -3,10 +3,10 @@
 // every real head in ../shared/datasets.
 #include "fields/scalp_field.h"
 #include "kernel/io/mesh_io.h"
-#include "fields/sphere_mesh.h"
 #include "kernel/error.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
+#include "support/sphere_mesh.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

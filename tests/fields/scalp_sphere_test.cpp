@@ -4,8 +4,8 @@
 // triangles sit up to `chord` inside the sphere) bounds what any field built from it can do, so
 // each tolerance is chord + a multiple of the interpolation error (h^2 / R for a trilinear field).
 #include "fields/scalp_field.h"
-#include "fields/sphere_mesh.h"
 #include "kernel/rng.h"
+#include "support/sphere_mesh.h"
 
 #include <gtest/gtest.h>
 

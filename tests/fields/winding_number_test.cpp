@@ -1,9 +1,9 @@
 // The hierarchical winding number against its definition (the exact solid-angle sum over every
 // triangle) and against closed forms: 1 inside and 0 outside a closed sphere, 1 - cap fraction
 // inside a sphere with a hole, the cap's own solid angle seen from the centre of its sphere.
-#include "fields/sphere_mesh.h"
 #include "fields/winding_number.h"
 #include "kernel/rng.h"
+#include "support/sphere_mesh.h"
 
 #include <gtest/gtest.h>
 

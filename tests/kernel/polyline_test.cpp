@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -99,4 +100,44 @@ TEST(Spline, UniformSplineReproducesLinearValues)
     const std::vector<float> c{0.7f};
     EXPECT_EQ(sample_uniform_spline(c, 0.3f), 0.7f);
     EXPECT_EQ(sample_uniform_spline({}, 0.3f), 1.0f);
+}
+
+TEST(Polyline, LocateAtLengthOnAStraightLine)
+{
+    // Points at x = 0, 1, 3, 3 (twice: a zero-length segment), 6.
+    const std::vector<float3> pts{{0, 0, 0}, {1, 0, 0}, {3, 0, 0}, {3, 0, 0}, {6, 0, 0}};
+    const std::vector<double> cum = cumulative_lengths(pts);
+    struct Want {
+        double s;
+        size_t lo, hi;
+        double t;
+        size_t nearest;
+    };
+    const Want cases[] = {
+        {0.25, 0, 1, 0.25, 0},  // inside the first segment
+        {0.5, 0, 1, 0.5, 1},    // halfway: the later point
+        {1.0, 1, 2, 0.0, 1},    // on a point: the segment it starts
+        {2.5, 1, 2, 0.75, 2},
+        {3.0, 3, 4, 0.0, 3},    // on coincident points: the last of them
+        {4.5, 3, 4, 0.5, 4},
+        {6.0, 3, 4, 1.0, 4},    // the tip: the end of the last segment
+        {-1.0, 0, 1, 0.0, 0},   // clamped
+        {10.0, 3, 4, 1.0, 4},
+    };
+    for (const Want& w : cases) {
+        const ArcSpot a = locate_at_length(cum, w.s);
+        EXPECT_EQ(a.lo, w.lo) << w.s;
+        EXPECT_EQ(a.hi, w.hi) << w.s;
+        EXPECT_DOUBLE_EQ(a.t, w.t) << w.s;
+        EXPECT_EQ(a.nearest, w.nearest) << w.s;
+        // The same place as point_at_length.
+        EXPECT_FLOAT_EQ(point_at_length(pts, cum, w.s).x, float(std::clamp(w.s, 0.0, 6.0))) << w.s;
+    }
+    // One point: everything is that point.
+    const std::vector<double> one{0.0};
+    const ArcSpot a = locate_at_length(one, 0.5);
+    EXPECT_EQ(a.lo, 0u);
+    EXPECT_EQ(a.hi, 0u);
+    EXPECT_EQ(a.t, 0.0);
+    EXPECT_EQ(a.nearest, 0u);
 }

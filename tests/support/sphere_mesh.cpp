@@ -1,4 +1,4 @@
-#include "fields/sphere_mesh.h"
+#include "support/sphere_mesh.h"
 
 #include "kernel/error.h"
 

@@ -1,0 +1,191 @@
+// keep_outside against exact surfaces, where the rule has a closed form: a point inside the unit
+// sphere ends at radius + clearance (+ margin) along its own radial line, a clear point is not
+// touched, curves keep their roots, and a group lifts by exactly the missing distance off a plane.
+#include "fields/keep_outside.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace groom {
+namespace {
+
+bool same_bits(const float3& a, const float3& b) { return std::memcmp(&a, &b, sizeof(float3)) == 0; }
+
+/// Float rounding of a move on a unit-sized scene: a few ulps of 1.
+constexpr float kTol = 4e-7f;
+
+TEST(KeepOutside, PointInsideEndsAtRadiusPlusClearanceOnItsRadialLine)
+{
+    const AnalyticSphere sphere({1, 2, 3}, 1.0f);
+    const KeepOutside rule{0.25f};
+    for (const float3 dir : {float3(1, 0, 0), normalize(float3(1, -2, 0.5f)), normalize(float3(-0.3f, 0.1f, -1))}) {
+        // On the surface, inside, near the centre, and outside but within the clearance.
+        for (const float r : {1.0f, 0.8f, 0.1f, 1.1f}) {
+            float3 p = sphere.center() + dir * r;
+            ASSERT_TRUE(keep_outside(p, sphere, rule)) << r;
+            // Coordinates up to 4: a few of their ulps.
+            EXPECT_NEAR(distance(p, sphere.center()), 1.25f, 2e-6f) << r;
+            EXPECT_NEAR(dot(normalize(p - sphere.center()), dir), 1.0f, 2e-6f) << r;
+        }
+    }
+}
+
+TEST(KeepOutside, ClearPointsAreNotTouched)
+{
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    // 1.25 out (exactly clear), 3, 1.28.
+    for (const float3 q : {float3(1.25f, 0, 0), float3(0, 3, 0), float3(0.6f, 0.8f, 0.8f)}) {
+        float3 p = q;
+        EXPECT_FALSE(keep_outside(p, sphere, KeepOutside{0.25f}));
+        EXPECT_TRUE(same_bits(p, q));
+    }
+}
+
+TEST(KeepOutside, ExtraAndMarginAddToTheClearance)
+{
+    const AnalyticSphere sphere({0, 0, 0}, 2.0f);
+    float3 p(0, 1, 0);
+    ASSERT_TRUE(keep_outside(p, sphere, KeepOutside{0.5f, 0.01f}, 0.25f));
+    EXPECT_NEAR(p.y, 2.0f + 0.5f + 0.25f + 0.01f, kTol);
+    EXPECT_NEAR(p.x, 0.0f, kTol);
+}
+
+/// The exact sphere, except that its projection falls `shortfall` short of the surface: a field that
+/// disagrees with itself, as a level set does by its interpolation error.
+class ShallowSphere final : public Surface {
+public:
+    explicit ShallowSphere(float shortfall) : shortfall_(shortfall) {}
+    float distance(const float3& p) const override { return exact_.distance(p); }
+    float3 normal(const float3& p) const override { return exact_.normal(p); }
+    float3 closest_point(const float3& p) const override { return exact_.normal(p) * (1.0f - shortfall_); }
+
+private:
+    AnalyticSphere exact_{{0, 0, 0}, 1.0f};
+    float shortfall_;
+};
+
+TEST(KeepOutside, RetriesDoubleTheMarginUntilTheFieldAgrees)
+{
+    const ShallowSphere field(0.01f);
+    // Margins 0.004, 0.008, 0.016: the third move lands 0.016 - 0.01 = 0.006 out.
+    float3 p(0, 0.5f, 0);
+    keep_outside(p, field, KeepOutside{0.0f, 0.004f, 8});
+    EXPECT_NEAR(p.y, 1.006f, kTol);
+    // Two moves are not enough, and the rule stops where it was told to.
+    float3 q(0, 0.5f, 0);
+    keep_outside(q, field, KeepOutside{0.0f, 0.004f, 2});
+    EXPECT_NEAR(q.y, 0.998f, kTol);
+    // One move trusts the projection.
+    float3 r(0, 0.5f, 0);
+    keep_outside(r, field, KeepOutside{0.0f, 0.004f, 1});
+    EXPECT_NEAR(r.y, 0.994f, kTol);
+}
+
+TEST(KeepOutside, AnchorPullsBackAlongTheOffset)
+{
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    // The anchor is outside: the point comes back along the segment to the surface (24 halvings of
+    // the offset), keeping its direction from the anchor.
+    const float3 anchor(0, 1.5f, 0);
+    float3 p(0, 0.5f, 0.5f);
+    ASSERT_TRUE(keep_outside(p, sphere, KeepOutside{}, 0.0f, &anchor));
+    EXPECT_GE(sphere.distance(p), 0.0f);
+    EXPECT_LT(sphere.distance(p), 1e-6f);
+    const float3 along = normalize(p - anchor), want = normalize(float3(0, 0.5f, 0.5f) - anchor);
+    EXPECT_NEAR(dot(along, want), 1.0f, kTol);
+    // The anchor is inside too: the normal move applies.
+    const float3 buried(0, 0.2f, 0);
+    float3 q(0, 0.5f, 0);
+    ASSERT_TRUE(keep_outside(q, sphere, KeepOutside{0.1f}, 0.0f, &buried));
+    EXPECT_NEAR(q.y, 1.1f, kTol);
+}
+
+TEST(KeepOutside, SpanUsesHalfWidthsAndSkipsKnownClearPoints)
+{
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    std::vector<float3> pts = {{0.5f, 0, 0}, {0, 0.5f, 0}, {0, 0, 3}, {0, 0, -0.5f}};
+    const std::vector<float3> before = pts;
+    const std::vector<float> widths = {0.2f, 0.0f, 0.2f, 0.2f};
+    const std::vector<uint8_t> known = {0, 0, 0, 1};  // the caller vouches for the last one
+    EXPECT_EQ(keep_outside(pts, sphere, KeepOutside{0.05f}, widths, known), 2);
+    EXPECT_NEAR(pts[0].x, 1.15f, kTol);
+    EXPECT_NEAR(pts[1].y, 1.05f, kTol);
+    EXPECT_TRUE(same_bits(pts[2], before[2]));
+    EXPECT_TRUE(same_bits(pts[3], before[3]));
+}
+
+/// Counts distance queries, to see which points a form asks about.
+class CountingSphere final : public Surface {
+public:
+    float distance(const float3& p) const override
+    {
+        ++queries;
+        return exact.distance(p);
+    }
+    float3 normal(const float3& p) const override { return exact.normal(p); }
+    float3 closest_point(const float3& p) const override { return exact.closest_point(p); }
+    float query(const float3& p, float3& n, float3& c) const override  // the move's query, not counted
+    {
+        n = exact.normal(p);
+        c = exact.closest_point(p);
+        return exact.distance(p);
+    }
+    AnalyticSphere exact{{0, 0, 0}, 1.0f};
+    mutable std::atomic<int> queries{0};
+};
+
+TEST(KeepOutside, CurvesKeepRootsAndSkipPointsProvablyClear)
+{
+    CountingSphere sphere;
+    // Curve 0 starts inside (its root stays) and dives; curve 1 leaves radially, far out after its
+    // first point; curve 2 is a lone root.
+    const int64_t counts[3] = {4, 5, 1};
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions_for_write();
+    const float3 pts[10] = {{0.9f, 0, 0}, {0.8f, 0, 0}, {0.5f, 0, 0}, {2, 0, 0},
+                            {0, 1, 0},    {0, 2, 0},    {0, 2.1f, 0}, {0, 2.2f, 0}, {0, 2.3f, 0},
+                            {0, 0, 0.5f}};
+    std::copy(pts, pts + 10, P.begin());
+    const KeepOutsideCount moved = keep_outside(cs, sphere, KeepOutside{0.1f});
+    EXPECT_EQ(moved.points, 2);
+    EXPECT_EQ(moved.curves, 1);
+    const auto Q = cs.positions();
+    EXPECT_TRUE(same_bits(Q[0], pts[0]));  // a root inside stays inside
+    EXPECT_NEAR(Q[1].x, 1.1f, kTol);
+    EXPECT_NEAR(Q[2].x, 1.1f, kTol);
+    EXPECT_TRUE(same_bits(Q[3], pts[3]));
+    for (int k = 4; k < 10; ++k) EXPECT_TRUE(same_bits(Q[k], pts[k])) << k;
+    // Curve 0: its three points. Curve 1: (0,2,0) only, the rest are within 0.1 per step of it and
+    // 1 out. No root is asked about.
+    EXPECT_EQ(sphere.queries.load(), 3 + 1);
+}
+
+TEST(KeepOutside, GroupLiftsByTheMissingDistanceAndRestsWhenAsked)
+{
+    const AnalyticPlane floor({0, 0, 0}, {0, 1, 0});
+    const KeepOutside rule{0.1f, 0.001f, 32};
+    // The lowest point is 0.3 below the floor: the group must rise 0.3 + 0.1 + 0.05 (extra) + 0.001.
+    const std::vector<float3> group = {{0, -0.3f, 0}, {1, 0.2f, 0}, {2, 0.0f, 1}};
+    EXPECT_NEAR(lift_outside(group, {0, 1, 0}, floor, rule, 0.05f, false), 0.451, 1e-6);
+    // Floating 0.5 above: left alone, or lowered to rest at the clearance.
+    const std::vector<float3> high = {{0, 0.5f, 0}, {1, 0.7f, 0}};
+    EXPECT_EQ(lift_outside(high, {0, 1, 0}, floor, rule, 0.05f, false), 0.0);
+    EXPECT_NEAR(lift_outside(high, {0, 1, 0}, floor, rule, 0.05f, true), -(0.5 - 0.151), 1e-6);
+    // On a sphere the off-centre points rise by less than the lift; the fixed point still clears all.
+    const AnalyticSphere ball({0, 0, 0}, 1.0f);
+    const std::vector<float3> section = {{-0.3f, 0.9f, 0}, {0, 0.95f, 0}, {0.3f, 0.9f, 0}};
+    const double lift = lift_outside(section, {0, 1, 0}, ball, rule, 0.0f, false);
+    float lowest = 1e30f;
+    for (const float3& p : section) lowest = std::min(lowest, ball.distance(p + float3(0, float(lift), 0)));
+    // The iteration approaches from below and stops once a step is within the margin: the section
+    // keeps the clearance, short of the margin by less than the margin.
+    EXPECT_GE(lowest, 0.1f);
+    EXPECT_LE(lowest, 0.101f + 1e-6f);
+}
+
+}  // namespace
+}  // namespace groom

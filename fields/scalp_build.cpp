@@ -34,10 +34,10 @@ void detail::init_openvdb()
 void ScalpBuildParams::validate() const
 {
     if (!(voxel_size >= 0.0f) || !std::isfinite(voxel_size)) {
-        throw InvalidParam("scalp: --voxel must be > 0 (got " + format_number(voxel_size) + "); omit it for an automatic size");
+        throw InvalidParam("scalp: `voxel` must be > 0 (got " + format_number(voxel_size) + "); omit it for an automatic size");
     }
     if (!(band_voxels >= 1.0f && band_voxels <= 64.0f)) {
-        throw InvalidParam("scalp: --band must be in [1, 64] voxels (got " + format_number(band_voxels) + ")");
+        throw InvalidParam("scalp: `band` must be in [1, 64] voxels (got " + format_number(band_voxels) + ")");
     }
     if (memory_budget == 0) throw InvalidParam("scalp: memory budget must be > 0 bytes");
 }
@@ -137,7 +137,7 @@ double choose_voxel(std::span<const float3> points, std::span<const std::array<i
         const double suggest2 = std::max(suggest, diag / 1.0e6 * 1.1);
         throw LimitExceeded("scalp: voxel size " + format_number(h) + " needs about " + format_number(bytes / double(1ull << 30)) +
                             " GiB for the level set (" + format_number(voxels) + " voxels), over the " +
-                            format_number(double(params.memory_budget) / double(1ull << 30)) + " GiB budget; use --voxel " +
+                            format_number(double(params.memory_budget) / double(1ull << 30)) + " GiB budget; use `voxel` " +
                             format_number(suggest2) + " or larger (the mesh is " + format_number(diag) + " units across)");
     }
     return h;

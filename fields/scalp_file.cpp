@@ -160,7 +160,7 @@ std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const Scal
     }
     if (io::extension_of(path) == "vdb") return std::make_shared<ScalpField>(read_scalp_vdb(path, progress));
     if (!is_mesh_path(path)) {
-        throw InvalidParam("--scalp " + path + ": expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
+        throw InvalidParam("`scalp` " + path + ": expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
     }
     return std::make_shared<ScalpField>(build_scalp(read_mesh(path), params, nullptr, progress));
 }

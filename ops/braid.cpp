@@ -36,79 +36,79 @@ void require_finite_at_least(const char* option, float value, float lo)
 void BraidParams::validate() const
 {
     if (strands != 0 && strands < 2) {
-        throw InvalidParam("braid: --strands must be >= 2 (got " + std::to_string(strands) + ")");
+        throw InvalidParam("braid: `strands` must be >= 2 (got " + std::to_string(strands) + ")");
     }
-    if (strands > 4096) throw InvalidParam("braid: --strands must be <= 4096 (got " + std::to_string(strands) + ")");
+    if (strands > 4096) throw InvalidParam("braid: `strands` must be <= 4096 (got " + std::to_string(strands) + ")");
     validate_pattern_strands(pattern, strand_count());
     if (pattern == BraidPattern::Lissajous && hand != BraidHand::Auto) {
-        throw InvalidParam("braid: --hand does not apply to --pattern lissajous (the talk's formula fixes who is on top)");
+        throw InvalidParam("braid: `hand` does not apply to `pattern` lissajous (the talk's formula fixes who is on top)");
     }
     if (frequency && knot_length) {
-        throw InvalidParam("braid: --frequency and --knot-length are exclusive (got both: --frequency " + fmt(*frequency) +
-                           ", --knot-length " + fmt(*knot_length) + ")");
+        throw InvalidParam("braid: `frequency` and `knot_length` are exclusive (got both: `frequency` " + fmt(*frequency) +
+                           ", `knot_length` " + fmt(*knot_length) + ")");
     }
-    if (frequency) require_finite_at_least("--frequency", *frequency, 0.0f);
+    if (frequency) require_finite_at_least("`frequency`", *frequency, 0.0f);
     if (knot_length && !(std::isfinite(*knot_length) && *knot_length > 0.0f)) {
-        throw InvalidParam("braid: --knot-length must be a finite number > 0 (got " + fmt(*knot_length) + ")");
+        throw InvalidParam("braid: `knot_length` must be a finite number > 0 (got " + fmt(*knot_length) + ")");
     }
-    if (width) require_finite_at_least("--width", *width, 0.0f);
-    if (height) require_finite_at_least("--height", *height, 0.0f);
+    if (width) require_finite_at_least("`width`", *width, 0.0f);
+    if (height) require_finite_at_least("`height`", *height, 0.0f);
     if (samples != 0 && samples < 2) {
-        throw InvalidParam("braid: --samples must be >= 2, or 0 for automatic (got " + std::to_string(samples) + ")");
+        throw InvalidParam("braid: `samples` must be >= 2, or 0 for automatic (got " + std::to_string(samples) + ")");
     }
-    require_finite_at_least("--root-amplitude", root_amplitude, 0.0f);
-    require_finite_at_least("--tip-amplitude", tip_amplitude, 0.0f);
+    require_finite_at_least("`root_amplitude`", root_amplitude, 0.0f);
+    require_finite_at_least("`tip_amplitude`", tip_amplitude, 0.0f);
     for (size_t i = 0; i < taper.size(); ++i) {
         if (!std::isfinite(taper[i]) || taper[i] < 0.0f) {
-            throw InvalidParam("braid: --taper values must be finite and >= 0 (value " + std::to_string(i + 1) + " is " +
+            throw InvalidParam("braid: `taper` values must be finite and >= 0 (value " + std::to_string(i + 1) + " is " +
                                fmt(taper[i]) + ")");
         }
     }
     if (!std::isfinite(knot_bias) || knot_bias <= -1.0f || knot_bias >= 1.0f) {
-        throw InvalidParam("braid: --knot-bias must be in (-1, 1) (got " + fmt(knot_bias) + ")");
+        throw InvalidParam("braid: `knot_bias` must be in (-1, 1) (got " + fmt(knot_bias) + ")");
     }
     for (size_t i = 0; i < knot_density.size(); ++i) {
         if (!std::isfinite(knot_density[i]) || knot_density[i] <= 0.0f) {
-            throw InvalidParam("braid: --knot-density values must be finite and > 0 (value " + std::to_string(i + 1) +
+            throw InvalidParam("braid: `knot_density` values must be finite and > 0 (value " + std::to_string(i + 1) +
                                " is " + fmt(knot_density[i]) + ")");
         }
     }
-    if (!isfinite(initial_normal)) throw InvalidParam("braid: --initial-normal must be finite");
-    require_finite_at_least("--clearance", clearance, 0.0f);
-    require_finite_at_least("--strand-width", strand_width, 0.0f);
+    if (!isfinite(initial_normal)) throw InvalidParam("braid: `initial_normal` must be finite");
+    require_finite_at_least("`clearance`", clearance, 0.0f);
+    require_finite_at_least("`strand_width`", strand_width, 0.0f);
     if (fibers < 0 || fibers > PopulateParams::kMaxFibersPerCurve) {
-        throw InvalidParam("braid: --fibers must be in [0, " + std::to_string(PopulateParams::kMaxFibersPerCurve) + "] (got " +
+        throw InvalidParam("braid: `fibers` must be in [0, " + std::to_string(PopulateParams::kMaxFibersPerCurve) + "] (got " +
                            std::to_string(fibers) + ")");
     }
-    require_finite_at_least("--fiber-radius", fiber_radius, 0.0f);
-    require_finite_at_least("--fiber-width", fiber_width, 0.0f);
+    require_finite_at_least("`fiber_radius`", fiber_radius, 0.0f);
+    require_finite_at_least("`fiber_width`", fiber_width, 0.0f);
     if (!std::isfinite(fiber_twist) || std::fabs(fiber_twist) > 1000.0f) {
-        throw InvalidParam("braid: --fiber-twist must be a finite number of turns per knot in [-1000, 1000] (got " + fmt(fiber_twist) + ")");
+        throw InvalidParam("braid: `fiber_twist` must be a finite number of turns per knot in [-1000, 1000] (got " + fmt(fiber_twist) + ")");
     }
     if (!std::isfinite(flatten) || flatten < 0.0f || flatten > 0.9f) {
-        throw InvalidParam("braid: --flatten must be in [0, 0.9] (got " + fmt(flatten) + ")");
+        throw InvalidParam("braid: `flatten` must be in [0, 0.9] (got " + fmt(flatten) + ")");
     }
-    require_finite_at_least("--loose-length", loose_length, 0.0f);
-    require_finite_at_least("--flare", flare, 0.0f);
-    if (flare > 100.0f) throw InvalidParam("braid: --flare must be <= 100 (got " + fmt(flare) + ")");
+    require_finite_at_least("`loose_length`", loose_length, 0.0f);
+    require_finite_at_least("`flare`", flare, 0.0f);
+    if (flare > 100.0f) throw InvalidParam("braid: `flare` must be <= 100 (got " + fmt(flare) + ")");
     if (tie && !(std::isfinite(*tie) && *tie >= 0.0f && *tie <= 1.0f)) {
-        throw InvalidParam("braid: --tie must be an arc-length fraction in [0, 1] (got " + fmt(*tie) + ")");
+        throw InvalidParam("braid: `tie` must be an arc-length fraction in [0, 1] (got " + fmt(*tie) + ")");
     }
-    require_finite_at_least("--tie-width", tie_width, 0.0f);
+    require_finite_at_least("`tie_width`", tie_width, 0.0f);
     if (tie_turns < 1 || tie_turns > 64) {
-        throw InvalidParam("braid: --tie-turns must be in [1, 64] (got " + std::to_string(tie_turns) + ")");
+        throw InvalidParam("braid: `tie_turns` must be in [1, 64] (got " + std::to_string(tie_turns) + ")");
     }
     if (!std::isfinite(flyaways) || flyaways < 0.0f || flyaways > 1.0f) {
-        throw InvalidParam("braid: --flyaways must be a fraction in [0, 1] (got " + fmt(flyaways) + ")");
+        throw InvalidParam("braid: `flyaways` must be a fraction in [0, 1] (got " + fmt(flyaways) + ")");
     }
-    require_finite_at_least("--flyaway-height", flyaway_height, 0.0f);
+    require_finite_at_least("`flyaway_height`", flyaway_height, 0.0f);
     if (!std::isfinite(feed_in) || feed_in < 0.0f || feed_in >= 1.0f) {
-        throw InvalidParam("braid: --feed-in must be a fraction in [0, 1) (got " + fmt(feed_in) + ")");
+        throw InvalidParam("braid: `feed_in` must be a fraction in [0, 1) (got " + fmt(feed_in) + ")");
     }
-    require_finite_at_least("--feed-length", feed_length, 0.0f);
+    require_finite_at_least("`feed_length`", feed_length, 0.0f);
     if (fibers == 0 && (flyaways > 0.0f || feed_in > 0.0f)) {
-        throw InvalidParam(std::string("braid: ") + (flyaways > 0.0f ? "--flyaways" : "--feed-in") +
-                           " moves fibers; give --fibers M > 0");
+        throw InvalidParam(std::string("braid: ") + (flyaways > 0.0f ? "`flyaways`" : "`feed_in`") +
+                           " moves fibers; give `fibers` M > 0");
     }
 }
 
@@ -138,7 +138,7 @@ CurveSet allocate_strands(std::span<const GuidePlan> plans, std::span<const int6
         total_points += double(plans[g].samples) * N * double(std::max<int64_t>(M, 1));
         if (total_points > double(kMaxBraidPoints)) {
             throw LimitExceeded("braid: the output would have more than " + std::to_string(kMaxBraidPoints) +
-                                " points; lower --samples, --fibers, --strands or --frequency");
+                                " points; lower `samples`, `fibers`, `strands` or `frequency`");
         }
         // id = (guide id * N + strand) * M + fiber must not overflow, so ids stay unique.
         const int64_t id = guide_ids[g];
@@ -227,10 +227,10 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
 {
     params.validate();
     if (params.orient == BraidOrient::Scalp && !scalp) {
-        throw InvalidParam("braid: --orient scalp needs a scalp (give --scalp SCALP)");
+        throw InvalidParam("braid: `orient` scalp needs a scalp (give `scalp` SCALP)");
     }
     if (!scalp && (params.rest || params.clearance > 0.0f)) {
-        throw InvalidParam(std::string("braid: ") + (params.rest ? "--rest" : "--clearance") + " needs a scalp (give --scalp SCALP)");
+        throw InvalidParam(std::string("braid: ") + (params.rest ? "`rest`" : "`clearance`") + " needs a scalp (give `scalp` SCALP)");
     }
     const KnotRemap remap(params);
     const int N = params.strand_count();

@@ -104,7 +104,7 @@ std::vector<float> braid_knot_parameters(const BraidParams& params, double guide
     params.validate();
     const double F = braid_frequency(params, guide_length);
     if (F > 1e8) {
-        throw LimitExceeded("braid: " + format_number(F) + " knots on one guide is more than 1e8; raise --knot-length or lower --frequency");
+        throw LimitExceeded("braid: " + format_number(F) + " knots on one guide is more than 1e8; raise `knot_length` or lower `frequency`");
     }
     const KnotRemap remap(params);
     std::vector<float> t;

@@ -121,19 +121,19 @@ int default_strands(BraidPattern p)
 
 void validate_pattern_strands(BraidPattern p, int strands)
 {
-    const std::string got = " (got --strands " + std::to_string(strands) + ")";
+    const std::string got = " (got `strands` " + std::to_string(strands) + ")";
     switch (p) {
     case BraidPattern::Fishtail:
-        if (strands < 4 || strands % 2 != 0) throw InvalidParam("braid: --pattern fishtail needs an even --strands >= 4" + got);
+        if (strands < 4 || strands % 2 != 0) throw InvalidParam("braid: `pattern` fishtail needs an even `strands` >= 4" + got);
         break;
     case BraidPattern::Round:
-        if (strands < 4 || strands % 2 != 0) throw InvalidParam("braid: --pattern round needs an even --strands >= 4" + got);
+        if (strands < 4 || strands % 2 != 0) throw InvalidParam("braid: `pattern` round needs an even `strands` >= 4" + got);
         break;
     case BraidPattern::Twist:
-        if (strands != 2) throw InvalidParam("braid: --pattern twist has 2 strands; use --pattern rope for more" + got);
+        if (strands != 2) throw InvalidParam("braid: `pattern` twist has 2 strands; use `pattern` rope for more" + got);
         break;
     default:
-        if (strands < 2) throw InvalidParam("braid: --strands must be >= 2" + got);
+        if (strands < 2) throw InvalidParam("braid: `strands` must be >= 2" + got);
     }
 }
 

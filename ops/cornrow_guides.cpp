@@ -34,30 +34,30 @@ float3 on_scalp(const Surface& scalp, const float3& q, float offset)
 
 void CornrowGuidesParams::validate() const
 {
-    require(count >= 1 && count <= 256, "--count must be in [1, 256] (got " + std::to_string(count) + ")");
-    require(std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z), "--center must be finite");
-    require(std::isfinite(radius) && radius > 0.0f, "--radius must be > 0 (got " + fmt(radius) + ")");
+    require(count >= 1 && count <= 256, "`count` must be in [1, 256] (got " + std::to_string(count) + ")");
+    require(std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z), "`center` must be finite");
+    require(std::isfinite(radius) && radius > 0.0f, "`radius` must be > 0 (got " + fmt(radius) + ")");
     require(std::isfinite(pivot) && pivot >= 0.0f && pivot < radius,
-            "--pivot must be in [0, radius) = [0, " + fmt(radius) + ") (got " + fmt(pivot) + ")");
-    require(std::isfinite(spread) && spread >= 0.0f && spread < 90.0f, "--spread must be in [0, 90) degrees (got " + fmt(spread) + ")");
+            "`pivot` must be in [0, radius) = [0, " + fmt(radius) + ") (got " + fmt(pivot) + ")");
+    require(std::isfinite(spread) && spread >= 0.0f && spread < 90.0f, "`spread` must be in [0, 90) degrees (got " + fmt(spread) + ")");
     require(std::isfinite(front_angle) && front_angle > -90.0f && front_angle < 90.0f,
-            "--front-angle must be in (-90, 90) degrees (got " + fmt(front_angle) + ")");
+            "`front_angle` must be in (-90, 90) degrees (got " + fmt(front_angle) + ")");
     require(std::isfinite(hairline_curve) && hairline_curve >= 0.0f && hairline_curve < 90.0f,
-            "--hairline-curve must be in [0, 90) degrees (got " + fmt(hairline_curve) + ")");
+            "`hairline_curve` must be in [0, 90) degrees (got " + fmt(hairline_curve) + ")");
     require(std::isfinite(back_angle) && back_angle > -90.0f && back_angle < 90.0f,
-            "--back-angle must be in (-90, 90) degrees (got " + fmt(back_angle) + ")");
+            "`back_angle` must be in (-90, 90) degrees (got " + fmt(back_angle) + ")");
     // Every guide's plane contains the fan axis, so all rows meet where that axis pierces the sphere:
     // at elevation -asin(pivot / radius) in the middle row's plane (the tilted rows reach it at a
     // shallower angle). Rows ending below that point have crossed each other at the nape.
     const float meet = -std::asin(pivot / radius) / kDeg;
-    require(back_angle > meet, "--back-angle " + fmt(back_angle) + " runs past the point where all rows meet (" + fmt(meet) +
-                                   " degrees for --pivot " + fmt(pivot) + " and --radius " + fmt(radius) +
+    require(back_angle > meet, "`back_angle` " + fmt(back_angle) + " runs past the point where all rows meet (" + fmt(meet) +
+                                   " degrees for `pivot` " + fmt(pivot) + " and `radius` " + fmt(radius) +
                                    "), so rows would cross at the nape; use a back angle above " + fmt(meet) +
-                                   " or a larger --pivot");
-    require(samples >= 2 && samples <= 100000, "--samples must be in [2, 100000] (got " + std::to_string(samples) + ")");
-    require(std::isfinite(offset) && offset >= 0.0f, "--offset must be >= 0 (got " + fmt(offset) + ")");
-    require(std::isfinite(tail_length) && tail_length >= 0.0f, "--tail-length must be >= 0 (got " + fmt(tail_length) + ")");
-    require(tail_samples >= 2 && tail_samples <= 100000, "--tail-samples must be in [2, 100000] (got " + std::to_string(tail_samples) + ")");
+                                   " or a larger `pivot`");
+    require(samples >= 2 && samples <= 100000, "`samples` must be in [2, 100000] (got " + std::to_string(samples) + ")");
+    require(std::isfinite(offset) && offset >= 0.0f, "`offset` must be >= 0 (got " + fmt(offset) + ")");
+    require(std::isfinite(tail_length) && tail_length >= 0.0f, "`tail_length` must be >= 0 (got " + fmt(tail_length) + ")");
+    require(tail_samples >= 2 && tail_samples <= 100000, "`tail_samples` must be in [2, 100000] (got " + std::to_string(tail_samples) + ")");
 }
 
 CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params)

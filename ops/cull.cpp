@@ -13,7 +13,7 @@ namespace groom {
 void CullParams::validate() const
 {
     if (!(clearance >= 0.0f) || !std::isfinite(clearance)) {
-        throw InvalidParam("cull: --clearance must be a finite distance >= 0 (got " + std::to_string(clearance) + ")");
+        throw InvalidParam("cull: `clearance` must be a finite distance >= 0 (got " + std::to_string(clearance) + ")");
     }
 }
 

@@ -35,7 +35,7 @@ bool finite(const FloatRange& r) { return std::isfinite(r.lo) && std::isfinite(r
 const HairTypePreset& preset_of(const CurlParams& p)
 {
     const HairTypePreset* preset = find_hair_type(p.hair_type);
-    if (!preset) throw InvalidParam("curl: --type must be one of " + hair_type_list() + " (got '" + p.hair_type + "')");
+    if (!preset) throw InvalidParam("curl: `type` must be one of " + hair_type_list() + " (got '" + p.hair_type + "')");
     return *preset;
 }
 
@@ -315,49 +315,49 @@ void CurlParams::validate() const
 {
     preset_of(*this);
     if (!(uniformity >= 0.0f && uniformity <= 1.0f)) {
-        throw InvalidParam("curl: --uniformity must be in [0, 1] (got " + num(uniformity) + ")");
+        throw InvalidParam("curl: `uniformity` must be in [0, 1] (got " + num(uniformity) + ")");
     }
     if (dominant < -1 || dominant >= curl_shape_count()) {
-        throw InvalidParam("curl: --dominant must be one of " + curl_shape_list() + " (got " + std::to_string(dominant) + ")");
+        throw InvalidParam("curl: `dominant` must be one of " + curl_shape_list() + " (got " + std::to_string(dominant) + ")");
     }
     for (size_t i = 0; i < shapes.size(); ++i) {
         if (shapes[i] < 0 || shapes[i] >= curl_shape_count()) {
-            throw InvalidParam("curl: --shapes entries must be among " + curl_shape_list() + " (got " + std::to_string(shapes[i]) + ")");
+            throw InvalidParam("curl: `shapes` entries must be among " + curl_shape_list() + " (got " + std::to_string(shapes[i]) + ")");
         }
         for (size_t j = 0; j < i; ++j) {
             if (shapes[j] == shapes[i]) {
-                throw InvalidParam("curl: --shapes lists " + std::string(curl_shape_name(shapes[i])) + " twice");
+                throw InvalidParam("curl: `shapes` lists " + std::string(curl_shape_name(shapes[i])) + " twice");
             }
         }
     }
     const bool amp_default = amplitude.lo == 0.0f && amplitude.hi == 0.0f;
     if (!finite(amplitude) || (!amp_default && !(amplitude.lo >= 0.0f && amplitude.hi > 0.0f && amplitude.lo <= amplitude.hi))) {
-        throw InvalidParam("curl: --amplitude must be lo,hi with 0 <= lo <= hi and hi > 0, scene units (got " + range_text(amplitude) + ")");
+        throw InvalidParam("curl: `amplitude` must be lo,hi with 0 <= lo <= hi and hi > 0, scene units (got " + range_text(amplitude) + ")");
     }
     const bool freq_default = frequency.lo == 0.0f && frequency.hi == 0.0f;
     if (!finite(frequency) || (!freq_default && !(frequency.lo > 0.0f && frequency.lo <= frequency.hi))) {
-        throw InvalidParam("curl: --frequency must be lo,hi with 0 < lo <= hi, cycles per scene unit (got " + range_text(frequency) + ")");
+        throw InvalidParam("curl: `frequency` must be lo,hi with 0 < lo <= hi, cycles per scene unit (got " + range_text(frequency) + ")");
     }
     if (!finite(phase) || !(phase.lo <= phase.hi)) {
-        throw InvalidParam("curl: --phase must be lo,hi with lo <= hi, turns (got " + range_text(phase) + ")");
+        throw InvalidParam("curl: `phase` must be lo,hi with lo <= hi, turns (got " + range_text(phase) + ")");
     }
     if (!finite(offset) || !(offset.lo >= 0.0f && offset.lo <= offset.hi)) {
-        throw InvalidParam("curl: --offset must be lo,hi with 0 <= lo <= hi, scene units (got " + range_text(offset) + ")");
+        throw InvalidParam("curl: `offset` must be lo,hi with 0 <= lo <= hi, scene units (got " + range_text(offset) + ")");
     }
     if (!(units_per_cm > 0.0f) || !std::isfinite(units_per_cm)) {
-        throw InvalidParam("curl: --units-per-cm must be > 0 (got " + num(units_per_cm) + ")");
+        throw InvalidParam("curl: `units_per_cm` must be > 0 (got " + num(units_per_cm) + ")");
     }
     if (!(root_ease >= 0.0f) || !std::isfinite(root_ease)) {
-        throw InvalidParam("curl: --root-ease must be >= 0, scene units (got " + num(root_ease) + ")");
+        throw InvalidParam("curl: `root_ease` must be >= 0, scene units (got " + num(root_ease) + ")");
     }
     if (!(root_ramp >= 0.0f) || !std::isfinite(root_ramp)) {
-        throw InvalidParam("curl: --root-ramp must be >= 0, cycles (got " + num(root_ramp) + ")");
+        throw InvalidParam("curl: `root_ramp` must be >= 0, cycles (got " + num(root_ramp) + ")");
     }
     if (samples < 4 || samples > 256) {
-        throw InvalidParam("curl: --samples must be in 4..256 points per cycle (got " + std::to_string(samples) + ")");
+        throw InvalidParam("curl: `samples` must be in 4..256 points per cycle (got " + std::to_string(samples) + ")");
     }
     if (!(blend >= 0.0f && blend < 0.5f)) {
-        throw InvalidParam("curl: --blend must be in [0, 0.5) cycles (got " + num(blend) + ")");
+        throw InvalidParam("curl: `blend` must be in [0, 0.5) cycles (got " + num(blend) + ")");
     }
     shape.validate();
     curl_shape_tiers(*this);  // the dominant must be allowed, and U < 1 needs another shape
@@ -374,9 +374,9 @@ CurlShapeTiers curl_shape_tiers(const CurlParams& p)
     }
     auto is_allowed = [&](int s) { return std::find(allowed.begin(), allowed.end(), s) != allowed.end(); };
     if (!is_allowed(t.dominant)) {
-        throw InvalidParam("curl: --dominant " + std::string(curl_shape_name(t.dominant)) +
+        throw InvalidParam("curl: `dominant` " + std::string(curl_shape_name(t.dominant)) +
                            (p.dominant < 0 ? " (the default of type " + p.hair_type + ")" : std::string()) +
-                           " is not among the allowed --shapes");
+                           " is not among the allowed `shapes`");
     }
     for (int s : preset.secondary) {
         if (s != t.dominant && is_allowed(s)) t.secondary.push_back(s);
@@ -385,9 +385,9 @@ CurlShapeTiers curl_shape_tiers(const CurlParams& p)
         if (s != t.dominant && std::find(t.secondary.begin(), t.secondary.end(), s) == t.secondary.end()) t.rest.push_back(s);
     }
     if (p.uniformity < 1.0f && t.secondary.empty() && t.rest.empty()) {
-        throw InvalidParam("curl: --uniformity " + num(p.uniformity) + " leaves " + num(1.0 - p.uniformity) +
-                           " of the cycles to other shapes, but --shapes allows only " + std::string(curl_shape_name(t.dominant)) +
-                           " (use --uniformity 1 or allow more shapes)");
+        throw InvalidParam("curl: `uniformity` " + num(p.uniformity) + " leaves " + num(1.0 - p.uniformity) +
+                           " of the cycles to other shapes, but `shapes` allows only " + std::string(curl_shape_name(t.dominant)) +
+                           " (use `uniformity` 1 or allow more shapes)");
     }
     const double u = p.uniformity, rest = 1.0 - u;
     const double share_b = t.secondary.empty() ? 0.0 : (t.rest.empty() ? rest : rest * kCurlTierBShare);
@@ -443,7 +443,7 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     for (const CurveSetup& s : setup) total += s.points;
     if (total >= kMaxPoints) {
         throw LimitExceeded("curl: the output would have " + std::to_string(total) + " points (limit " + std::to_string(kMaxPoints) +
-                            "); lower --samples or --frequency");
+                            "); lower `samples` or `frequency`");
     }
 
     std::vector<int64_t> counts(nc);

@@ -107,30 +107,30 @@ PreparedGuides prepare(const CurveSet& guides, const Surface& scalp, int points_
 
 void GenerateParams::validate() const
 {
-    if (count < 1) throw InvalidParam("generate: --count must be >= 1 (got " + std::to_string(count) + ")");
+    if (count < 1) throw InvalidParam("generate: `count` must be >= 1 (got " + std::to_string(count) + ")");
     if (neighbours < 1) {
-        throw InvalidParam("generate: --neighbours must be >= 1 (got " + std::to_string(neighbours) + ")");
+        throw InvalidParam("generate: `neighbours` must be >= 1 (got " + std::to_string(neighbours) + ")");
     }
     if (!(power > 0.0f) || !std::isfinite(power)) {
-        throw InvalidParam("generate: --power must be a finite number > 0 (got " + str(power) + ")");
+        throw InvalidParam("generate: `power` must be a finite number > 0 (got " + str(power) + ")");
     }
     if (points != 0 && points < 2) {
-        throw InvalidParam("generate: --points must be >= 2, or 0 for the guides' own count (got " +
+        throw InvalidParam("generate: `points` must be >= 2, or 0 for the guides' own count (got " +
                            std::to_string(points) + ")");
     }
     if (!(region_radius >= 0.0f) || !std::isfinite(region_radius) || !isfinite(region_center)) {
-        throw InvalidParam("generate: --region radius must be finite and > 0 (got " + str(region_radius) + ")");
+        throw InvalidParam("generate: `region` radius must be finite and > 0 (got " + str(region_radius) + ")");
     }
     if (!(footprint_scale > 0.0f) || !std::isfinite(footprint_scale)) {
-        throw InvalidParam("generate: --footprint-scale must be a finite number > 0 (got " + str(footprint_scale) + ")");
+        throw InvalidParam("generate: `footprint_scale` must be a finite number > 0 (got " + str(footprint_scale) + ")");
     }
     if (!(max_angle > 0.0f && max_angle <= 180.0f)) {
-        throw InvalidParam("generate: --max-angle must be in (0, 180] degrees (got " + str(max_angle) + ")");
+        throw InvalidParam("generate: `max_angle` must be in (0, 180] degrees (got " + str(max_angle) + ")");
     }
     if (!(clearance >= 0.0f) || !std::isfinite(clearance)) {
-        throw InvalidParam("generate: --clearance must be finite and >= 0 (got " + str(clearance) + ")");
+        throw InvalidParam("generate: `clearance` must be finite and >= 0 (got " + str(clearance) + ")");
     }
-    if (first_id < 0) throw InvalidParam("generate: --first-id must be >= 0 (got " + std::to_string(first_id) + ")");
+    if (first_id < 0) throw InvalidParam("generate: `first_id` must be >= 0 (got " + std::to_string(first_id) + ")");
 }
 
 std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& scalp, const RootSampler& sample,
@@ -151,7 +151,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
     const bool use_footprint = !(params.region_radius > 0.0f);
     if (use_footprint) {
         if (roots.size() < 2) {
-            throw InvalidParam("generate: one guide has no footprint; give --region X,Y,Z,R for where roots go");
+            throw InvalidParam("generate: one guide has no footprint; give `region` X,Y,Z,R for where roots go");
         }
         std::vector<PointIndex::Neighbour> hits;
         Bounds3 box;
@@ -161,7 +161,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
             footprint = std::max(footprint, hits.back().distance);
         }
         footprint *= params.footprint_scale;
-        if (!(footprint > 0.0)) throw InvalidParam("generate: every guide root is at the same point; give --region");
+        if (!(footprint > 0.0)) throw InvalidParam("generate: every guide root is at the same point; give `region`");
         center = box.center();
         radius = 0.5f * length(box.size()) + float(footprint);
     }
@@ -182,8 +182,8 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
         if (batch == 64) {
             throw LimitExceeded("generate: found only " + std::to_string(out.size()) + " of " +
                                 std::to_string(params.count) + " roots on the scalp inside the " +
-                                (use_footprint ? std::string("guides' footprint") : std::string("--region ball")) +
-                                " after 64 rounds of sampling; is the region on the scalp, facing the way the guides' roots do (--max-angle)?");
+                                (use_footprint ? std::string("guides' footprint") : std::string("`region` ball")) +
+                                " after 64 rounds of sampling; is the region on the scalp, facing the way the guides' roots do (`max_angle`)?");
         }
         const int64_t want = params.count - int64_t(out.size());
         const int64_t ask = std::min<int64_t>(int64_t(std::ceil(double(want) * 1.1 / std::max(rate, 0.02))) + 16,

@@ -47,10 +47,10 @@ constexpr float kMaxRadius = 30.0f;  // beyond the neck's base corners (~22 cm a
 void HeadParams::validate() const
 {
     if (resolution < 8 || resolution > 1024) {
-        throw InvalidParam("head: --resolution must be in [8, 1024] (got " + std::to_string(resolution) + ")");
+        throw InvalidParam("head: `resolution` must be in [8, 1024] (got " + std::to_string(resolution) + ")");
     }
     if (!std::isfinite(scale) || scale <= 0.0f) {
-        throw InvalidParam("head: --scale must be a finite number > 0 (got " + std::to_string(scale) + ")");
+        throw InvalidParam("head: `scale` must be a finite number > 0 (got " + std::to_string(scale) + ")");
     }
 }
 

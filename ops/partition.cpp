@@ -37,35 +37,35 @@ constexpr uint64_t kJitterStream = 0x9a27;  // Rng stream for station jitter (pe
 void PartitionParams::validate() const
 {
     require(std::isfinite(mediate) && mediate >= 0.0f && mediate <= 1.0f,
-            "--mediate must be in [0, 1] (got " + num(mediate) + ")");
-    require(!(count != 0 && spacing != 0.0f), "--count and --spacing are exclusive (got both)");
-    if (spacing == 0.0f) require(count >= 1, "--count must be >= 1 (got " + std::to_string(count) + ")");
-    else require(std::isfinite(spacing) && spacing > 0.0f, "--spacing must be > 0 scene units (got " + num(spacing) + ")");
-    require(samples >= 2, "--samples must be >= 2 (got " + std::to_string(samples) + ")");
-    require(std::isfinite(width) && width > 0.0f, "--width must be > 0 scene units (got " + num(width) + ")");
-    require(std::isfinite(jitter) && jitter >= 0.0f && jitter <= 1.0f, "--jitter must be in [0, 1] (got " + num(jitter) + ")");
-    require(std::isfinite(max_gap) && max_gap >= 0.0f, "--max-gap must be >= 0 scene units, 0 = automatic (got " + num(max_gap) + ")");
+            "`mediate` must be in [0, 1] (got " + num(mediate) + ")");
+    require(!(count != 0 && spacing != 0.0f), "`count` and `spacing` are exclusive (got both)");
+    if (spacing == 0.0f) require(count >= 1, "`count` must be >= 1 (got " + std::to_string(count) + ")");
+    else require(std::isfinite(spacing) && spacing > 0.0f, "`spacing` must be > 0 scene units (got " + num(spacing) + ")");
+    require(samples >= 2, "`samples` must be >= 2 (got " + std::to_string(samples) + ")");
+    require(std::isfinite(width) && width > 0.0f, "`width` must be > 0 scene units (got " + num(width) + ")");
+    require(std::isfinite(jitter) && jitter >= 0.0f && jitter <= 1.0f, "`jitter` must be in [0, 1] (got " + num(jitter) + ")");
+    require(std::isfinite(max_gap) && max_gap >= 0.0f, "`max_gap` must be >= 0 scene units, 0 = automatic (got " + num(max_gap) + ")");
     require(std::isfinite(max_height) && max_height >= 0.0f,
-            "--max-height must be >= 0 scene units, 0 = no limit (got " + num(max_height) + ")");
+            "`max_height` must be >= 0 scene units, 0 = no limit (got " + num(max_height) + ")");
     if (centroids == CentroidMode::Every) {
-        require(every >= 1, "--centroids every:K needs K >= 1 (got " + std::to_string(every) + ")");
+        require(every >= 1, "`centroids` every:K needs K >= 1 (got " + std::to_string(every) + ")");
     }
     if (centroids == CentroidMode::Knots) {
-        require(!(knots.frequency && knots.knot_length), "--frequency and --knot-length are exclusive (got both)");
+        require(!(knots.frequency && knots.knot_length), "`frequency` and `knot_length` are exclusive (got both)");
         if (knots.frequency) {
             require(std::isfinite(*knots.frequency) && *knots.frequency >= 0.0f,
-                    "--frequency must be >= 0 knots per guide (got " + num(*knots.frequency) + ")");
+                    "`frequency` must be >= 0 knots per guide (got " + num(*knots.frequency) + ")");
         }
         if (knots.knot_length) {
             require(std::isfinite(*knots.knot_length) && *knots.knot_length > 0.0f,
-                    "--knot-length must be > 0 scene units (got " + num(*knots.knot_length) + ")");
+                    "`knot_length` must be > 0 scene units (got " + num(*knots.knot_length) + ")");
         }
         knots.validate();  // the remap options, worded as groom braid words them
     }
     if (centroids == CentroidMode::Points) {
         for (const CentroidPoint& c : centroid_points) {
             require(std::isfinite(c.u) && c.u >= 0.0f && c.u <= 1.0f,
-                    "--centroids: arc-length fraction must be in [0, 1] (got " + num(c.u) + " for guide " + std::to_string(c.guide) + ")");
+                    "`centroids`: arc-length fraction must be in [0, 1] (got " + num(c.u) + " for guide " + std::to_string(c.guide) + ")");
         }
     }
 }
@@ -87,14 +87,14 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
         for (size_t c = 0; c < nc; ++c) adjacent[c].source = int32_t(c);
         for (const AdjacentGuides& a : params.adjacent) {
             auto in_range = [&](int32_t g) { return g >= 0 && size_t(g) < nc; };
-            require(in_range(a.source), "--adjacent: source guide " + std::to_string(a.source) + " out of range " + guide_range);
-            require(a.left == -1 || in_range(a.left), "--adjacent: left guide " + std::to_string(a.left) + " of source " +
+            require(in_range(a.source), "`adjacent`: source guide " + std::to_string(a.source) + " out of range " + guide_range);
+            require(a.left == -1 || in_range(a.left), "`adjacent`: left guide " + std::to_string(a.left) + " of source " +
                                                           std::to_string(a.source) + " out of range " + guide_range + " or -1");
-            require(a.right == -1 || in_range(a.right), "--adjacent: right guide " + std::to_string(a.right) + " of source " +
+            require(a.right == -1 || in_range(a.right), "`adjacent`: right guide " + std::to_string(a.right) + " of source " +
                                                             std::to_string(a.source) + " out of range " + guide_range + " or -1");
             require(a.left != a.source && a.right != a.source,
-                    "--adjacent: guide " + std::to_string(a.source) + " cannot be its own neighbour");
-            require(!listed[a.source], "--adjacent: source guide " + std::to_string(a.source) + " is listed twice");
+                    "`adjacent`: guide " + std::to_string(a.source) + " cannot be its own neighbour");
+            require(!listed[a.source], "`adjacent`: source guide " + std::to_string(a.source) + " is listed twice");
             listed[a.source] = true;
             adjacent[a.source] = a;
         }
@@ -104,7 +104,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     std::vector<std::vector<float>> centroid_u(nc);
     if (params.centroids == CentroidMode::Points) {
         for (const CentroidPoint& c : params.centroid_points) {
-            require(c.guide >= 0 && size_t(c.guide) < nc, "--centroids: guide " + std::to_string(c.guide) + " out of range " + guide_range);
+            require(c.guide >= 0 && size_t(c.guide) < nc, "`centroids`: guide " + std::to_string(c.guide) + " out of range " + guide_range);
             centroid_u[c.guide].push_back(c.u);
         }
         for (auto& u : centroid_u) std::sort(u.begin(), u.end());
@@ -140,7 +140,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     if (planned * params.samples > kMaxOutputPoints) {
         throw LimitExceeded("partition: the options ask for " + num(float(planned)) + " segments of " + std::to_string(params.samples) +
                             " points, more than " + num(float(kMaxOutputPoints)) +
-                            " points in all; raise --spacing or lower --count / --samples");
+                            " points in all; raise `spacing` or lower `count` / `samples`");
     }
 
     const std::vector<int64_t> ids = guides.curve_ids();

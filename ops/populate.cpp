@@ -22,14 +22,14 @@ std::string fmt(float v) { return format_number(v); }
 void PopulateParams::validate() const
 {
     if (count < 1 || count > kMaxFibersPerCurve) {
-        throw InvalidParam("populate: --count must be in [1, " + std::to_string(kMaxFibersPerCurve) + "] (got " +
+        throw InvalidParam("populate: `count` must be in [1, " + std::to_string(kMaxFibersPerCurve) + "] (got " +
                            std::to_string(count) + ")");
     }
     if (!std::isfinite(radius) || radius < 0.0f) {
-        throw InvalidParam("populate: --radius must be a finite number >= 0 (got " + fmt(radius) + ")");
+        throw InvalidParam("populate: `radius` must be a finite number >= 0 (got " + fmt(radius) + ")");
     }
     if (!std::isfinite(width) || width < 0.0f) {
-        throw InvalidParam("populate: --width must be a finite number >= 0 (got " + fmt(width) + ")");
+        throw InvalidParam("populate: `width` must be a finite number >= 0 (got " + fmt(width) + ")");
     }
 }
 
@@ -42,8 +42,8 @@ CurveSet populate(const CurveSet& src, const PopulateParams& params, Progress* p
 
     const auto src_width = src.find<float>(Domain::Point, attr::width);
     if (params.radius == 0.0f && src_width.empty() && src.num_points() > 0) {
-        throw InvalidParam("populate: --radius 0 takes the radius from point attribute 'width', which the input lacks "
-                           "(give --radius r > 0)");
+        throw InvalidParam("populate: `radius` 0 takes the radius from point attribute 'width', which the input lacks "
+                           "(give `radius` r > 0)");
     }
     std::span<const float> scale;
     if (!params.radius_scale.empty()) {
@@ -57,7 +57,7 @@ CurveSet populate(const CurveSet& src, const PopulateParams& params, Progress* p
     if (double(src.num_points()) * double(M) > double(kMaxPopulatePoints)) {
         throw LimitExceeded("populate: " + std::to_string(src.num_points()) + " points x " + std::to_string(M) +
                             " fibers would make more than " + std::to_string(kMaxPopulatePoints) +
-                            " points; lower --count or resample the curves");
+                            " points; lower `count` or resample the curves");
     }
     const std::vector<int64_t> ids = src.curve_ids();
     for (const int64_t id : ids) {

@@ -10,7 +10,7 @@ namespace groom {
 
 void ProjectParams::validate() const
 {
-    if (!std::isfinite(offset)) throw InvalidParam("project: --offset must be a finite distance (got " + std::to_string(offset) + ")");
+    if (!std::isfinite(offset)) throw InvalidParam("project: `offset` must be a finite distance (got " + std::to_string(offset) + ")");
 }
 
 CurveSet project(const CurveSet& src, const Surface& scalp, const ProjectParams& params, ProjectStats* stats)

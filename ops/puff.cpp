@@ -102,30 +102,30 @@ double segment_distance_sq(const float3& p1f, const float3& q1f, const float3& p
 void PuffParams::validate() const
 {
     if (!(radius > 0.0f) || !std::isfinite(radius)) {
-        throw InvalidParam("puff: --radius must be a finite number > 0 (got " + str(radius) + ")");
+        throw InvalidParam("puff: `radius` must be a finite number > 0 (got " + str(radius) + ")");
     }
     if (!(sphere_radius > 0.0f) || !std::isfinite(sphere_radius)) {
-        throw InvalidParam("puff: --sphere-radius must be a finite number > 0 (got " + str(sphere_radius) + ")");
+        throw InvalidParam("puff: `sphere_radius` must be a finite number > 0 (got " + str(sphere_radius) + ")");
     }
-    if (!isfinite(center)) throw InvalidParam("puff: --center must be finite (got " + str(center) + ")");
+    if (!isfinite(center)) throw InvalidParam("puff: `center` must be finite (got " + str(center) + ")");
     if (!isfinite(sphere_center)) {
-        throw InvalidParam("puff: --sphere-center must be finite (got " + str(sphere_center) + ")");
+        throw InvalidParam("puff: `sphere_center` must be finite (got " + str(sphere_center) + ")");
     }
-    if (rows < 1 || rows > 256) throw InvalidParam("puff: --rows must be in 1..256 (got " + std::to_string(rows) + ")");
-    if (cols < 1 || cols > 256) throw InvalidParam("puff: --cols must be in 1..256 (got " + std::to_string(cols) + ")");
+    if (rows < 1 || rows > 256) throw InvalidParam("puff: `rows` must be in 1..256 (got " + std::to_string(rows) + ")");
+    if (cols < 1 || cols > 256) throw InvalidParam("puff: `cols` must be in 1..256 (got " + std::to_string(cols) + ")");
     if (!(cap_angle > 0.0f && cap_angle < 180.0f)) {
-        throw InvalidParam("puff: --cap-angle must be in (0, 180) degrees (got " + str(cap_angle) + ")");
+        throw InvalidParam("puff: `cap_angle` must be in (0, 180) degrees (got " + str(cap_angle) + ")");
     }
     if (guide_points < 4) {
-        throw InvalidParam("puff: --guide-points must be >= 4 (got " + std::to_string(guide_points) + ")");
+        throw InvalidParam("puff: `guide_points` must be >= 4 (got " + std::to_string(guide_points) + ")");
     }
-    if (!(bend > 0.0f && bend <= 1.0f)) throw InvalidParam("puff: --bend must be in (0, 1] (got " + str(bend) + ")");
-    if (first_id < 0) throw InvalidParam("puff: --first-id must be >= 0 (got " + std::to_string(first_id) + ")");
-    if (hairs < 0) throw InvalidParam("puff: --hairs must be >= 0 (got " + std::to_string(hairs) + ")");
-    if (hair_points < 4) throw InvalidParam("puff: --hair-points must be >= 4 (got " + std::to_string(hair_points) + ")");
-    if (neighbours < 1) throw InvalidParam("puff: --neighbours must be >= 1 (got " + std::to_string(neighbours) + ")");
+    if (!(bend > 0.0f && bend <= 1.0f)) throw InvalidParam("puff: `bend` must be in (0, 1] (got " + str(bend) + ")");
+    if (first_id < 0) throw InvalidParam("puff: `first_id` must be >= 0 (got " + std::to_string(first_id) + ")");
+    if (hairs < 0) throw InvalidParam("puff: `hairs` must be >= 0 (got " + std::to_string(hairs) + ")");
+    if (hair_points < 4) throw InvalidParam("puff: `hair_points` must be >= 4 (got " + std::to_string(hair_points) + ")");
+    if (neighbours < 1) throw InvalidParam("puff: `neighbours` must be >= 1 (got " + std::to_string(neighbours) + ")");
     if (!(power > 0.0f) || !std::isfinite(power)) {
-        throw InvalidParam("puff: --power must be a finite number > 0 (got " + str(power) + ")");
+        throw InvalidParam("puff: `power` must be a finite number > 0 (got " + str(power) + ")");
     }
     if (hairs > 0) curl.validate();
 }
@@ -153,7 +153,7 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     const float3 n0 = scalp.normal(c0);
     const float3 u = any_perpendicular(n0), v = cross(n0, u);
     if (!(dot(params.sphere_center - c0, n0) > 0.0f)) {
-        throw InvalidParam("puff: --sphere-center " + str(params.sphere_center) + " must lie above the region, on the outer side of the scalp at " +
+        throw InvalidParam("puff: `sphere_center` " + str(params.sphere_center) + " must lie above the region, on the outer side of the scalp at " +
                            str(c0) + " (normal " + str(n0) + ")");
     }
     const float3 axis = normalize(params.sphere_center - c0, n0);
@@ -184,8 +184,8 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
         }
         if (fits) break;
         if (attempt == 30) {
-            throw InvalidGeometry("puff: the scalp within --radius " + str(params.radius) + " of " + str(c0) +
-                                  " (the point of the scalp nearest --center) is too folded to root a grid of guides");
+            throw InvalidGeometry("puff: the scalp within `radius` " + str(params.radius) + " of " + str(c0) +
+                                  " (the point of the scalp nearest `center`) is too folded to root a grid of guides");
         }
         shrink *= 0.9;
     }
@@ -205,8 +205,8 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
             const float3 d = normalize(axis * float(cos_t) + (ut * float(ax) + vt * float(ay)) * float(sin_t));
             const float3 tip = params.sphere_center + d * params.sphere_radius;
             if (scalp.distance(tip) < 0.0f) {
-                throw InvalidParam("puff: guide tip " + str(tip) + " on the sphere lies inside the scalp; lower --cap-angle (got " +
-                                   str(params.cap_angle) + ") or move --sphere-center away from the head");
+                throw InvalidParam("puff: guide tip " + str(tip) + " on the sphere lies inside the scalp; lower `cap_angle` (got " +
+                                   str(params.cap_angle) + ") or move `sphere_center` away from the head");
             }
             const float3 root = roots[g];
             const float3 nr = scalp.normal(root);
@@ -234,8 +234,8 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     const double sep = min_curve_separation(dst);
     if (ng > 1 && !(sep > 1e-5 * params.sphere_radius)) {
         throw InvalidGeometry("puff: two guides touch (closest " + std::to_string(sep) +
-                              " apart); the region and the sphere cap fold onto each other: lower --cap-angle or "
-                              "--bend, or move --sphere-center over the region");
+                              " apart); the region and the sphere cap fold onto each other: lower `cap_angle` or "
+                              "`bend`, or move `sphere_center` over the region");
     }
     return dst;
 }

@@ -290,35 +290,35 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
 void RenderParams::validate() const
 {
     if (width < 1 || height < 1) {
-        throw InvalidParam("render: --size must be at least 1x1 pixels (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
+        throw InvalidParam("render: `size` must be at least 1x1 pixels (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
     }
     if (width > kMaxSide || height > kMaxSide) {
-        throw InvalidParam("render: --size must be at most " + std::to_string(kMaxSide) + " pixels per side (got " +
+        throw InvalidParam("render: `size` must be at most " + std::to_string(kMaxSide) + " pixels per side (got " +
                            std::to_string(width) + "x" + std::to_string(height) + ")");
     }
     if (supersample < 1 || supersample > 4) {
-        throw InvalidParam("render: --supersample must be in [1, 4] (got " + std::to_string(supersample) + ")");
+        throw InvalidParam("render: `supersample` must be in [1, 4] (got " + std::to_string(supersample) + ")");
     }
     const int64_t samples = int64_t(width) * height * supersample * supersample;
     if (samples > kMaxSamples) {
-        throw InvalidParam("render: --size " + std::to_string(width) + "x" + std::to_string(height) + " with --supersample " +
+        throw InvalidParam("render: `size` " + std::to_string(width) + "x" + std::to_string(height) + " with `supersample` " +
                            std::to_string(supersample) + " needs " + std::to_string(samples) + " samples, more than the " +
-                           std::to_string(kMaxSamples) + " allowed; lower --size or --supersample");
+                           std::to_string(kMaxSamples) + " allowed; lower `size` or `supersample`");
     }
-    check_color("--color", color);
-    check_color("--scalp-color", scalp_color);
-    check_color("--background", background);
+    check_color("`color`", color);
+    check_color("`scalp_color`", scalp_color);
+    check_color("`background`", background);
     if (!std::isfinite(width_scale) || width_scale <= 0.0f) {
-        throw InvalidParam("render: --width-scale must be > 0 (got " + fmt(width_scale) + ")");
+        throw InvalidParam("render: `width_scale` must be > 0 (got " + fmt(width_scale) + ")");
     }
     if (!std::isfinite(min_width_px) || min_width_px < 0.25f || min_width_px > 64.0f) {
-        throw InvalidParam("render: --min-width must be in [0.25, 64] pixels (got " + fmt(min_width_px) + ")");
+        throw InvalidParam("render: `min_width` must be in [0.25, 64] pixels (got " + fmt(min_width_px) + ")");
     }
     if (!std::isfinite(default_width_px) || default_width_px <= 0.0f || default_width_px > 256.0f) {
-        throw InvalidParam("render: --line-width must be in (0, 256] pixels (got " + fmt(default_width_px) + ")");
+        throw InvalidParam("render: `line_width` must be in (0, 256] pixels (got " + fmt(default_width_px) + ")");
     }
     if (!std::isfinite(margin) || margin < 0.0f || margin > 0.45f) {
-        throw InvalidParam("render: --margin must be in [0, 0.45] (got " + fmt(margin) + ")");
+        throw InvalidParam("render: `margin` must be in [0, 0.45] (got " + fmt(margin) + ")");
     }
 }
 

@@ -48,17 +48,17 @@ std::string_view view_name(View view)
 void Camera::validate() const
 {
     if (!finite3(eye) || !finite3(target) || !finite3(up)) {
-        throw InvalidParam("render: --camera values must be finite (got eye " + fmt(eye.x) + "," + fmt(eye.y) + "," + fmt(eye.z) +
+        throw InvalidParam("render: `camera` values must be finite (got eye " + fmt(eye.x) + "," + fmt(eye.y) + "," + fmt(eye.z) +
                            ", target " + fmt(target.x) + "," + fmt(target.y) + "," + fmt(target.z) + ")");
     }
     const float size = std::max({1.0f, length(eye), length(target)});
     if (distance(eye, target) <= 1e-6f * size) {
-        throw InvalidParam("render: --camera eye and target must differ (both are " + fmt(eye.x) + "," + fmt(eye.y) + "," +
+        throw InvalidParam("render: `camera` eye and target must differ (both are " + fmt(eye.x) + "," + fmt(eye.y) + "," +
                            fmt(eye.z) + ")");
     }
     if (length(up) == 0.0f) throw InvalidParam("render: camera up vector must not be zero");
     if (!std::isfinite(fov_degrees) || fov_degrees < 0.0f || fov_degrees >= 170.0f) {
-        throw InvalidParam("render: --fov must be in (0, 170) degrees, or 0 for orthographic (got " + fmt(fov_degrees) + ")");
+        throw InvalidParam("render: `fov` must be in (0, 170) degrees, or 0 for orthographic (got " + fmt(fov_degrees) + ")");
     }
     if (!std::isfinite(ortho_height) || ortho_height < 0.0f) {
         throw InvalidParam("render: orthographic height must be >= 0 scene units (0 = fit; got " + fmt(ortho_height) + ")");

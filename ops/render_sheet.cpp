@@ -11,11 +11,11 @@ using namespace render_detail;
 
 RgbImage render_sheet(const RenderScene& scene, std::span<const View> views, const RenderParams& params, Progress* progress)
 {
-    if (views.empty()) throw InvalidParam("render: --views needs at least one view");
+    if (views.empty()) throw InvalidParam("render: `views` needs at least one view");
     params.validate();
     if (int64_t(params.width) * int64_t(views.size()) > kMaxSide) {
         throw InvalidParam("render: a sheet of " + std::to_string(views.size()) + " views of width " + std::to_string(params.width) +
-                           " is wider than " + std::to_string(kMaxSide) + " pixels; lower --size");
+                           " is wider than " + std::to_string(kMaxSide) + " pixels; lower `size`");
     }
     const float aspect = float(params.width) / float(params.height);
     // One scale for every view, so sizes compare across the sheet.

@@ -13,13 +13,13 @@ namespace groom {
 void ResampleParams::validate() const
 {
     if (count != 0 && segment_length != 0) {
-        throw InvalidParam("resample: --count and --segment-length are exclusive (got both)");
+        throw InvalidParam("resample: `count` and `segment_length` are exclusive (got both)");
     }
     if (count == 0 && !(segment_length > 0)) {
-        throw InvalidParam("resample: give --count N (>= 2) or --segment-length L (> 0)");
+        throw InvalidParam("resample: give `count` N (>= 2) or `segment_length` L (> 0)");
     }
-    if (count != 0 && count < 2) throw InvalidParam("resample: --count must be >= 2 (got " + std::to_string(count) + ")");
-    if (count == 0 && !std::isfinite(segment_length)) throw InvalidParam("resample: --segment-length must be finite");
+    if (count != 0 && count < 2) throw InvalidParam("resample: `count` must be >= 2 (got " + std::to_string(count) + ")");
+    if (count == 0 && !std::isfinite(segment_length)) throw InvalidParam("resample: `segment_length` must be finite");
 }
 
 CurveSet resample(const CurveSet& src, const ResampleParams& params)

@@ -269,7 +269,7 @@ TEST(ScalpField, RejectsBadInput)
         FAIL() << "expected LimitExceeded";
     }
     catch (const LimitExceeded& e) {
-        EXPECT_NE(std::string(e.what()).find("use --voxel"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("use `voxel`"), std::string::npos) << e.what();
     }
 }
 

@@ -106,22 +106,22 @@ TEST(CornrowGuides, InvalidOptionsAreRejected)
     };
     CornrowGuidesParams p;
     p.count = 0;
-    rejects(p, "--count must be in [1, 256] (got 0)");
+    rejects(p, "`count` must be in [1, 256] (got 0)");
     p = {};
     p.radius = -1.0f;
-    rejects(p, "--radius must be > 0");
+    rejects(p, "`radius` must be > 0");
     p = {};
     p.pivot = 10.0f;
-    rejects(p, "--pivot must be in [0, radius)");
+    rejects(p, "`pivot` must be in [0, radius)");
     p = {};
     p.spread = 90.0f;
-    rejects(p, "--spread must be in [0, 90) degrees");
+    rejects(p, "`spread` must be in [0, 90) degrees");
     p = {};
     p.front_angle = 95.0f;
-    rejects(p, "--front-angle");
+    rejects(p, "`front_angle`");
     p = {};
     p.back_angle = std::nanf("");
-    rejects(p, "--back-angle");
+    rejects(p, "`back_angle`");
     // Rows meet where the fan axis pierces the path sphere, -asin(pivot / radius) = -30 degrees for
     // pivot 5 on radius 10; ending below that, rows would have crossed at the nape.
     p = {};
@@ -132,11 +132,11 @@ TEST(CornrowGuides, InvalidOptionsAreRejected)
     EXPECT_NO_THROW(p.validate());
     p = {};
     p.samples = 1;
-    rejects(p, "--samples must be in [2, 100000] (got 1)");
+    rejects(p, "`samples` must be in [2, 100000] (got 1)");
     p = {};
     p.offset = -0.1f;
-    rejects(p, "--offset must be >= 0");
+    rejects(p, "`offset` must be >= 0");
     p = {};
     p.tail_length = -1.0f;
-    rejects(p, "--tail-length");
+    rejects(p, "`tail_length`");
 }

@@ -147,20 +147,20 @@ TEST(CurlShapes, RejectsInvalidShapeParameters)
     ShapeParams p;
     EXPECT_NO_THROW(p.validate());
     p.lame_exponent = 0.0f;
-    expect_reject(p, "--lame-exponent");
+    expect_reject(p, "`lame_exponent`");
     p = {};
     p.lame_exponent = NAN;
-    expect_reject(p, "--lame-exponent");
+    expect_reject(p, "`lame_exponent`");
     p = {};
     p.polygon_sides = 2;
-    expect_reject(p, "--polygon-sides");
+    expect_reject(p, "`polygon_sides`");
     p = {};
     p.ellipse_aspect = 1.5f;
-    expect_reject(p, "--ellipse-aspect");
+    expect_reject(p, "`ellipse_aspect`");
     p = {};
     p.ellipse_aspect = 0.0f;
-    expect_reject(p, "--ellipse-aspect");
+    expect_reject(p, "`ellipse_aspect`");
     p = {};
     p.rose_petals = 0;
-    expect_reject(p, "--rose-petals");
+    expect_reject(p, "`rose_petals`");
 }

@@ -380,31 +380,31 @@ TEST(Generate, RejectsInvalidParams)
     };
     GenerateParams p;
     p.count = 0;
-    EXPECT_NE(message(p).find("--count must be >= 1 (got 0)"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`count` must be >= 1 (got 0)"), std::string::npos) << message(p);
     p = {};
     p.neighbours = 0;
-    EXPECT_NE(message(p).find("--neighbours must be >= 1 (got 0)"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`neighbours` must be >= 1 (got 0)"), std::string::npos) << message(p);
     p = {};
     p.power = -1;
-    EXPECT_NE(message(p).find("--power"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`power`"), std::string::npos) << message(p);
     p = {};
     p.points = 1;
-    EXPECT_NE(message(p).find("--points must be >= 2"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`points` must be >= 2"), std::string::npos) << message(p);
     p = {};
     p.region_radius = NAN;
-    EXPECT_NE(message(p).find("--region"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`region`"), std::string::npos) << message(p);
     p = {};
     p.footprint_scale = 0;
-    EXPECT_NE(message(p).find("--footprint-scale"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`footprint_scale`"), std::string::npos) << message(p);
     p = {};
     p.max_angle = 0;
-    EXPECT_NE(message(p).find("--max-angle must be in (0, 180]"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`max_angle` must be in (0, 180]"), std::string::npos) << message(p);
     p = {};
     p.clearance = -1;
-    EXPECT_NE(message(p).find("--clearance"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`clearance`"), std::string::npos) << message(p);
     p = {};
     p.first_id = -2;
-    EXPECT_NE(message(p).find("--first-id"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`first_id`"), std::string::npos) << message(p);
 
     // Input problems: one guide has no footprint; a one-point guide; no guides.
     const AnalyticSphere head(kC, kR);
@@ -429,6 +429,6 @@ TEST(Generate, RegionOffTheScalpIsRefused)
         FAIL() << "expected LimitExceeded";
     }
     catch (const LimitExceeded& e) {
-        EXPECT_NE(std::string(e.what()).find("--region"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("`region`"), std::string::npos) << e.what();
     }
 }

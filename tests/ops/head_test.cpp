@@ -123,6 +123,6 @@ TEST(Head, InvalidParamsAreRejected)
         make_head(p);
         FAIL();
     } catch (const InvalidParam& e) {
-        EXPECT_NE(std::string(e.what()).find("--scale"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("`scale`"), std::string::npos);
     }
 }

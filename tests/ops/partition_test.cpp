@@ -608,31 +608,31 @@ TEST(Partition, RefusesAbsurdOutputBeforeAllocating)
         ADD_FAILURE() << "accepted";
     }
     catch (const LimitExceeded& e) {
-        EXPECT_NE(std::string(e.what()).find("raise --spacing"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("raise `spacing`"), std::string::npos) << e.what();
     }
 }
 
 TEST(Partition, RejectsEachInvalidOption)
 {
-    expect_rejected([](auto& p) { p.mediate = -0.1f; }, "--mediate must be in [0, 1] (got -0.1)");
-    expect_rejected([](auto& p) { p.mediate = 1.5f; }, "--mediate must be in [0, 1] (got 1.5)");
-    expect_rejected([](auto& p) { p.mediate = NAN; }, "--mediate");
-    expect_rejected([](auto& p) { p.count = 0; }, "--count must be >= 1 (got 0)");
-    expect_rejected([](auto& p) { p.count = -3; }, "--count must be >= 1 (got -3)");
-    expect_rejected([](auto& p) { p.spacing = 0.5f; }, "--count and --spacing are exclusive");
-    expect_rejected([](auto& p) { p.count = 0; p.spacing = -1; }, "--spacing must be > 0 scene units (got -1)");
-    expect_rejected([](auto& p) { p.samples = 1; }, "--samples must be >= 2 (got 1)");
-    expect_rejected([](auto& p) { p.width = 0; }, "--width must be > 0");
-    expect_rejected([](auto& p) { p.jitter = 2; }, "--jitter must be in [0, 1] (got 2)");
-    expect_rejected([](auto& p) { p.max_gap = -1; }, "--max-gap must be >= 0");
-    expect_rejected([](auto& p) { p.max_height = INFINITY; }, "--max-height");
+    expect_rejected([](auto& p) { p.mediate = -0.1f; }, "`mediate` must be in [0, 1] (got -0.1)");
+    expect_rejected([](auto& p) { p.mediate = 1.5f; }, "`mediate` must be in [0, 1] (got 1.5)");
+    expect_rejected([](auto& p) { p.mediate = NAN; }, "`mediate`");
+    expect_rejected([](auto& p) { p.count = 0; }, "`count` must be >= 1 (got 0)");
+    expect_rejected([](auto& p) { p.count = -3; }, "`count` must be >= 1 (got -3)");
+    expect_rejected([](auto& p) { p.spacing = 0.5f; }, "`count` and `spacing` are exclusive");
+    expect_rejected([](auto& p) { p.count = 0; p.spacing = -1; }, "`spacing` must be > 0 scene units (got -1)");
+    expect_rejected([](auto& p) { p.samples = 1; }, "`samples` must be >= 2 (got 1)");
+    expect_rejected([](auto& p) { p.width = 0; }, "`width` must be > 0");
+    expect_rejected([](auto& p) { p.jitter = 2; }, "`jitter` must be in [0, 1] (got 2)");
+    expect_rejected([](auto& p) { p.max_gap = -1; }, "`max_gap` must be >= 0");
+    expect_rejected([](auto& p) { p.max_height = INFINITY; }, "`max_height`");
     expect_rejected([](auto& p) { p.centroids = CentroidMode::Every; }, "every:K needs K >= 1 (got 0)");
-    expect_rejected([](auto& p) { p.centroids = CentroidMode::Knots; p.knots.frequency = -1.0f; }, "--frequency must be >= 0 knots per guide (got -1)");
-    expect_rejected([](auto& p) { p.centroids = CentroidMode::Knots; p.knots.knot_length = 0.0f; }, "--knot-length must be > 0 scene units (got 0)");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Knots; p.knots.frequency = -1.0f; }, "`frequency` must be >= 0 knots per guide (got -1)");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Knots; p.knots.knot_length = 0.0f; }, "`knot_length` must be > 0 scene units (got 0)");
     expect_rejected([](auto& p) { p.centroids = CentroidMode::Knots; p.knots.frequency = 2.0f; p.knots.knot_length = 1.0f; }, "are exclusive");
     expect_rejected([](auto& p) { p.centroids = CentroidMode::Points; p.centroid_points = {{0, 1.2f}}; }, "in [0, 1] (got 1.2 for guide 0)");
-    expect_rejected([](auto& p) { p.centroids = CentroidMode::Points; p.centroid_points = {{5, 0.5f}}; }, "--centroids: guide 5 out of range (2 guides");
-    expect_rejected([](auto& p) { p.adjacent = {{2, 0, -1}}; }, "--adjacent: source guide 2 out of range");
+    expect_rejected([](auto& p) { p.centroids = CentroidMode::Points; p.centroid_points = {{5, 0.5f}}; }, "`centroids`: guide 5 out of range (2 guides");
+    expect_rejected([](auto& p) { p.adjacent = {{2, 0, -1}}; }, "`adjacent`: source guide 2 out of range");
     expect_rejected([](auto& p) { p.adjacent = {{0, 7, -1}}; }, "left guide 7 of source 0 out of range");
     expect_rejected([](auto& p) { p.adjacent = {{0, -1, -2}}; }, "right guide -2 of source 0 out of range");
     expect_rejected([](auto& p) { p.adjacent = {{0, 0, 1}}; }, "guide 0 cannot be its own neighbour");

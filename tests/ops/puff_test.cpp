@@ -214,7 +214,7 @@ TEST(Puff, TipInsideTheHeadIsRefused)
         FAIL() << "expected InvalidParam";
     }
     catch (const InvalidParam& e) {
-        EXPECT_NE(std::string(e.what()).find("--cap-angle"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("`cap_angle`"), std::string::npos) << e.what();
     }
     p.cap_angle = 60.0f;  // the top of the same sphere is clear of the head
     EXPECT_NO_THROW(puff_guides(head, p));
@@ -225,7 +225,7 @@ TEST(Puff, TipInsideTheHeadIsRefused)
         FAIL() << "expected InvalidParam";
     }
     catch (const InvalidParam& e) {
-        EXPECT_NE(std::string(e.what()).find("--sphere-center"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("`sphere_center`"), std::string::npos) << e.what();
     }
 }
 
@@ -243,34 +243,34 @@ TEST(Puff, RejectsInvalidParams)
     EXPECT_EQ(message(top_puff()), "(accepted)");
     PuffParams p = top_puff();
     p.radius = 0;
-    EXPECT_NE(message(p).find("--radius must be a finite number > 0 (got 0)"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`radius` must be a finite number > 0 (got 0)"), std::string::npos) << message(p);
     p = top_puff();
     p.sphere_radius = -1;
-    EXPECT_NE(message(p).find("--sphere-radius"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`sphere_radius`"), std::string::npos) << message(p);
     p = top_puff();
     p.sphere_center.x = NAN;
-    EXPECT_NE(message(p).find("--sphere-center"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`sphere_center`"), std::string::npos) << message(p);
     p = top_puff();
     p.center.y = INFINITY;
-    EXPECT_NE(message(p).find("--center"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`center`"), std::string::npos) << message(p);
     p = top_puff();
     p.rows = 0;
-    EXPECT_NE(message(p).find("--rows must be in 1..256 (got 0)"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`rows` must be in 1..256 (got 0)"), std::string::npos) << message(p);
     p = top_puff();
     p.cols = 300;
-    EXPECT_NE(message(p).find("--cols must be in 1..256 (got 300)"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`cols` must be in 1..256 (got 300)"), std::string::npos) << message(p);
     p = top_puff();
     p.cap_angle = 180;
-    EXPECT_NE(message(p).find("--cap-angle"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`cap_angle`"), std::string::npos) << message(p);
     p = top_puff();
     p.guide_points = 3;
-    EXPECT_NE(message(p).find("--guide-points must be >= 4 (got 3)"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`guide_points` must be >= 4 (got 3)"), std::string::npos) << message(p);
     p = top_puff();
     p.bend = 0;
-    EXPECT_NE(message(p).find("--bend"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`bend`"), std::string::npos) << message(p);
     p = top_puff();
     p.first_id = -1;
-    EXPECT_NE(message(p).find("--first-id"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`first_id`"), std::string::npos) << message(p);
 }
 
 namespace {
@@ -436,7 +436,7 @@ TEST(Puff, RejectsInvalidHairParams)
         FAIL() << "expected InvalidParam";
     }
     catch (const InvalidParam& e) {
-        EXPECT_NE(std::string(e.what()).find("--uniformity"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("`uniformity`"), std::string::npos) << e.what();
     }
 }
 

@@ -248,7 +248,7 @@ TEST(Render, BadCameraIsRejected)
             render(scene, c, p);
             FAIL() << "fov " << fov << " accepted";
         } catch (const InvalidParam& e) {
-            EXPECT_NE(std::string(e.what()).find("--fov must be in (0, 170)"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("`fov` must be in (0, 170)"), std::string::npos) << e.what();
         }
     }
     Camera neg;
@@ -278,16 +278,16 @@ TEST(Render, BadSizeAndParamsAreRejected)
     rejects(p, "samples, more than");
     p = small_params();
     p.supersample = 0;
-    rejects(p, "--supersample must be in [1, 4]");
+    rejects(p, "`supersample` must be in [1, 4]");
     p = small_params();
     p.color = {2, 0, 0};
-    rejects(p, "--color components must be in [0, 1]");
+    rejects(p, "`color` components must be in [0, 1]");
     p = small_params();
     p.width_scale = 0;
-    rejects(p, "--width-scale must be > 0");
+    rejects(p, "`width_scale` must be > 0");
     p = small_params();
     p.margin = 0.5f;
-    rejects(p, "--margin must be in [0, 0.45]");
+    rejects(p, "`margin` must be in [0, 0.45]");
     EXPECT_THROW(render_sheet(scene, {}, small_params()), InvalidParam);
 }
 

@@ -9,8 +9,53 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
 namespace groom::cli {
 namespace {
+
+/// The repair report as `--report FILE.json` writes it: every count, the notes, one object per shell.
+std::string repair_report_json(const RepairReport& r)
+{
+    nlohmann::ordered_json j;
+    const std::pair<const char*, int64_t> counts[] = {
+        {"input_vertices", r.input_vertices},
+        {"input_faces", r.input_faces},
+        {"duplicate_vertices_merged", r.duplicate_vertices_merged},
+        {"degenerate_faces_removed", r.degenerate_faces_removed},
+        {"duplicate_faces_removed", r.duplicate_faces_removed},
+        {"pinched_faces_split", r.pinched_faces_split},
+        {"isolated_vertices_removed", r.isolated_vertices_removed},
+        {"ngons_triangulated", r.ngons_triangulated},
+        {"triangles_from_ngons", r.triangles_from_ngons},
+        {"non_manifold_edges", r.non_manifold_edges},
+        {"non_manifold_vertices", r.non_manifold_vertices},
+        {"vertices_added_by_split", r.vertices_added_by_split},
+        {"faces_flipped", r.faces_flipped},
+        {"shells", r.shells},
+        {"closed_shells", r.closed_shells},
+        {"shells_flipped", r.shells_flipped},
+        {"enclosed_shells_removed", r.enclosed_shells_removed},
+        {"faces_in_removed_shells", r.faces_in_removed_shells},
+        {"boundary_loops", r.boundary_loops},
+        {"output_vertices", r.output_vertices},
+        {"output_faces", r.output_faces},
+    };
+    for (const auto& [key, value] : counts) j[key] = value;
+    j["flipped_by_user"] = r.flipped_by_user;
+    j["notes"] = r.notes;
+    j["shell_list"] = nlohmann::ordered_json::array();
+    for (const RepairReport::Shell& sh : r.shell_list) {
+        j["shell_list"].push_back({{"faces", sh.faces},
+                                   {"area", sh.area},
+                                   {"closed", sh.closed},
+                                   {"flipped", sh.flipped},
+                                   {"removed", sh.removed},
+                                   {"winding", sh.winding},
+                                   {"bbox", {sh.lo[0], sh.lo[1], sh.lo[2], sh.hi[0], sh.hi[1], sh.hi[2]}}});
+    }
+    return j.dump(2) + "\n";
+}
 
 struct Args {
     std::string input, output, report;
@@ -59,7 +104,7 @@ void setup(CommandContext& ctx)
         std::unique_ptr<AtomicOutput> json;
         if (!a.report.empty()) {
             json = std::make_unique<AtomicOutput>(a.report, false);
-            json->stream() << report.to_json();
+            json->stream() << repair_report_json(report);
         }
         write_scalp(scalp, a.output);
         if (json) json->commit();

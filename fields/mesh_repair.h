@@ -44,8 +44,6 @@ struct RepairReport {
 
     /// One line per non-zero count, for stderr.
     std::string summary() const;
-    /// The whole report as a JSON object.
-    std::string to_json() const;
 };
 
 }  // namespace groom

@@ -107,15 +107,12 @@ def render():
 
 
 def screenshot():
-    """After the window is up: the sidebar on its Groom tab, the view framed on the braids, a
-    screenshot of the whole window, then quit (also on any error, so the script never hangs)."""
-    def shoot():
+    """In the window (opened on the .blend the background run saved, so no splash): the sidebar
+    open, the view framed on the braids, then a screenshot of the whole window after the shell
+    script has clicked the sidebar's Groom tab (Blender 3.4 cannot switch tabs from Python), then
+    quit, also on any error, so the script never hangs."""
+    def frame():
         try:
-            # Blender 3.4 cannot switch sidebar tabs from Python: leave the Groom tab alone in it.
-            for panel in bpy.types.Panel.__subclasses__():
-                if (getattr(panel, "bl_space_type", "") == 'VIEW_3D' and getattr(panel, "bl_region_type", "") == 'UI'
-                        and getattr(panel, "bl_category", "") != "Groom" and getattr(panel, "is_registered", False)):
-                    bpy.utils.unregister_class(panel)
             window = bpy.context.window_manager.windows[0]
             for area in window.screen.areas:
                 if area.type != 'VIEW_3D':
@@ -127,24 +124,31 @@ def screenshot():
                 main = next(r for r in area.regions if r.type == 'WINDOW')
                 with bpy.context.temp_override(window=window, area=area, region=main):
                     bpy.ops.view3d.view_axis(type='FRONT')
-                    bpy.ops.view3d.view_orbit(angle=0.6, type='ORBITLEFT')
+                    bpy.ops.view3d.view_orbit(angle=0.7, type='ORBITLEFT')
                     bpy.ops.view3d.view_selected()
-            bpy.app.timers.register(lambda: (bpy.ops.screen.screenshot(filepath=os.path.join(out, "blender_panel.png")),
-                                             bpy.ops.wm.quit_blender()) and None, first_interval=2.0)
+            for ob in bpy.context.view_layer.objects:
+                ob.select_set(False)  # the braids in their own colour, not the selection outline
         except Exception:
             import traceback
             traceback.print_exc()
             bpy.ops.wm.quit_blender()
         return None
-    bpy.app.timers.register(shoot, first_interval=3.0)
+
+    def shoot():
+        bpy.ops.screen.screenshot(filepath=os.path.join(out, "blender_panel.png"))
+        bpy.ops.wm.quit_blender()
+        return None
+    bpy.app.timers.register(frame, first_interval=2.0)
+    bpy.app.timers.register(shoot, first_interval=float(os.environ.get("GROOM_SHOT_DELAY", "10")))
 
 
-head, braids = build_scene()
-add_camera_and_light()
 if bpy.app.background:
-    render()
-else:
+    head, braids = build_scene()
+    add_camera_and_light()
     for ob in bpy.context.view_layer.objects:
         ob.select_set(ob == braids)
     bpy.context.view_layer.objects.active = braids
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(os.environ["GROOM_TMP"], "groom_pictures.blend"))
+    render()
+else:
     screenshot()

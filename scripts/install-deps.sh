@@ -13,7 +13,7 @@ packages=(
 # Extra tools only some scripts use (sanitizers need clang's runtime; the add-on test needs Blender,
 # its screenshot Xvfb). Pass --with-tools to add them.
 if [[ "${1:-}" == "--with-tools" ]]; then
-  packages+=(clang libclang-rt-14-dev python3-openvdb blender xvfb xauth)
+  packages+=(clang libclang-rt-14-dev python3-openvdb blender xvfb xauth xdotool)
 fi
 
 missing=()

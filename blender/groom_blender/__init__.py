@@ -11,7 +11,7 @@ bl_info = {
     "author": "groom developers",
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
-    "location": "View3D > Sidebar > Groom",
+    "location": "View3D > Sidebar > Groom, and Object > Groom",
     "description": "Braids, cornrows, edge hairs, curls and afro puffs from guide curves on a scalp mesh",
     "category": "Object",
 }
@@ -27,9 +27,11 @@ def register():
     for cls in _classes:
         bpy.utils.register_class(cls)
     bpy.types.Scene.groom = bpy.props.PointerProperty(type=operators.GroomSettings)
+    bpy.types.VIEW3D_MT_object.append(panel.draw_object_menu)
 
 
 def unregister():
+    bpy.types.VIEW3D_MT_object.remove(panel.draw_object_menu)
     del bpy.types.Scene.groom
     for cls in reversed(_classes):
         bpy.utils.unregister_class(cls)

@@ -49,4 +49,19 @@ class GROOM_PT_panel(bpy.types.Panel):
         box.operator("groom.puff")
 
 
-CLASSES = [GROOM_PT_panel]
+class GROOM_MT_menu(bpy.types.Menu):
+    """Object > Groom: every operator, with the settings of the Groom panel."""
+    bl_label = "Groom"
+    bl_idname = "GROOM_MT_menu"
+
+    def draw(self, context):
+        for op in ("braid", "partition", "curl", "generate", "puff"):
+            self.layout.operator("groom." + op)
+
+
+def draw_object_menu(self, context):
+    self.layout.separator()
+    self.layout.menu(GROOM_MT_menu.bl_idname)
+
+
+CLASSES = [GROOM_PT_panel, GROOM_MT_menu]

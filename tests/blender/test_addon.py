@@ -54,6 +54,9 @@ def select_guides():
     bpy.context.view_layer.objects.active = guides_ob
 
 
+menu = [f.__name__ for f in bpy.types.VIEW3D_MT_object._dyn_ui_initialize()]
+check("Object menu has the Groom submenu", "draw_object_menu" in menu, str(menu[-3:]))
+
 guides = convert.guides_from_objects([guides_ob])
 check("guides read from the legacy curve", (guides.num_curves, guides.num_points) == (3, 48))
 field = convert.scalp_from_object(scalp, 0.02)
@@ -102,6 +105,9 @@ try:
     check("no scalp: cancelled", r == {'CANCELLED'}, str(r))
 except RuntimeError as e:  # bpy raises the operator's ERROR report as RuntimeError in background mode
     check("no scalp: reported", "scalp" in str(e), str(e))
+
+groom_blender.unregister()
+check("unregister removes the operators", not hasattr(bpy.types, "GROOM_OT_braid"))
 
 print(f"{len(failures)} failures")
 sys.exit(1 if failures else 0)

@@ -1,12 +1,12 @@
 // Tests for ops/braid: the Lissajous cross-section of the talk (Sec. 2.1) checked against its closed
-// form on straight guides, frames on S-curves and helices, cornrows on an exact sphere, knot placement,
-// rejection of every invalid option, determinism and attribute carry-through.
+// form on straight guides, frames on S-curves and helices, cornrows on an exact sphere, the automatic
+// sample count, degenerate guides, determinism and attribute carry-through.
 #include "ops/braid.h"
 
-#include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/math/spline.h"
 #include "kernel/parallel.h"
+#include "tests/ops/make_curves.h"
 
 #include <gtest/gtest.h>
 
@@ -17,22 +17,11 @@
 #include <set>
 
 using namespace groom;
+using groom::test::make_curves;
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-CurveSet make_curves(const std::vector<std::vector<float3>>& curves)
-{
-    std::vector<int64_t> counts;
-    for (const auto& c : curves) counts.push_back(int64_t(c.size()));
-    CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions_for_write();
-    size_t q = 0;
-    for (const auto& c : curves)
-        for (const float3& p : c) P[q++] = p;
-    return cs;
-}
 
 /// The talk's cross-section (Sec. 2.1), written out independently of the op: lateral x, normal y.
 double lissajous_x(double A, double F, double alpha, int i, int N) { return A * std::sin(2.0 * kPi * (F * alpha + double(i) / N)); }
@@ -42,17 +31,6 @@ double lissajous_y(double B, double F, double alpha, int i, int N)
 }
 
 float3 point(const CurveSet& cs, int64_t curve, int64_t j) { return cs.positions()[cs.points_of(curve).begin + j]; }
-
-std::string message_of(const std::function<void()>& fn)
-{
-    try {
-        fn();
-    }
-    catch (const InvalidParam& e) {
-        return e.what();
-    }
-    return "(no InvalidParam thrown)";
-}
 
 /// Offsets of three strands at one section, minus strand 0, solved for the frame's b and n given the
 /// known cross-section values. Returns false where the 2x2 system is ill-conditioned.
@@ -414,65 +392,6 @@ TEST(Braid, FibersPopulateStrandsAndStayOutsideTheScalp)
     EXPECT_NEAR(W[0], 2.0f * 0.1f / std::sqrt(20.0f), 1e-6f);
 }
 
-// Knot placement shared with `groom partition --centroids knots`: F alpha(t_k) = k + 1/2.
-TEST(Braid, KnotParametersFollowFrequencyAndRemap)
-{
-    BraidParams p;
-    p.frequency = 4.0f;
-    const auto t = braid_knot_parameters(p, 12.0);
-    ASSERT_EQ(t.size(), 4u);
-    for (size_t k = 0; k < 4; ++k) EXPECT_NEAR(t[k], (k + 0.5) / 4.0, 1e-7);
-
-    // Knot length: F = length / L, knots L apart in arc length.
-    BraidParams q;
-    q.knot_length = 1.5f;
-    const auto tl = braid_knot_parameters(q, 12.0);
-    ASSERT_EQ(tl.size(), 8u);
-    for (size_t k = 0; k + 1 < tl.size(); ++k) EXPECT_NEAR((tl[k + 1] - tl[k]) * 12.0, 1.5, 1e-5);
-    EXPECT_NEAR(braid_frequency(q, 12.0), 8.0, 1e-12);
-    // Only knots whose centre lies on the guide: F = 2.4 has 2.
-    p.frequency = 2.4f;
-    EXPECT_EQ(braid_knot_parameters(p, 1.0).size(), 2u);
-
-    // Bias > 0 packs knots toward the tip; every knot centre satisfies F alpha(t_k) = k + 1/2.
-    p.frequency = 10.0f;
-    p.knot_bias = 0.5f;
-    const KnotRemap remap(p);
-    const auto tb = braid_knot_parameters(p, 1.0);
-    ASSERT_EQ(tb.size(), 10u);
-    for (size_t k = 0; k < tb.size(); ++k) EXPECT_NEAR(10.0 * remap.alpha(tb[k]), k + 0.5, 1e-4);
-    EXPECT_GT(tb[1] - tb[0], tb[9] - tb[8]);
-}
-
-// alpha(t): identity by default; Schlick bias slopes g/(1-g) at the root, (1-g)/g at the tip; the
-// density spline integrates to the closed form.
-TEST(Braid, KnotRemapMatchesClosedForms)
-{
-    BraidParams p;
-    EXPECT_TRUE(KnotRemap(p).identity());
-    EXPECT_EQ(KnotRemap(p).alpha(0.3), 0.3);
-
-    p.knot_bias = 0.5f;  // g = 0.25
-    const KnotRemap bias(p);
-    EXPECT_NEAR(bias.alpha(0.0), 0.0, 1e-12);
-    EXPECT_NEAR(bias.alpha(1.0), 1.0, 1e-12);
-    const double h = 1e-6;
-    EXPECT_NEAR(bias.alpha(h) / h, 1.0 / 3.0, 1e-4);
-    EXPECT_NEAR((1.0 - bias.alpha(1.0 - h)) / h, 3.0, 1e-4);
-    EXPECT_NEAR(bias.max_slope(), 3.0, 1e-9);
-    for (double t = 0.0; t <= 1.0; t += 0.05) EXPECT_NEAR(bias.inverse(bias.alpha(t)), t, 1e-9);
-
-    // Density 1 + 2t (two values: the clamped spline is linear): alpha = (t + t^2) / 2.
-    BraidParams d;
-    d.knot_density = {1.0f, 3.0f};
-    const KnotRemap dens(d);
-    for (double t = 0.0; t <= 1.0; t += 0.05) {
-        EXPECT_NEAR(dens.alpha(t), (t + t * t) / 2.0, 1e-6) << t;
-        EXPECT_NEAR(dens.inverse(dens.alpha(t)), t, 1e-6) << t;
-    }
-    EXPECT_NEAR(dens.max_slope(), 1.5, 1e-3);
-}
-
 // Default sample count: at least 16 points per x cycle where knots are densest (4 per weave step of a
 // plait: 24 per knot for 3 strands), at least the guide's own point count.
 TEST(Braid, AutomaticSampleCountGivesSixteenPointsPerCycle)
@@ -498,113 +417,6 @@ TEST(Braid, AutomaticSampleCountGivesSixteenPointsPerCycle)
     for (int k = 0; k < 300; ++k) dense.emplace_back(0.0f, float(k), 0.0f);
     p.knot_bias = 0.0f;
     EXPECT_EQ(braid(make_curves({dense}), p).curves.points_in(0), 300);
-}
-
-TEST(Braid, RejectsInvalidOptions)
-{
-    {
-        const CurveSet g = make_curves({{{0, 0, 0}, {0, 1, 0}}});
-        const auto msg = [&](BraidParams p) { return message_of([&] { braid(g, p); }); };
-        BraidParams p;
-        p.pattern = BraidPattern::Fishtail;
-        p.strands = 5;
-        EXPECT_EQ(msg(p), "braid: `pattern` fishtail needs an even `strands` >= 4 (got `strands` 5)");
-        p.pattern = BraidPattern::Twist;
-        p.strands = 3;
-        EXPECT_EQ(msg(p), "braid: `pattern` twist has 2 strands; use `pattern` rope for more (got `strands` 3)");
-        p = BraidParams{};
-        p.pattern = BraidPattern::Lissajous;
-        p.hand = BraidHand::Under;
-        EXPECT_NE(msg(p).find("`hand` does not apply to `pattern` lissajous"), std::string::npos);
-        p = BraidParams{};
-        p.flyaways = 0.1f;
-        EXPECT_EQ(msg(p), "braid: `flyaways` moves fibers; give `fibers` M > 0");
-        p.fibers = 4;
-        p.flyaways = 1.5f;
-        EXPECT_EQ(msg(p), "braid: `flyaways` must be a fraction in [0, 1] (got 1.5)");
-        p = BraidParams{};
-        p.fibers = 4;
-        p.feed_in = 1.0f;
-        EXPECT_EQ(msg(p), "braid: `feed_in` must be a fraction in [0, 1) (got 1)");
-        p = BraidParams{};
-        p.tie = 1.5f;
-        EXPECT_EQ(msg(p), "braid: `tie` must be an arc-length fraction in [0, 1] (got 1.5)");
-        p = BraidParams{};
-        p.tie_turns = 0;
-        EXPECT_EQ(msg(p), "braid: `tie_turns` must be in [1, 64] (got 0)");
-        p = BraidParams{};
-        p.flatten = 0.95f;
-        EXPECT_EQ(msg(p), "braid: `flatten` must be in [0, 0.9] (got 0.95)");
-        p = BraidParams{};
-        p.loose_length = -1.0f;
-        EXPECT_EQ(msg(p), "braid: `loose_length` must be a finite number >= 0 (got -1)");
-        p = BraidParams{};
-        p.flare = std::numeric_limits<float>::infinity();
-        EXPECT_EQ(msg(p), "braid: `flare` must be a finite number >= 0 (got inf)");
-    }
-    const CurveSet guides = make_curves({{{0, 0, 0}, {0, 1, 0}}});
-    const auto rejects = [&](BraidParams p, const std::string& expected) {
-        const std::string msg = message_of([&] { braid(guides, p); });
-        EXPECT_NE(msg.find(expected), std::string::npos) << "got: " << msg << "\nexpected: " << expected;
-    };
-    BraidParams p;
-    p.strands = 1;
-    rejects(p, "braid: `strands` must be >= 2 (got 1)");
-    p = {};
-    p.frequency = -1.0f;
-    rejects(p, "braid: `frequency` must be a finite number >= 0 (got -1)");
-    p = {};
-    p.width = -0.5f;
-    rejects(p, "braid: `width` must be a finite number >= 0 (got -0.5)");
-    p = {};
-    p.height = -2.0f;
-    rejects(p, "braid: `height` must be a finite number >= 0 (got -2)");
-    p = {};
-    p.frequency = 3.0f;
-    p.knot_length = 1.0f;
-    rejects(p, "braid: `frequency` and `knot_length` are exclusive (got both");
-    p = {};
-    p.knot_length = 0.0f;
-    rejects(p, "braid: `knot_length` must be a finite number > 0 (got 0)");
-    p = {};
-    p.samples = 1;
-    rejects(p, "braid: `samples` must be >= 2");
-    p = {};
-    p.root_amplitude = -1.0f;
-    rejects(p, "braid: `root_amplitude` must be a finite number >= 0");
-    p = {};
-    p.tip_amplitude = std::numeric_limits<float>::quiet_NaN();
-    rejects(p, "braid: `tip_amplitude` must be a finite number >= 0");
-    p = {};
-    p.taper = {1.0f, -0.5f};
-    rejects(p, "braid: `taper` values must be finite and >= 0 (value 2 is -0.5)");
-    p = {};
-    p.knot_bias = 1.0f;
-    rejects(p, "braid: `knot_bias` must be in (-1, 1) (got 1)");
-    p = {};
-    p.knot_density = {1.0f, 0.0f};
-    rejects(p, "braid: `knot_density` values must be finite and > 0 (value 2 is 0)");
-    p = {};
-    p.clearance = -0.1f;
-    rejects(p, "braid: `clearance` must be a finite number >= 0 (got -0.1)");
-    p = {};
-    p.fibers = -3;
-    rejects(p, "braid: `fibers` must be in [0, 1000000] (got -3)");
-    p = {};
-    p.fiber_radius = -1.0f;
-    rejects(p, "braid: `fiber_radius` must be a finite number >= 0");
-    p = {};
-    p.orient = BraidOrient::Scalp;
-    rejects(p, "braid: `orient` scalp needs a scalp");
-    p = {};
-    p.clearance = 0.1f;
-    rejects(p, "braid: `clearance` needs a scalp");
-    p = {};
-    p.rest = true;
-    rejects(p, "braid: `rest` needs a scalp");
-    p = {};
-    p.frequency = 1e9f;
-    EXPECT_THROW(braid(guides, p), LimitExceeded);
 }
 
 // Guides with nothing to braid along are skipped and reported, not turned into NaNs.

@@ -1,0 +1,80 @@
+// The Cem Yuksel .hair curve format (kernel/io/hair.cpp): round trips of points, width, colour and
+// opacity, header defaults and malformed input checked for the error text.
+#include "kernel/io/curve_io.h"
+#include "test_support.h"
+#include "tests/kernel/curve_samples.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+using namespace groom;
+using groom::test::TempDir;
+using groom::test::expect_parse_error;
+using groom::test::expect_points_bit_exact;
+using groom::test::same_bits;
+using groom::test::sample_curves;
+using groom::test::write_text;
+
+TEST(CurveIoHair, RoundTripKeepsPointsWidthColourAndOpacity)
+{
+    TempDir dir;
+    CurveSet src = sample_curves();
+    auto op = src.add<float>(Domain::Point, "opacity");
+    // opacity = 1 - transparency is exact both ways for opacities in [0.5, 1] (Sterbenz).
+    for (size_t i = 0; i < op.size(); ++i) op[i] = 0.5f + 0.5f / (1.0f + i);
+    write_curves(src, dir.file("a.hair"));
+    const CurveSet back = read_curves(dir.file("a.hair"));
+    expect_points_bit_exact(src, back);
+    for (const char* name : {"width", "opacity"}) {
+        std::span<const float> a = src.find<float>(Domain::Point, name), b = back.find<float>(Domain::Point, name);
+        ASSERT_EQ(a.size(), b.size()) << name;
+        for (size_t i = 0; i < a.size(); ++i) EXPECT_TRUE(same_bits(a[i], b[i])) << name << " " << i;
+    }
+    std::span<const float3> ca = src.find<float3>(Domain::Point, "Cd"), cb = back.find<float3>(Domain::Point, "Cd");
+    ASSERT_EQ(ca.size(), cb.size());
+    for (size_t i = 0; i < ca.size(); ++i) EXPECT_EQ(ca[i], cb[i]);
+    EXPECT_EQ(back.attributes(Domain::Curve).count(), 0u);  // .hair has no curve attributes
+}
+
+TEST(CurveIoHair, ReadsDefaultSegmentsAndThickness)
+{
+    // Two strands of 2 segments each from the header defaults (no segments or thickness arrays).
+    TempDir dir;
+    std::string d = "HAIR";
+    auto u32 = [&](uint32_t v) { d.append(reinterpret_cast<const char*>(&v), 4); };
+    auto f32 = [&](float v) { d.append(reinterpret_cast<const char*>(&v), 4); };
+    u32(2), u32(6), u32(2), u32(2), f32(0.25f), f32(0), f32(1), f32(1), f32(1);
+    d.resize(128, '\0');
+    for (int i = 0; i < 6; ++i) f32(float(i)), f32(0), f32(0);
+    write_text(dir.file("d.hair"), d);
+    const CurveSet cs = read_curves(dir.file("d.hair"));
+    ASSERT_EQ(cs.num_curves(), 2u);
+    EXPECT_EQ(cs.points_in(1), 3);
+    EXPECT_EQ(cs.positions()[5], float3(5, 0, 0));
+    auto w = cs.find<float>(Domain::Point, attr::width);
+    ASSERT_EQ(w.size(), 6u);
+    EXPECT_EQ(w[3], 0.25f);
+}
+
+TEST(CurveIoHair, RejectsMalformedInput)
+{
+    TempDir dir;
+    std::string d = "HAIR";
+    auto u32 = [&](uint32_t v) { d.append(reinterpret_cast<const char*>(&v), 4); };
+    u32(4000000000u), u32(4000000000u), u32(3), u32(0);
+    d.resize(128, '\0');
+    d += std::string(64, '\0');
+    expect_parse_error(dir.file("huge.hair"), d, "header claims 4000000000 strands");
+    expect_parse_error(dir.file("short.hair"), std::string("HAIR\1\0\0\0", 8), "truncated: expected a 128-byte .hair header, found 8 bytes");
+    expect_parse_error(dir.file("sig.hair"), std::string("HAIX") + std::string(124, '\0'), "expected the 'HAIR' signature");
+    std::string counts = "HAIR";
+    auto c32 = [&](uint32_t v) { counts.append(reinterpret_cast<const char*>(&v), 4); };
+    c32(1), c32(5), c32(3), c32(0);
+    counts.resize(128, '\0');
+    counts.append("\x02\x00", 2);  // 2 segments = 3 points, but the header says 5
+    counts += std::string(60, '\0');
+    expect_parse_error(dir.file("count.hair"), counts, "strand segment counts add up to 3 points but the header says 5");
+}

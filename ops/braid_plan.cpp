@@ -48,8 +48,9 @@ std::vector<GuidePlan> plan_guides(const CurveSet& guides, const BraidParams& pa
         for (int64_t g = begin; g < end; ++g) {
             const IndexRange r = guides.points_of(g);
             GuidePlan& plan = plans[g];
+            if (r.size() < 2) continue;  // nothing to braid along (a file may hold empty curves): skipped
             plan.length = cumulative_lengths(GP.subspan(r.begin, r.size())).back();
-            if (r.size() < 2 || !(plan.length > 0.0)) continue;  // nothing to braid along: skipped
+            if (!(plan.length > 0.0)) continue;
             plan.frequency = braid_frequency(params, plan.length);
             plan.woven = braid_woven_fraction(params, plan.length);
             const double knot = plan.knot_length();

@@ -422,9 +422,13 @@ TEST(Braid, AutomaticSampleCountGivesSixteenPointsPerCycle)
 // Guides with nothing to braid along are skipped and reported, not turned into NaNs.
 TEST(Braid, SkipsDegenerateGuidesAndSaysSo)
 {
-    const CurveSet guides = make_curves({{{0, 0, 0}}, {{1, 1, 1}, {1, 1, 1}}, {{0, 0, 0}, {0, 2, 0}}});
+    // A point, two coincident points, a real guide, and an empty curve (readers accept those).
+    const CurveSet guides = make_curves({{{0, 0, 0}}, {{1, 1, 1}, {1, 1, 1}}, {{0, 0, 0}, {0, 2, 0}}, {}});
+    BraidParams fibers;
+    fibers.fibers = 4;
+    EXPECT_EQ(braid(guides, fibers).report.skipped_guides, 3);
     const BraidResult res = braid(guides, BraidParams{});
-    EXPECT_EQ(res.report.skipped_guides, 2);
+    EXPECT_EQ(res.report.skipped_guides, 3);
     EXPECT_EQ(res.report.guides, 1);
     ASSERT_EQ(res.curves.num_curves(), 3u);
     for (const int32_t g : res.curves.find<int32_t>(Domain::Curve, "guide")) EXPECT_EQ(g, 2);

@@ -85,4 +85,48 @@ std::vector<float3> polyline_tangents(std::span<const float3> pts)
     return t;
 }
 
+double segment_distance_sq(const float3& p1f, const float3& q1f, const float3& p2f, const float3& q2f)
+{
+    struct D3 {
+        double x, y, z;
+    };
+    auto sub = [](const D3& a, const D3& b) { return D3{a.x - b.x, a.y - b.y, a.z - b.z}; };
+    auto dt = [](const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+    const D3 p1{p1f.x, p1f.y, p1f.z}, q1{q1f.x, q1f.y, q1f.z}, p2{p2f.x, p2f.y, p2f.z}, q2{q2f.x, q2f.y, q2f.z};
+    const D3 d1 = sub(q1, p1), d2 = sub(q2, p2), r = sub(p1, p2);
+    const double a = dt(d1, d1), e = dt(d2, d2), f = dt(d2, r);
+    double s, t;
+    if (a <= 1e-30 && e <= 1e-30) {
+        s = t = 0.0;
+    }
+    else if (a <= 1e-30) {
+        s = 0.0;
+        t = std::clamp(f / e, 0.0, 1.0);
+    }
+    else {
+        const double c = dt(d1, r);
+        if (e <= 1e-30) {
+            t = 0.0;
+            s = std::clamp(-c / a, 0.0, 1.0);
+        }
+        else {
+            const double b = dt(d1, d2), denom = a * e - b * b;
+            s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+            t = (b * s + f) / e;
+            if (t < 0.0) {
+                t = 0.0;
+                s = std::clamp(-c / a, 0.0, 1.0);
+            }
+            else if (t > 1.0) {
+                t = 1.0;
+                s = std::clamp((b - c) / a, 0.0, 1.0);
+            }
+        }
+    }
+    const D3 c1{p1.x + d1.x * s, p1.y + d1.y * s, p1.z + d1.z * s};
+    const D3 c2{p2.x + d2.x * t, p2.y + d2.y * t, p2.z + d2.z * t};
+    const D3 d = sub(c1, c2);
+    return dt(d, d);
+}
+
 }  // namespace groom

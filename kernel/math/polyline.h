@@ -40,4 +40,8 @@ std::vector<float3> resample_by_count(std::span<const float3> pts, int count);
 /// segments take the neighbouring tangent; a curve with no extent gets +Y (the up axis).
 std::vector<float3> polyline_tangents(std::span<const float3> pts);
 
+/// Squared distance between segments [p1,q1] and [p2,q2] (Ericson, Real-Time Collision Detection
+/// 5.1.9), in double so near-touching curves are measured reliably.
+double segment_distance_sq(const float3& p1, const float3& q1, const float3& p2, const float3& q2);
+
 }  // namespace groom

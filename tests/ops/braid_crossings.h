@@ -6,6 +6,7 @@
 #pragma once
 
 #include "kernel/curve_set.h"
+#include "kernel/math/polyline.h"
 #include "kernel/math/vec.h"
 
 #include <algorithm>
@@ -120,53 +121,14 @@ inline WeaveReading read_weave(const CurveSet& cs, int64_t first, int n, const s
     return w;
 }
 
-/// A double vector for the distance arithmetic (float would round at the tolerances tested).
-struct D3 {
-    double x = 0, y = 0, z = 0;
-    D3() = default;
-    D3(double a, double b, double c) : x(a), y(b), z(c) {}
-    explicit D3(const float3& p) : x(p.x), y(p.y), z(p.z) {}
-    D3 operator-(const D3& o) const { return {x - o.x, y - o.y, z - o.z}; }
-    D3 operator+(const D3& o) const { return {x + o.x, y + o.y, z + o.z}; }
-    D3 operator*(double s) const { return {x * s, y * s, z * s}; }
-};
-inline double dot(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline double length(const D3& a) { return std::sqrt(dot(a, a)); }
-
 /// Closest distance between two polylines (segment to segment, exact).
 inline double polyline_distance(const CurveSet& cs, int64_t a, int64_t b)
 {
     const auto P = cs.positions();
     const IndexRange ra = cs.points_of(a), rb = cs.points_of(b);
-    const auto seg = [](const float3& p0, const float3& p1, const float3& q0, const float3& q1) {
-        // Closest points of two segments (clamped parameters, both orders tried).
-        const D3 d1 = D3(p1) - D3(p0), d2 = D3(q1) - D3(q0), r = D3(p0) - D3(q0);
-        const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
-        double s = 0.0, t = 0.0;
-        if (a <= 1e-30 && e <= 1e-30) return length(r);
-        if (a <= 1e-30) t = std::clamp(f / e, 0.0, 1.0);
-        else {
-            const double c = dot(d1, r);
-            if (e <= 1e-30) s = std::clamp(-c / a, 0.0, 1.0);
-            else {
-                const double b = dot(d1, d2), den = a * e - b * b;
-                s = den > 1e-30 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
-                t = (b * s + f) / e;
-                if (t < 0.0) {
-                    t = 0.0;
-                    s = std::clamp(-c / a, 0.0, 1.0);
-                }
-                else if (t > 1.0) {
-                    t = 1.0;
-                    s = std::clamp((b - c) / a, 0.0, 1.0);
-                }
-            }
-        }
-        return length(D3(p0) + d1 * s - (D3(q0) + d2 * t));
-    };
     double best = std::numeric_limits<double>::infinity();
     for (int64_t i = ra.begin; i + 1 < ra.end; ++i)
-        for (int64_t j = rb.begin; j + 1 < rb.end; ++j) best = std::min(best, seg(P[i], P[i + 1], P[j], P[j + 1]));
+        for (int64_t j = rb.begin; j + 1 < rb.end; ++j) best = std::min(best, std::sqrt(segment_distance_sq(P[i], P[i + 1], P[j], P[j + 1])));
     return best;
 }
 

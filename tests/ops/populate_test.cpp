@@ -5,6 +5,7 @@
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
+#include "make_curves.h"
 
 #include <gtest/gtest.h>
 
@@ -15,20 +16,9 @@
 #include <set>
 
 using namespace groom;
+using groom::test::make_curves;
 
 namespace {
-
-CurveSet make_curves(const std::vector<std::vector<float3>>& curves)
-{
-    std::vector<int64_t> counts;
-    for (const auto& c : curves) counts.push_back(int64_t(c.size()));
-    CurveSet cs = CurveSet::from_counts(counts);
-    auto P = cs.positions_for_write();
-    size_t q = 0;
-    for (const auto& c : curves)
-        for (const float3& p : c) P[q++] = p;
-    return cs;
-}
 
 std::vector<float3> line_z(float x, float y, int n, float len)
 {

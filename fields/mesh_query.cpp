@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <vector>
 
 namespace groom::detail {
 
@@ -215,12 +217,56 @@ MeshQuery::~MeshQuery() = default;
 
 float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face) const
 {
-    const auto hit = tree().tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
+    // Far out, a stand-in on the same ray (see the header). The centre and radius of the mesh's box.
+    const double cx = 0.5 * (double(geometry_.bounds_lo.x) + geometry_.bounds_hi.x);
+    const double cy = 0.5 * (double(geometry_.bounds_lo.y) + geometry_.bounds_hi.y);
+    const double cz = 0.5 * (double(geometry_.bounds_lo.z) + geometry_.bounds_hi.z);
+    const double radius = 0.5 * double(length(geometry_.bounds_hi - geometry_.bounds_lo));
+    const double dx = double(p.x) - cx, dy = double(p.y) - cy, dz = double(p.z) - cz;
+    const double out = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double far = kFarRadii * std::max(radius, 1e-30);
+    const bool stand_in = out > far;  // false for NaN
+    const float3 q = stand_in ? float3(float(cx + dx * (far / out)), float(cy + dy * (far / out)), float(cz + dz * (far / out))) : p;
+
+    const auto hit = tree().tree.closest_point_and_primitive(K::Point_3(q.x, q.y, q.z));
     face = static_cast<int32_t>(hit.second - tree().triangles.cbegin());
     // The AABB tree finds the face; the pseudo-normal of the feature hit gives the sign.
     bool boundary = false;
-    const float d = geometry_.signed_distance_to_face(p, face, closest, &boundary);
-    return sign_fixed(p, d, boundary, 0.0f);
+    const float pseudo = geometry_.signed_distance_to_face(q, face, closest, &boundary);
+    const float d = sign_fixed(q, pseudo, boundary, 0.0f);
+    if (!stand_in) return d;
+    const double ex = double(p.x) - closest.x, ey = double(p.y) - closest.y, ez = double(p.z) - closest.z;
+    const float dist = float(std::sqrt(ex * ex + ey * ey + ez * ez));
+    return d < 0.0f ? -dist : dist;
+}
+
+void MeshQuery::faces_within(const float3& center, double radius, std::vector<int32_t>& faces, std::vector<double>* distances) const
+{
+    // The tree is asked for the faces meeting the ball's bounding box, then each face's distance is
+    // measured: CGAL's do_intersect(Sphere_3, Triangle_3) is about the sphere's surface and misses
+    // a face wholly inside it.
+    faces.clear();
+    if (distances) distances->clear();
+    const Tree& t = tree();
+    std::vector<Triangles::const_iterator> hits;
+    const CGAL::Bbox_3 box(double(center.x) - radius, double(center.y) - radius, double(center.z) - radius,
+                           double(center.x) + radius, double(center.y) + radius, double(center.z) + radius);
+    t.tree.all_intersected_primitives(box, std::back_inserter(hits));
+    // Float rounding of the closest point: a few ulps of the coordinates, kept on the inclusive side.
+    const double slack = 1e-6 * (std::max({std::fabs(center.x), std::fabs(center.y), std::fabs(center.z)}) + radius);
+    const double reach2 = (radius + slack) * (radius + slack);
+    faces.reserve(hits.size());
+    for (const auto& it : hits) {
+        const int32_t f = int32_t(it - t.triangles.cbegin());
+        const auto& tri = geometry_.tris[f];
+        Feature feature;
+        const float3 c = closest_on_triangle(center, geometry_.points[tri[0]], geometry_.points[tri[1]], geometry_.points[tri[2]], feature);
+        const double dx = double(c.x) - center.x, dy = double(c.y) - center.y, dz = double(c.z) - center.z;
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        if (!(d2 <= reach2)) continue;
+        faces.push_back(f);
+        if (distances) distances->push_back(std::sqrt(d2));
+    }
 }
 
 const WindingNumber& MeshQuery::winding() const

@@ -33,6 +33,12 @@ float ScalpField::query(const float3& p, float3& n, float3& closest) const
     const float sd = im.query->signed_distance(p, closest, face);
     const float3 delta = p - closest;
     const float len = length(delta);
+    if (std::isinf(len) && isfinite(delta)) {
+        // p beyond about 1e19, where |delta|^2 overflows float: the direction of a scaled copy.
+        const float3 unit = normalize(delta / std::max({std::fabs(delta.x), std::fabs(delta.y), std::fabs(delta.z)}));
+        n = sd < 0.0f ? -unit : unit;
+        return sd;
+    }
     n = len > 1e-6f * im.voxel ? delta / (sd < 0.0f ? -len : len) : im.geometry.face_normals[face];
     return sd;
 }
@@ -42,6 +48,18 @@ float ScalpField::distance(const float3& p) const
     float d = 0.0f;
     float3 g;
     if (impl_->sample(p, d, g)) return d;
+    float3 closest;
+    int32_t face = -1;
+    return impl_->query->signed_distance(p, closest, face);
+}
+
+float ScalpField::distance_within(const float3& p, float reach) const
+{
+    float d = 0.0f;
+    float3 g;
+    if (impl_->sample(p, d, g)) return d;
+    const float bound = impl_->far().bound(p);
+    if (bound != 0.0f && std::fabs(bound) >= reach) return bound;
     float3 closest;
     int32_t face = -1;
     return impl_->query->signed_distance(p, closest, face);

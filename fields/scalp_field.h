@@ -3,10 +3,11 @@
 // or loaded from a .vdb written by `groom scalp`. OpenVDB, OpenMesh and CGAL stay behind a pimpl so
 // ops/ and cli/ compile without their headers.
 //
-// Queries are const and thread-safe (they only read; the query layout of the band, BrickMap, and
-// the mesh's AABB tree are each built once, on first use). Inside the narrow band they interpolate
-// the grid; outside it they answer exactly from the mesh through a CGAL AABB tree, so every point in
-// space gets a correct answer.
+// Queries are const and thread-safe (they only read; the query layout of the band, BrickMap, the
+// mesh's AABB tree and the far field's certificates are each built on first use). Inside the narrow
+// band they interpolate the grid; outside it they answer exactly from the mesh through a CGAL AABB
+// tree, so every point in space gets a correct answer, except distance_within, which answers points
+// certified to be far enough out (or in) with a bound, without the search.
 #pragma once
 
 #include "fields/mesh_repair.h"
@@ -55,6 +56,11 @@ public:
     float3 closest_point(const float3& p) const override;
     /// Signed distance, unit normal and closest point in one call (cheaper than three).
     float query(const float3& p, float3& normal, float3& closest) const override;
+    /// distance(p) in the band and wherever it is below `reach`; outside the band, where a cell of
+    /// space around p is certified to lie on one side of the scalp at least `reach` away, that
+    /// bound instead (fields/far_field.h): no exact mesh search, and the same answer as distance(p)
+    /// to every comparison with a threshold in (-reach, reach].
+    float distance_within(const float3& p, float reach) const override;
 
     float voxel_size() const;
     float band_voxels() const;

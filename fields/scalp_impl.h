@@ -3,6 +3,7 @@
 #pragma once
 
 #include "fields/brick_map.h"
+#include "fields/far_field.h"
 #include "fields/mesh_repair.h"
 #include "fields/scalp_field.h"
 #include "fields/winding_number.h"
@@ -63,8 +64,16 @@ class MeshQuery {
 public:
     explicit MeshQuery(const MeshGeometry& geometry);
     ~MeshQuery();
-    /// Signed distance; writes the closest point and its face.
+    /// Signed distance; writes the closest point and its face. A point more than kFarRadii
+    /// bounding-sphere radii from the mesh is answered through its stand-in on the same ray at that
+    /// distance (the closest point, the sign), with the distance measured in double from p itself:
+    /// there the answer is the same to float rounding, and CGAL's exact predicates, which fail
+    /// their filters ever more often as p goes out (0.4 s a query at 1e20), stay cheap.
     float signed_distance(const float3& p, float3& closest, int32_t& face) const;
+    static constexpr double kFarRadii = 4096.0;
+    /// Every face with a point within `radius` of `center` (scene units), in the tree's order, and
+    /// with `distances`, each one's distance from `center` (float rounding of its closest point).
+    void faces_within(const float3& center, double radius, std::vector<int32_t>& faces, std::vector<double>* distances = nullptr) const;
     /// Inside test by the generalized winding number (> 1/2): robust through the holes of a nearly
     /// closed head (eye sockets, mouth, neck), where a rim's pseudo-normal points anywhere.
     bool inside_by_winding(const float3& p) const;
@@ -143,12 +152,21 @@ struct ScalpField::Impl {
         return band_;
     }
 
+    /// Signs and bounds outside the band (fields/far_field.h), made on first use (thread-safe).
+    const detail::FarField& far() const
+    {
+        std::call_once(far_built_, [this] { far_ = std::make_unique<detail::FarField>(geometry, *query, origin, voxel, band().num_bricks()); });
+        return *far_;
+    }
+
 private:
     /// Fills `band_` from `sdf` alone, gradients by central differences: the same whether the grid
     /// was just built or read from a .vdb.
     void fill_band_from_sdf() const;
     mutable std::once_flag band_built_;
     mutable detail::BrickMap band_;
+    mutable std::once_flag far_built_;
+    mutable std::unique_ptr<detail::FarField> far_;
 };
 
 }  // namespace groom

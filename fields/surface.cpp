@@ -12,6 +12,8 @@ float Surface::query(const float3& p, float3& n, float3& closest) const
     return distance(p);
 }
 
+float Surface::distance_within(const float3& p, float) const { return distance(p); }
+
 bool Surface::first_intersection(const float3& a, const float3& b, float3& hit, float tolerance) const
 {
     const float len = groom::distance(a, b);

@@ -21,7 +21,14 @@ public:
     /// above. The default asks each; ScalpField answers from one read of its grid.
     virtual float query(const float3& p, float3& normal, float3& closest) const;
 
-    bool inside(const float3& p) const { return distance(p) < 0.0f; }
+    /// The signed distance where it is shorter than `reach` (scene units, >= 0); beyond, possibly
+    /// only a bound: a value of the same sign, at least `reach` and at most the distance in size.
+    /// So `distance_within(p, r) < t` is `distance(p) < t` for every t in (-r, r]: what a caller
+    /// that compares with a clearance needs, where it needs no value. ScalpField answers most points
+    /// outside its narrow band this way without an exact search of the mesh; the default is distance(p).
+    virtual float distance_within(const float3& p, float reach) const;
+
+    bool inside(const float3& p) const { return distance_within(p, 0.0f) < 0.0f; }
 
     /// First point where the segment a->b enters the surface (sign change from outside to inside),
     /// accurate to `tolerance` (scene units; 0 = a default relative to the segment). Returns false

@@ -14,6 +14,7 @@
 #include "ops/populate.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -205,16 +206,39 @@ int64_t keep_hair_outside(CurveSet& out, const CurveSet* strands, std::span<cons
     std::vector<uint8_t> known_clear;
     if (strands) {
         const auto SP = strands->positions();
+        // Each strand distance is only compared with a threshold. Below `within` the scalp answers
+        // exactly; past it, possibly with a bound (Surface::distance_within), which spares a strand
+        // point outside the level set's band an exact search of the mesh. `within` comes from a
+        // sample of the thresholds; a test that a bound cannot settle asks for the distance itself.
+        const int64_t n = int64_t(out.num_points());
+        float within = 0.0f;
+        for (int64_t q = 0; q < n; q += std::max<int64_t>(1, n / 4096)) {
+            if (strand_point[q] >= 0) within = std::max(within, reach[q] + 0.5f * W[q]);
+        }
+        within = (within + params.clearance + margin) * 1.01f;
         std::vector<float> strand_dist(strands->num_points());
+        std::vector<float> strand_exact(strands->num_points(), std::numeric_limits<float>::quiet_NaN());
         parallel_for(int64_t(strands->num_points()), 1024, [&](int64_t begin, int64_t end) {
-            for (int64_t q = begin; q < end; ++q) strand_dist[q] = scalp.distance(SP[q]);
+            for (int64_t q = begin; q < end; ++q) strand_dist[q] = scalp.distance_within(SP[q], within);
         });
         known_clear.assign(out.num_points(), 0);
-        parallel_for(int64_t(out.num_points()), 4096, [&](int64_t begin, int64_t end) {
+        parallel_for(n, 4096, [&](int64_t begin, int64_t end) {
             for (int64_t q = begin; q < end; ++q) {
                 const int64_t sp = strand_point[q];
                 if (sp < 0) continue;
-                known_clear[q] = strand_dist[sp] - reach[q] >= params.clearance + 0.5f * W[q] + margin;
+                const float need = params.clearance + 0.5f * W[q] + margin;
+                float d = strand_dist[sp];
+                if (!(d - reach[q] >= need) && d >= within) {
+                    // Perhaps a bound below the distance: the distance itself decides (once per
+                    // strand point; threads that race store the same value).
+                    std::atomic_ref<float> exact(strand_exact[sp]);
+                    d = exact.load(std::memory_order_relaxed);
+                    if (d != d) {
+                        d = scalp.distance(SP[sp]);
+                        exact.store(d, std::memory_order_relaxed);
+                    }
+                }
+                known_clear[q] = d - reach[q] >= need;
             }
         });
     }

@@ -86,24 +86,23 @@ CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& param
             const IndexRange r = src.points_of(size_t(c));
             keep[c] = r.size();
             if (r.size() < 2) continue;
-            float prev = scalp.distance(P[r.begin]);
             for (int64_t i = r.begin + 1; i < r.end; ++i) {
-                const float d = scalp.distance(P[i]);
-                if (d < D) {
-                    affected[c] = 1;
-                    if (params.mode == CullMode::Delete) {
-                        keep[c] = 0;
-                    }
-                    else {
-                        // Linear in distance along the segment; a root below the clearance cuts at the root.
-                        const float t = prev > D ? std::clamp((prev - D) / (prev - d), 0.0f, 1.0f) : 0.0f;
-                        const bool empty = (i == r.begin + 1 && t <= 0.0f);
-                        keep[c] = empty ? 0 : (i - r.begin) + 1;
-                        cut_t[c] = t;
-                    }
-                    break;
+                // Only the first point below the clearance needs distances (its own and its
+                // predecessor's): until then a bound does (Surface::distance_within).
+                if (!(scalp.distance_within(P[i], D) < D)) continue;
+                affected[c] = 1;
+                if (params.mode == CullMode::Delete) {
+                    keep[c] = 0;
                 }
-                prev = d;
+                else {
+                    // Linear in distance along the segment; a root below the clearance cuts at the root.
+                    const float d = scalp.distance(P[i]), prev = scalp.distance(P[i - 1]);
+                    const float t = prev > D ? std::clamp((prev - D) / (prev - d), 0.0f, 1.0f) : 0.0f;
+                    const bool empty = (i == r.begin + 1 && t <= 0.0f);
+                    keep[c] = empty ? 0 : (i - r.begin) + 1;
+                    cut_t[c] = t;
+                }
+                break;
             }
         }
     });

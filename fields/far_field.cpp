@@ -1,0 +1,441 @@
+#include "fields/far_field.h"
+
+#include "fields/scalp_impl.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace groom::detail {
+
+namespace {
+
+// Cells of 2^kStartLevel voxels are tried first, then split down to 2^kMinLevel: on Sintel's head,
+// hair points near the scalp are mostly certified by cells of 1 and 2 voxels.
+constexpr int kStartLevel = 3;
+constexpr int kMinLevel = 0;
+// Cell coordinates are packed in 20 bits each: points beyond 2^19 voxels from the grid's origin
+// (about 2,000 times a head at the default voxel) go to the exact query.
+constexpr double kLimit = double(1 << 19);
+constexpr int kMaxProbes = 32;
+constexpr float kSplit = -1.0f;  ///< Certificate::m of a cell that failed and has smaller cells
+constexpr float kExact = -2.0f;  ///< Certificate::m of a smallest cell that failed
+
+uint32_t bits_of(float f)
+{
+    uint32_t u;
+    std::memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+float float_of(uint32_t u)
+{
+    float f;
+    std::memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+uint64_t pack_key(int level, int64_t ix, int64_t iy, int64_t iz)
+{
+    constexpr int64_t kOffset = int64_t(1) << 19;
+    return (uint64_t(1) << 63) | (uint64_t(level) << 60) | (uint64_t(ix + kOffset) << 40) | (uint64_t(iy + kOffset) << 20) |
+           uint64_t(iz + kOffset);
+}
+
+/// Distinguishes fields in each thread's memory of the last cell (an address can be reused).
+std::atomic<uint64_t> next_id{0};
+
+double max_abs(double a, double b, double c) { return std::max({std::fabs(a), std::fabs(b), std::fabs(c)}); }
+
+/// Double precision for the certificate's plane tests (the mesh is float; its planes tested exactly enough).
+struct D3 {
+    double x = 0, y = 0, z = 0;
+    D3() = default;
+    D3(double x, double y, double z) : x(x), y(y), z(z) {}
+    explicit D3(const float3& p) : x(p.x), y(p.y), z(p.z) {}
+    D3 operator-(const D3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    D3 operator-() const { return {-x, -y, -z}; }
+    D3 cross(const D3& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
+    D3 unit() const
+    {
+        const double l = std::sqrt(x * x + y * y + z * z);
+        return l > 0.0 ? D3(x / l, y / l, z / l) : D3();
+    }
+};
+
+}  // namespace
+
+FarField::FarField(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel, size_t band_leaves)
+    : id_(next_id.fetch_add(1, std::memory_order_relaxed) + 1), geometry_(geometry), query_(query), ox_(origin.x), oy_(origin.y), oz_(origin.z), voxel_(voxel), inv_voxel_(1.0 / double(voxel))
+{
+    // Sized from the band: hair around Sintel's head (1,580 leaves) certified 28,000 cells of all
+    // levels for 100,000 curves. Half full keeps probes short; a full table only stops caching
+    // (answers are the same, slower).
+    const size_t want = std::max<size_t>(size_t(1) << 15, band_leaves * 64);
+    const size_t capacity = std::bit_ceil(std::min<size_t>(want, size_t(1) << 21));
+    mask_ = capacity - 1;
+    slots_.reset(new std::atomic<uint64_t>[3 * capacity]());
+
+    // What the certificates ask of every face and vertex, once: per edge k of face f (v_k -> v_k+1)
+    // its unit direction, its outward normal within f and within the face across it; per vertex the
+    // unit directions of its edges.
+    const size_t nf = geometry.tris.size(), nv = geometry.points.size();
+    const auto unit = [&](int32_t from, int32_t to) { return normalize(geometry.points[to] - geometry.points[from]); };
+    edge_dir_.resize(nf * 3);
+    edge_out_.resize(nf * 3);
+    edge_other_out_.assign(nf * 3, float3());
+    for (size_t f = 0; f < nf; ++f) {
+        for (int k = 0; k < 3; ++k) {
+            const int32_t a = geometry.tris[f][k], b = geometry.tris[f][(k + 1) % 3];
+            edge_dir_[f * 3 + k] = unit(a, b);
+            edge_out_[f * 3 + k] = normalize(cross(edge_dir_[f * 3 + k], geometry.face_normals[f]));
+            for (int32_t i = geometry.vertex_face_offsets[a]; i < geometry.vertex_face_offsets[a + 1]; ++i) {
+                const int32_t g = geometry.vertex_faces[i];
+                const auto& tg = geometry.tris[g];
+                if (size_t(g) != f && (tg[0] == b || tg[1] == b || tg[2] == b)) {
+                    edge_other_out_[f * 3 + k] = normalize(cross(unit(b, a), geometry.face_normals[g]));
+                }
+            }
+        }
+    }
+    // A sphere around each face: a face farther than a cell's reach is skipped without measuring it.
+    face_centre_.resize(nf);
+    face_radius_.resize(nf);
+    for (size_t f = 0; f < nf; ++f) {
+        const float3 &a = geometry.points[geometry.tris[f][0]], &b = geometry.points[geometry.tris[f][1]], &c = geometry.points[geometry.tris[f][2]];
+        face_centre_[f] = (a + b + c) / 3.0f;
+        face_radius_[f] = std::max({distance(face_centre_[f], a), distance(face_centre_[f], b), distance(face_centre_[f], c)}) * (1.0f + 1e-5f) +
+                          1e-6f * std::max({std::fabs(face_centre_[f].x), std::fabs(face_centre_[f].y), std::fabs(face_centre_[f].z)});
+    }
+    ring_offsets_.assign(nv + 1, 0);
+    std::vector<int32_t> ring;
+    for (size_t a = 0; a < nv; ++a) {
+        ring.clear();
+        for (int32_t i = geometry.vertex_face_offsets[a]; i < geometry.vertex_face_offsets[a + 1]; ++i) {
+            for (const int32_t b : geometry.tris[geometry.vertex_faces[i]]) {
+                if (size_t(b) != a) ring.push_back(b);
+            }
+        }
+        std::sort(ring.begin(), ring.end());
+        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+        for (const int32_t b : ring) ring_dirs_.push_back(unit(int32_t(a), b));
+        ring_offsets_[a + 1] = int32_t(ring_dirs_.size());
+    }
+}
+
+FarField::~FarField()
+{
+    for (size_t i = 0; i <= mask_; ++i) delete reinterpret_cast<const Faces*>(slots_[3 * i + 2].load(std::memory_order_relaxed));
+}
+
+FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent,
+                                        std::unique_ptr<Faces>* kept) const
+{
+    const double side = voxel_ * double(int64_t(1) << level), half = 0.5 * side;
+    const double cx = ox_ + side * (double(ix) + 0.5), cy = oy_ + side * (double(iy) + 0.5), cz = oz_ + side * (double(iz) + 0.5);
+    const float3 cf(static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(cz));
+    // Every point of the cell is within r of cf.
+    const double ex = double(cf.x) - cx, ey = double(cf.y) - cy, ez = double(cf.z) - cz;
+    const double r = std::sqrt(3.0) * half + std::sqrt(ex * ex + ey * ey + ez * ez);
+    // |d| at the centre: from the exact query for a cell of the first level; a smaller cell starts
+    // from its parent's (plus the distance between the centres) and measures its own among the
+    // faces near it, which are among its parent's (no tree search below the first level).
+    float dc = 0.0f;
+    double upper = 0.0, offset = 0.0;
+    float3 s0;  // the surface point nearest the centre
+    if (!parent) {
+        int32_t face = -1;
+        dc = query_.signed_distance(cf, s0, face);
+        if (!std::isfinite(dc)) return Certificate{0.0f, kExact};
+        upper = std::fabs(double(dc));
+    }
+    else {
+        const double qx = double(cf.x) - parent->center.x, qy = double(cf.y) - parent->center.y, qz = double(cf.z) - parent->center.z;
+        offset = std::sqrt(qx * qx + qy * qy + qz * qz);
+        upper = (double(parent->distance) + offset) * (1.0 + 1e-6) + 1e-6 * max_abs(cx, cy, cz);
+    }
+    // Float rounding of the exact query (its closest point, its dot with the pseudo-normal) is a few
+    // ulps of the coordinates involved: planes must clear the cell by well more than that.
+    const double scale = max_abs(cx, cy, cz) + upper + side;
+    const double margin = 1e-5 * scale;
+    // Every point's closest point is within |d_c| + 2 r of the centre. Gathered a little wider:
+    // the cell's children look for theirs among these.
+    const double gather = (upper + 2.0 * r) * (1.0 + 1e-3) + 8.0 * margin;
+    std::vector<int32_t> faces;
+    std::vector<double> face_distance;
+    if (parent && offset + gather <= parent->radius) {
+        for (const int32_t f : parent->faces) {
+            const float3& m = face_centre_[f];
+            const double mx = double(m.x) - cf.x, my = double(m.y) - cf.y, mz = double(m.z) - cf.z;
+            const double far = gather + face_radius_[f];
+            if (mx * mx + my * my + mz * mz > far * far) continue;
+            const auto& t = geometry_.tris[f];
+            Feature feature;
+            const float3 q = closest_on_triangle(cf, geometry_.points[t[0]], geometry_.points[t[1]], geometry_.points[t[2]], feature);
+            const double qx = double(q.x) - cf.x, qy = double(q.y) - cf.y, qz = double(q.z) - cf.z;
+            const double d = std::sqrt(qx * qx + qy * qy + qz * qz);
+            if (d > gather) continue;
+            faces.push_back(f);
+            face_distance.push_back(d);
+        }
+    }
+    else {
+        query_.faces_within(cf, gather, faces, &face_distance);
+    }
+    double distance = upper;
+    if (parent) {
+        distance = std::numeric_limits<double>::infinity();
+        size_t nearest = 0;
+        for (size_t i = 0; i < faces.size(); ++i) {
+            if (face_distance[i] < distance) {
+                distance = face_distance[i];
+                nearest = i;
+            }
+        }
+        if (!faces.empty()) {
+            const auto& t = geometry_.tris[faces[nearest]];
+            Feature feature;
+            s0 = closest_on_triangle(cf, geometry_.points[t[0]], geometry_.points[t[1]], geometry_.points[t[2]], feature);
+        }
+    }
+    if (!std::isfinite(distance)) return Certificate{0.0f, kExact};
+    const Certificate fail{float(distance), level > kMinLevel ? kSplit : kExact};
+    if (kept && level > kMinLevel) {
+        // Kept for the children in case this cell fails.
+        auto& k = *kept;
+        k = std::make_unique<Faces>();
+        k->center = cf;
+        k->distance = float(distance);
+        k->radius = gather;
+        k->faces = faces;
+    }
+    if (!(distance > 0.0)) return fail;
+    // A point of the surface near the centre: every point p of the cell has |d(p)| <= |p - s0|.
+    double corner_reach[8];
+    for (int i = 0; i < 8; ++i) {
+        const double qx = cx + ((i & 1) ? half : -half) - s0.x, qy = cy + ((i & 2) ? half : -half) - s0.y,
+                     qz = cz + ((i & 4) ? half : -half) - s0.z;
+        corner_reach[i] = std::sqrt(qx * qx + qy * qy + qz * qz) + 2.0 * margin;
+    }
+    // A point's closest point is within |p - s0| of it, so within the farthest corner's reach + r of
+    // the centre (|p - s0| is convex: the corners bound it); never more than |d_c| + 2 r.
+    double reach = 0.0;
+    for (const double c : corner_reach) reach = std::max(reach, c);
+    const double radius = (std::min(distance + 2.0 * r, reach + r)) * (1.0 + 1e-5) + margin;
+    // The box's extent along a unit direction u, measured from q: [lo, hi] of dot(p - q, u).
+    const auto range = [&](const float3& q, const D3& u, double& lo, double& hi) {
+        const double at = (cx - q.x) * u.x + (cy - q.y) * u.y + (cz - q.z) * u.z;
+        const double spread = half * (std::fabs(u.x) + std::fabs(u.y) + std::fabs(u.z)) + margin;
+        lo = at - spread;
+        hi = at + spread;
+    };
+    // A feature whose plane (through q, normal n) keeps the whole cell farther than s0 is nobody's
+    // closest feature there: |p - s0| - |plane distance| is convex, so the corners decide.
+    const auto dominated = [&](const float3& q, const float3& n) {
+        const double at = (cx - q.x) * n.x + (cy - q.y) * n.y + (cz - q.z) * n.z;
+        for (int i = 0; i < 8; ++i) {
+            const double v = at + ((i & 1) ? half : -half) * n.x + ((i & 2) ? half : -half) * n.y + ((i & 4) ? half : -half) * n.z;
+            if (!(std::fabs(v) > corner_reach[i]) || (v > 0.0) != (at > 0.0)) return false;
+        }
+        return true;
+    };
+    struct Vote {
+        float3 q, n;
+        int side;
+        double least;
+    };
+    std::vector<Vote> votes;
+    int seen_sides = 0;  // bit 0: a feature says outside, bit 1: inside
+    // One feature that may be the closest to some point of the cell: the cell must lie on one side
+    // of its plane (through q, normal n), and it must not be an open rim, unless it is dominated.
+    const auto one_side = [&](const float3& q, const float3& n, bool rim) {
+        if (!(length_squared(n) > 0.5f)) return false;
+        double lo, hi;
+        range(q, D3(n), lo, hi);
+        const int s = lo >= margin ? 1 : hi <= -margin ? -1 : 0;
+        if (rim || s == 0) {
+            const bool ok = s != 0 && dominated(q, n);
+            return ok;
+        }
+        votes.push_back(Vote{q, n, s, s > 0 ? lo : -hi});
+        seen_sides |= s > 0 ? 1 : 2;
+        return true;
+    };
+    // The regions of the mesh's features (Ericson's regions of the closest point on a triangle,
+    // intersected over the faces that share the feature, since a closest point is the closest
+    // point of each of them), each tested against the whole cell: a feature whose region misses the
+    // cell, or that lies farther than `radius`, is nobody's closest feature there.
+    const double radius2 = radius * radius;
+    const auto beyond = [&](const float3& q, const float3& u) {  // the whole cell has dot(p - q, u) > 0
+        double lo, hi;
+        range(q, D3(u), lo, hi);
+        return lo > 0.0;
+    };
+    // Each vertex once: marked in a per-thread table by this call's generation.
+    thread_local std::vector<uint32_t> stamp;
+    thread_local uint32_t generation = 0;
+    if (stamp.size() < geometry_.points.size() || ++generation == 0) {
+        stamp.assign(std::max(stamp.size(), geometry_.points.size()), 0);
+        generation = 1;
+    }
+    std::vector<int32_t> vertices;
+    vertices.reserve(faces.size() * 3);
+    for (size_t i = 0; i < faces.size(); ++i) {
+        if (face_distance[i] > radius) continue;
+        const int32_t f = faces[i];
+        const auto& t = geometry_.tris[f];
+        const size_t f3 = size_t(f) * 3;
+        // The face itself: points whose projection falls inside it (its prism).
+        if (!beyond(geometry_.points[t[0]], edge_out_[f3]) && !beyond(geometry_.points[t[1]], edge_out_[f3 + 1]) &&
+            !beyond(geometry_.points[t[2]], edge_out_[f3 + 2]) && !one_side(geometry_.points[t[0]], geometry_.face_normals[f], false)) {
+            return fail;
+        }
+        for (int k = 0; k < 3; ++k) {
+            const int32_t a = t[k], b = t[(k + 1) % 3];
+            if (stamp[a] != generation) {
+                stamp[a] = generation;
+                vertices.push_back(a);
+            }
+            // Each edge once: from the face that has it as a -> b with a < b, or from its only face.
+            const float3& other = edge_other_out_[f3 + k];
+            const bool rim = geometry_.boundary_edge[f3 + k];
+            if (!rim && a > b) continue;
+            const float3 &pa = geometry_.points[a], &pb = geometry_.points[b];
+            const float3& e = edge_dir_[f3 + k];
+            const double ab = double(e.x) * (double(pb.x) - pa.x) + double(e.y) * (double(pb.y) - pa.y) + double(e.z) * (double(pb.z) - pa.z);
+            const double along = std::clamp((cx - pa.x) * e.x + (cy - pa.y) * e.y + (cz - pa.z) * e.z, 0.0, ab);
+            const double qx = pa.x + e.x * along - cx, qy = pa.y + e.y * along - cy, qz = pa.z + e.z * along - cz;
+            if (qx * qx + qy * qy + qz * qz > radius2) continue;
+            if (beyond(pa, -e) || beyond(pb, e) || beyond(pa, -edge_out_[f3 + k]) || (!rim && beyond(pa, -other))) continue;
+            if (!one_side(pa, geometry_.edge_normals[f3 + k], rim)) return fail;
+        }
+    }
+    for (const int32_t a : vertices) {
+        const float3& pa = geometry_.points[a];
+        const double qx = pa.x - cx, qy = pa.y - cy, qz = pa.z - cz;
+        if (qx * qx + qy * qy + qz * qz > radius2) continue;
+        // The vertex's region: no edge from it leads toward the point.
+        bool region = true;
+        for (int32_t i = ring_offsets_[a]; region && i < ring_offsets_[a + 1]; ++i) region = !beyond(pa, ring_dirs_[i]);
+        if (region && !one_side(pa, geometry_.vertex_normals[a], geometry_.boundary_vertex[a])) return fail;
+    }
+    // Features that disagree: those that cannot be closest anywhere in the cell do not count.
+    if (seen_sides == 3) {
+        seen_sides = 0;
+        size_t w = 0;
+        for (const Vote& v : votes) {
+            if (dominated(v.q, v.n)) continue;
+            votes[w++] = v;
+            seen_sides |= v.side > 0 ? 1 : 2;
+        }
+        votes.resize(w);
+    }
+    if (seen_sides != 1 && seen_sides != 2) return fail;
+    const int sign = seen_sides == 1 ? 1 : -1;
+    double least = std::numeric_limits<double>::infinity();
+    for (const Vote& v : votes) least = std::min(least, v.least);
+    // The centre's own exact answer, where there is one, must agree (it does whenever the argument
+    // above holds; a mesh whose float normals disagree with its geometry is left to the exact query).
+    if (!parent && (dc < 0.0f) != (sign < 0)) return fail;
+    return Certificate{float(sign < 0 ? -distance : distance), float(least)};
+}
+
+FarField::Found FarField::lookup(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent, std::unique_ptr<Faces>& local) const
+{
+    const uint64_t key = pack_key(level, ix, iy, iz);
+    size_t i = size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_;
+    int probe = 0;
+    for (; probe < kMaxProbes; ++probe, i = (i + 1) & mask_) {
+        std::atomic<uint64_t>& k = slots_[3 * i];
+        std::atomic<uint64_t>& v = slots_[3 * i + 1];
+        std::atomic<uint64_t>& l = slots_[3 * i + 2];
+        uint64_t seen = k.load(std::memory_order_acquire);
+        if (seen == 0) {
+            if (k.compare_exchange_strong(seen, key, std::memory_order_acq_rel)) {
+                std::unique_ptr<Faces> kept;
+                const Certificate c = certify(level, ix, iy, iz, parent, &kept);
+                const Faces* faces = nullptr;
+                if (c.m == kSplit && kept) {
+                    faces = kept.release();  // owned by the table from here (freed by the destructor)
+                    l.store(reinterpret_cast<uint64_t>(faces), std::memory_order_relaxed);
+                }
+                v.store((uint64_t(bits_of(c.dc)) << 32) | bits_of(c.m), std::memory_order_release);
+                return {c, faces};
+            }
+            // Another thread took the slot: `seen` now holds its key.
+        }
+        if (seen == key) {
+            const uint64_t value = v.load(std::memory_order_acquire);
+            if (value != 0) {
+                return {Certificate{float_of(uint32_t(value >> 32)), float_of(uint32_t(value))},
+                        reinterpret_cast<const Faces*>(l.load(std::memory_order_relaxed))};
+            }
+            break;  // still being computed by the thread that claimed it: the same answer, computed here
+        }
+    }
+    if (probe == kMaxProbes) uncached_.fetch_add(1, std::memory_order_relaxed);
+    const Certificate c = certify(level, ix, iy, iz, parent, &local);
+    return {c, c.m == kSplit ? local.get() : nullptr};
+}
+
+float FarField::bound(const float3& p) const
+{
+    const double x = (double(p.x) - ox_) * inv_voxel_, y = (double(p.y) - oy_) * inv_voxel_, z = (double(p.z) - oz_) * inv_voxel_;
+    if (!(std::fabs(x) < kLimit && std::fabs(y) < kLimit && std::fabs(z) < kLimit)) return 0.0f;  // also NaN
+    // The cell this thread answered from last: consecutive queries walk along a curve, mostly
+    // within one cell, and the table's walk down the levels is then skipped.
+    thread_local Last last;
+    int level = last.level;
+    int64_t ix = 0, iy = 0, iz = 0;
+    Certificate c{0.0f, kExact};
+    bool found_last = false;
+    if (last.owner == id_) {
+        const double cells = 1.0 / double(1 << level);
+        ix = int64_t(std::floor(x * cells)), iy = int64_t(std::floor(y * cells)), iz = int64_t(std::floor(z * cells));
+        found_last = ix == last.ix && iy == last.iy && iz == last.iz;
+        c = last.certificate;
+    }
+    if (!found_last) {
+        // A parent's faces that the table does not hold live here while its children need them.
+        std::unique_ptr<Faces> held[2];
+        const Faces* parent = nullptr;
+        for (level = kStartLevel; level >= kMinLevel; --level) {
+            const double cells = 1.0 / double(1 << level);
+            ix = int64_t(std::floor(x * cells)), iy = int64_t(std::floor(y * cells)), iz = int64_t(std::floor(z * cells));
+            const Found found = lookup(level, ix, iy, iz, parent, held[level & 1]);
+            c = found.certificate;
+            if (c.m != kSplit) break;
+            parent = found.faces;
+        }
+        if (level < kMinLevel) return 0.0f;
+        last = Last{id_, level, ix, iy, iz, c};
+    }
+    if (c.m < 0.0f) return 0.0f;
+    const double side = voxel_ * double(int64_t(1) << level);
+    const float3 cf(float(ox_ + side * (double(ix) + 0.5)), float(oy_ + side * (double(iy) + 0.5)), float(oz_ + side * (double(iz) + 0.5)));
+    const double dx = double(p.x) - cf.x, dy = double(p.y) - cf.y, dz = double(p.z) - cf.z;
+    double lower = std::max(std::fabs(double(c.dc)) - std::sqrt(dx * dx + dy * dy + dz * dz), double(c.m));
+    // Stay clear of the float rounding of the distance the exact query would return.
+    lower -= 1e-5 * (max_abs(p.x, p.y, p.z) + std::fabs(double(c.dc)) + side);
+    if (!(lower > 0.0)) return 0.0f;
+    return float(c.dc < 0.0f ? -lower : lower);
+}
+
+FarField::Counts FarField::counts() const
+{
+    Counts c;
+    for (size_t i = 0; i <= mask_; ++i) {
+        if (slots_[3 * i].load(std::memory_order_relaxed) == 0) continue;
+        const uint64_t v = slots_[3 * i + 1].load(std::memory_order_relaxed);
+        const float m = float_of(uint32_t(v));
+        if (m == kSplit) ++c.split;
+        else if (m == kExact) ++c.exact;
+        else ++c.certified;
+    }
+    c.uncached = uncached_.load(std::memory_order_relaxed);
+    return c;
+}
+
+}  // namespace groom::detail

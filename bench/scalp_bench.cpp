@@ -1,8 +1,9 @@
 // Projection throughput of ScalpField::closest_point against CGAL's AABB_tree::closest_point on the
 // same mesh and points, in the same run, at 1 and 2 threads; plus each one's accuracy, and the time
-// to build the scalp. Mesh: ../shared/datasets/nefertiti_scan/nefertiti-lowres.obj (70k triangles)
+// to build the scalp; and queries outside the narrow band against the band's own. Mesh: ../shared/datasets/nefertiti_scan/nefertiti-lowres.obj (70k triangles)
 // when present, else an icosphere of 82k triangles. Points: 200k within +-2 voxels of the surface.
 #include "fields/scalp_field.h"
+#include "fields/scalp_impl.h"
 #include "kernel/io/mesh_io.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
@@ -151,6 +152,63 @@ void BM_ProjectionRatioVsCgal(benchmark::State& state)
     state.SetLabel(s.name);
 }
 
+// Points outside the band, as hair puts them (4 to 40 voxels out, a fifth 4 to 20 voxels in), asked
+// what keep_outside asks (distance_within with the clearance as reach), in one loop with the band's
+// own points asked for their distance, and every 20th far point asked exactly: far queries against
+// band speed, and what they cost before (issue 17). The far points' certificates are made in an
+// untimed pass first, as a command's first hair does for the next.
+void BM_FarQueriesVsBand(benchmark::State& state)
+{
+    Setup& s = setup();
+    ThreadLimit limit(int(state.range(0)));
+    const float h = s.field->voxel_size();
+    static const std::vector<float3> far = [&] {
+        std::vector<float3> pts;
+        const auto roots = s.field->sample_ball({0, 0, 0}, 0.0f, 200000, 3);
+        for (size_t i = 0; i < roots.size(); ++i) {
+            Rng rng(4, i);
+            const float out = i % 5 == 0 ? -rng.uniform(4.0f * h, 20.0f * h) : rng.uniform(4.0f * h, 40.0f * h);
+            pts.push_back(roots[i].position + roots[i].normal * out);
+        }
+        for (const float3& p : pts) benchmark::DoNotOptimize(s.field->distance_within(p, 0.0f));
+        return pts;
+    }();
+    const float need = 0.1f * h;
+    const int64_t n = int64_t(far.size()), nb = int64_t(s.points.size()), m = (n + 19) / 20;
+    std::vector<float> out(std::max(n, nb));
+    double t_far = 0.0, t_band = 0.0, t_exact = 0.0;
+    int64_t certified = 0;
+    for (auto _ : state) {
+        const auto t0 = std::chrono::steady_clock::now();
+        parallel_for(n, 4096, [&](int64_t b, int64_t e) {
+            for (int64_t i = b; i < e; ++i) out[i] = s.field->distance_within(far[i], need);
+        });
+        const auto t1 = std::chrono::steady_clock::now();
+        parallel_for(nb, 4096, [&](int64_t b, int64_t e) {
+            for (int64_t i = b; i < e; ++i) out[i] = s.field->distance(s.points[i]);
+        });
+        const auto t2 = std::chrono::steady_clock::now();
+        parallel_for(m, 256, [&](int64_t b, int64_t e) {
+            for (int64_t j = b; j < e; ++j) out[j] = s.field->distance(far[j * 20]);
+        });
+        const auto t3 = std::chrono::steady_clock::now();
+        benchmark::DoNotOptimize(out.data());
+        t_far += std::chrono::duration<double>(t1 - t0).count();
+        t_band += std::chrono::duration<double>(t2 - t1).count();
+        t_exact += std::chrono::duration<double>(t3 - t2).count();
+    }
+    for (const float3& p : far) certified += s.field->distance_within(p, 0.0f) != s.field->distance(p);
+    const double iters = double(state.iterations());
+    state.counters["far_pts_per_s"] = double(n) * iters / t_far;
+    state.counters["band_pts_per_s"] = double(nb) * iters / t_band;
+    state.counters["exact_pts_per_s"] = double(m) * iters / t_exact;
+    state.counters["far_vs_band"] = (double(nb) / t_band) / (double(n) / t_far);
+    state.counters["certified_frac"] = double(certified) / double(n);
+    const auto cells = s.field->impl().far().counts();
+    state.counters["cells"] = double(cells.certified + cells.split + cells.exact);
+    state.SetLabel(s.name);
+}
+
 void BM_BuildScalp(benchmark::State& state)
 {
     Setup& s = setup();
@@ -162,6 +220,7 @@ void BM_BuildScalp(benchmark::State& state)
 BENCHMARK(BM_ScalpClosestPoint)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CgalAabbClosestPoint)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ProjectionRatioVsCgal)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_FarQueriesVsBand)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK(BM_BuildScalp)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 }  // namespace

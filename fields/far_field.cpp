@@ -3,7 +3,6 @@
 #include "fields/scalp_impl.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -19,7 +18,6 @@ constexpr int kMinLevel = 0;
 // Cell coordinates are packed in 20 bits each: points beyond 2^19 voxels from the grid's origin
 // (about 2,000 times a head at the default voxel) go to the exact query.
 constexpr double kLimit = double(1 << 19);
-constexpr int kMaxProbes = 32;
 constexpr float kSplit = -1.0f;  ///< Certificate::m of a cell that failed and has smaller cells
 constexpr float kExact = -2.0f;  ///< Certificate::m of a smallest cell that failed
 
@@ -67,17 +65,9 @@ struct D3 {
 
 }  // namespace
 
-FarField::FarField(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel, size_t band_leaves)
+FarField::FarField(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel)
     : id_(next_id.fetch_add(1, std::memory_order_relaxed) + 1), geometry_(geometry), query_(query), ox_(origin.x), oy_(origin.y), oz_(origin.z), voxel_(voxel), inv_voxel_(1.0 / double(voxel))
 {
-    // Sized from the band: hair around Sintel's head (1,580 leaves) certified 28,000 cells of all
-    // levels for 100,000 curves. Half full keeps probes short; a full table only stops caching
-    // (answers are the same, slower).
-    const size_t want = std::max<size_t>(size_t(1) << 15, band_leaves * 64);
-    const size_t capacity = std::bit_ceil(std::min<size_t>(want, size_t(1) << 21));
-    mask_ = capacity - 1;
-    slots_.reset(new std::atomic<uint64_t>[3 * capacity]());
-
     // What the certificates ask of every face and vertex, once: per edge k of face f (v_k -> v_k+1)
     // its unit direction, its outward normal within f and within the face across it; per vertex the
     // unit directions of its edges.
@@ -125,10 +115,7 @@ FarField::FarField(const MeshGeometry& geometry, const MeshQuery& query, const f
     }
 }
 
-FarField::~FarField()
-{
-    for (size_t i = 0; i <= mask_; ++i) delete reinterpret_cast<const Faces*>(slots_[3 * i + 2].load(std::memory_order_relaxed));
-}
+FarField::~FarField() = default;
 
 FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent,
                                         std::unique_ptr<Faces>* kept) const
@@ -342,42 +329,16 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
     return Certificate{float(sign < 0 ? -distance : distance), float(least)};
 }
 
-FarField::Found FarField::lookup(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent, std::unique_ptr<Faces>& local) const
+FarField::Found FarField::lookup(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent) const
 {
     const uint64_t key = pack_key(level, ix, iy, iz);
-    size_t i = size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_;
-    int probe = 0;
-    for (; probe < kMaxProbes; ++probe, i = (i + 1) & mask_) {
-        std::atomic<uint64_t>& k = slots_[3 * i];
-        std::atomic<uint64_t>& v = slots_[3 * i + 1];
-        std::atomic<uint64_t>& l = slots_[3 * i + 2];
-        uint64_t seen = k.load(std::memory_order_acquire);
-        if (seen == 0) {
-            if (k.compare_exchange_strong(seen, key, std::memory_order_acq_rel)) {
-                std::unique_ptr<Faces> kept;
-                const Certificate c = certify(level, ix, iy, iz, parent, &kept);
-                const Faces* faces = nullptr;
-                if (c.m == kSplit && kept) {
-                    faces = kept.release();  // owned by the table from here (freed by the destructor)
-                    l.store(reinterpret_cast<uint64_t>(faces), std::memory_order_relaxed);
-                }
-                v.store((uint64_t(bits_of(c.dc)) << 32) | bits_of(c.m), std::memory_order_release);
-                return {c, faces};
-            }
-            // Another thread took the slot: `seen` now holds its key.
-        }
-        if (seen == key) {
-            const uint64_t value = v.load(std::memory_order_acquire);
-            if (value != 0) {
-                return {Certificate{float_of(uint32_t(value >> 32)), float_of(uint32_t(value))},
-                        reinterpret_cast<const Faces*>(l.load(std::memory_order_relaxed))};
-            }
-            break;  // still being computed by the thread that claimed it: the same answer, computed here
-        }
-    }
-    if (probe == kMaxProbes) uncached_.fetch_add(1, std::memory_order_relaxed);
-    const Certificate c = certify(level, ix, iy, iz, parent, &local);
-    return {c, c.m == kSplit ? local.get() : nullptr};
+    if (const auto it = table_.find(key); it != table_.end()) return {it->second.certificate, it->second.faces.get()};
+    // Not there: computed here, and the first thread to store its (identical) answer wins.
+    std::unique_ptr<Faces> kept;
+    const Certificate c = certify(level, ix, iy, iz, parent, &kept);
+    if (c.m != kSplit) kept.reset();
+    const auto [it, inserted] = table_.emplace(key, Entry{c, std::move(kept)});
+    return {it->second.certificate, it->second.faces.get()};
 }
 
 float FarField::bound(const float3& p) const
@@ -398,13 +359,11 @@ float FarField::bound(const float3& p) const
         c = last.certificate;
     }
     if (!found_last) {
-        // A parent's faces that the table does not hold live here while its children need them.
-        std::unique_ptr<Faces> held[2];
         const Faces* parent = nullptr;
         for (level = kStartLevel; level >= kMinLevel; --level) {
             const double cells = 1.0 / double(1 << level);
             ix = int64_t(std::floor(x * cells)), iy = int64_t(std::floor(y * cells)), iz = int64_t(std::floor(z * cells));
-            const Found found = lookup(level, ix, iy, iz, parent, held[level & 1]);
+            const Found found = lookup(level, ix, iy, iz, parent);
             c = found.certificate;
             if (c.m != kSplit) break;
             parent = found.faces;
@@ -426,15 +385,11 @@ float FarField::bound(const float3& p) const
 FarField::Counts FarField::counts() const
 {
     Counts c;
-    for (size_t i = 0; i <= mask_; ++i) {
-        if (slots_[3 * i].load(std::memory_order_relaxed) == 0) continue;
-        const uint64_t v = slots_[3 * i + 1].load(std::memory_order_relaxed);
-        const float m = float_of(uint32_t(v));
-        if (m == kSplit) ++c.split;
-        else if (m == kExact) ++c.exact;
+    for (const auto& [key, entry] : table_) {
+        if (entry.certificate.m == kSplit) ++c.split;
+        else if (entry.certificate.m == kExact) ++c.exact;
         else ++c.certified;
     }
-    c.uncached = uncached_.load(std::memory_order_relaxed);
     return c;
 }
 

@@ -31,6 +31,8 @@
 
 #include "kernel/math/vec.h"
 
+#include <tbb/concurrent_unordered_map.h>
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -43,9 +45,8 @@ class MeshQuery;
 
 class FarField {
 public:
-    /// `origin` and `voxel`: the level set's index-to-world mapping (cells are aligned with its
-    /// voxels); `band_leaves` sizes the table of certificates.
-    FarField(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel, size_t band_leaves);
+    /// `origin` and `voxel`: the level set's index-to-world mapping (cells are aligned with its voxels).
+    FarField(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel);
     ~FarField();
     FarField(const FarField&) = delete;
     FarField& operator=(const FarField&) = delete;
@@ -56,9 +57,9 @@ public:
     /// grid's origin, where the exact query answers).
     float bound(const float3& p) const;
 
-    /// Cells certified so far, per state (for tests and benchmarks).
+    /// Cells examined so far, per outcome (for tests and benchmarks).
     struct Counts {
-        int64_t certified = 0, split = 0, exact = 0, uncached = 0;
+        int64_t certified = 0, split = 0, exact = 0;
     };
     Counts counts() const;
 
@@ -87,24 +88,35 @@ private:
     /// `parent`: the faces near the enclosing cell (which failed), or null for the first level.
     /// `kept`, when given: receives this cell's faces for its children.
     Certificate certify(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent, std::unique_ptr<Faces>* kept) const;
-    /// The certificate from the table, computed and stored on first use. A cell's faces that the
-    /// table could not store go to `local`.
-    Found lookup(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent, std::unique_ptr<Faces>& local) const;
+    /// The certificate from the table, computed and stored on first use.
+    Found lookup(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent) const;
 
     uint64_t id_;
     const MeshGeometry& geometry_;
+    const MeshQuery& query_;
+    double ox_, oy_, oz_, voxel_, inv_voxel_;
     std::vector<float3> edge_dir_, edge_out_, edge_other_out_;  ///< per face * 3 + k
     std::vector<float3> face_centre_;                            ///< per face: centroid
     std::vector<float> face_radius_;                             ///< per face: reach of its vertices from the centroid
     std::vector<int32_t> ring_offsets_;                          ///< per vertex + 1
-    std::vector<float3> ring_dirs_;
-    const MeshQuery& query_;
-    double ox_, oy_, oz_, voxel_, inv_voxel_;
-    // Open addressing, three words a slot: key (0: empty), certificate (0: being computed), and the
-    // Faces of a cell that failed (owned by the table).
-    size_t mask_ = 0;
-    std::unique_ptr<std::atomic<uint64_t>[]> slots_;
-    mutable std::atomic<int64_t> uncached_{0};
+    std::vector<float3> ring_dirs_;                              ///< unit directions of each vertex's edges
+    // Insert-only and growing with what the queries reach (an open-addressing table of fixed size
+    // overflowed on 200,000 points spread over nefertiti's head); lookups take no lock.
+    struct Entry {
+        Certificate certificate;
+        std::unique_ptr<Faces> faces;  ///< of a cell that failed and has children
+    };
+    struct Hash {  // the keys pack coordinates into bit fields: std::hash's identity would chain them
+        size_t operator()(uint64_t k) const
+        {
+            k ^= k >> 33;
+            k *= 0xff51afd7ed558ccdull;
+            k ^= k >> 33;
+            k *= 0xc4ceb9fe1a85ec53ull;
+            return size_t(k ^ (k >> 33));
+        }
+    };
+    mutable tbb::concurrent_unordered_map<uint64_t, Entry, Hash> table_;
 };
 
 }  // namespace groom::detail

@@ -155,7 +155,7 @@ struct ScalpField::Impl {
     /// Signs and bounds outside the band (fields/far_field.h), made on first use (thread-safe).
     const detail::FarField& far() const
     {
-        std::call_once(far_built_, [this] { far_ = std::make_unique<detail::FarField>(geometry, *query, origin, voxel, band().num_bricks()); });
+        std::call_once(far_built_, [this] { far_ = std::make_unique<detail::FarField>(geometry, *query, origin, voxel); });
         return *far_;
     }
 

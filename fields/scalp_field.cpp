@@ -31,6 +31,7 @@ float ScalpField::query(const float3& p, float3& n, float3& closest) const
     }
     int32_t face = -1;
     const float sd = im.query->signed_distance(p, closest, face);
+    if (im.band_normal(p, n)) return sd;  // near the band's edge the band's normal is the smoother one
     const float3 delta = p - closest;
     const float len = length(delta);
     n = len > 1e-6f * im.voxel ? delta / (sd < 0.0f ? -len : len) : im.geometry.face_normals[face];
@@ -49,10 +50,8 @@ float ScalpField::distance(const float3& p) const
 
 float3 ScalpField::normal(const float3& p) const
 {
-    float d = 0.0f;
-    float3 g;
-    if (impl_->sample(p, d, g) && length_squared(g) > 0.25f) return normalize(g);
     float3 n, c;
+    if (impl_->band_normal(p, n)) return n;
     query(p, n, c);
     return n;
 }

@@ -47,8 +47,10 @@ public:
 
     /// Signed distance (scene units; negative inside). Trilinear in the band, exact from the mesh outside.
     float distance(const float3& p) const override;
-    /// Unit outward normal: the normalised gradient of the distance (central differences of the grid
-    /// in the band; (p - closest) / distance from the mesh outside it).
+    /// Unit outward normal: the normalised gradient of the distance (central differences of the grid,
+    /// interpolated trilinearly over the cell's voxels that are in the band, so it reaches a voxel
+    /// beyond where the distance itself is interpolated; (p - closest) / distance from the mesh
+    /// farther out).
     float3 normal(const float3& p) const override;
     /// Projection onto the surface: p - d * n from one trilinear sample in the band; exact closest
     /// point on the mesh outside it.

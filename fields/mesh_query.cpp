@@ -220,7 +220,7 @@ float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face
     // The AABB tree finds the face; the pseudo-normal of the feature hit gives the sign.
     bool boundary = false;
     const float d = geometry_.signed_distance_to_face(p, face, closest, &boundary);
-    return sign_fixed(p, d, boundary, 0.0f);
+    return sign_fixed(p, d, boundary, true);
 }
 
 const WindingNumber& MeshQuery::winding() const
@@ -229,18 +229,25 @@ const WindingNumber& MeshQuery::winding() const
     return *winding_;
 }
 
-bool MeshQuery::inside_by_winding(const float3& p) const
+bool MeshQuery::inside_by_winding(const float3& p, bool exact_near_half) const
 {
     // The fast estimate (error up to 0.07) decides where it is clear; near 1/2 (beside an opening,
-    // 7-15% of the queries on open heads) a finer one (error up to 0.02) does.
+    // 7-15% of the queries on open heads) a finer one (error up to 0.02) does. Those errors depend
+    // on how the tree split the triangles, that is on the mesh's pose: with `exact_near_half`, the
+    // exact sum decides within 0.03 of 1/2, so a point reads the same in any pose.
     const double w = winding()(p, 2.0);
-    return (std::fabs(w - 0.5) > 0.1 ? w : winding()(p, 4.0)) > 0.5;
+    if (std::fabs(w - 0.5) > 0.1) return w > 0.5;
+    const double finer = winding()(p, 4.0);
+    if (!exact_near_half || std::fabs(finer - 0.5) > 0.03) return finer > 0.5;
+    const double finest = winding()(p, 8.0);
+    if (std::fabs(finest - 0.5) > 0.008) return finest > 0.5;
+    return winding().exact(p) > 0.5;
 }
 
-float MeshQuery::sign_fixed(const float3& p, float d, bool on_boundary, float local) const
+float MeshQuery::sign_fixed(const float3& p, float d, bool on_boundary, bool exact_near_half) const
 {
-    if (!on_boundary || std::fabs(d) <= local) return d;
-    return inside_by_winding(p) ? -std::fabs(d) : std::fabs(d);
+    if (!on_boundary) return d;
+    return inside_by_winding(p, exact_near_half) ? -std::fabs(d) : std::fabs(d);
 }
 
 }  // namespace groom::detail

@@ -12,6 +12,7 @@
 
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <algorithm>
@@ -76,8 +77,10 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     step.advance(1);
 
     // The mesh for far queries and sampling: the zero crossing, each face turned to agree with the
-    // gradient. A sign flip with large |d| on both sides is the seam an open surface's sign makes
-    // beyond its rim, not surface: such faces (gradient magnitude > 1.5) are dropped.
+    // distance's increase across it. A sign flip with large |d| on both sides is the seam an open
+    // surface's sign makes beyond its rim, not surface: such faces (a rise of more than 1.5 voxels
+    // over one voxel across them) are dropped. Read from the grid itself: the query bricks leave
+    // voxels beside such seams out.
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> tris;
     std::vector<openvdb::Vec4I> quads;
@@ -85,20 +88,16 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     PolygonSoup soup;
     soup.points.reserve(points.size());
     for (const auto& p : points) soup.points.emplace_back(p.x(), p.y(), p.z());
+    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> grid_sample(*sdf);
+    auto value = [&](const float3& p) { return float(grid_sample.wsSample(openvdb::Vec3d(p.x, p.y, p.z))); };
     auto add = [&](std::initializer_list<int32_t> idx) {
         std::vector<int32_t> f(idx);
         const float3 &a = soup.points[f[0]], &b = soup.points[f[1]], &c = soup.points[f[2]];
         const float3 centroid = (a + b + c) / 3.0f;
-        float d = 0.0f;
-        float3 g;
-        const float3 n = normalize(cross(b - a, c - a));
-        if (im.sample(centroid, d, g)) {
-            float dl = 0.0f, dh = 0.0f;
-            float3 gl, gh;
-            const float3 step_n = normalize(g) * (0.5f * im.voxel);
-            if (im.sample(centroid - step_n, dl, gl) && im.sample(centroid + step_n, dh, gh) && (dh - dl) / im.voxel > 1.5f) return;
-            if (dot(n, g) < 0.0f) std::reverse(f.begin(), f.end());
-        }
+        const float3 step_n = normalize(cross(b - a, c - a)) * (0.5f * im.voxel);
+        const float dl = value(centroid - step_n), dh = value(centroid + step_n);
+        if (std::fabs(dh - dl) / im.voxel > 1.5f) return;
+        if (dh < dl) std::reverse(f.begin(), f.end());
         soup.add_face(f);
     };
     for (const auto& t : tris) add({int32_t(t[0]), int32_t(t[1]), int32_t(t[2])});

@@ -67,10 +67,11 @@ public:
     float signed_distance(const float3& p, float3& closest, int32_t& face) const;
     /// Inside test by the generalized winding number (> 1/2): robust through the holes of a nearly
     /// closed head (eye sockets, mouth, neck), where a rim's pseudo-normal points anywhere.
-    bool inside_by_winding(const float3& p) const;
-    /// Pseudo-normal sign, replaced by the winding number when the closest feature is a boundary and
-    /// p is more than `local` away from it.
-    float sign_fixed(const float3& p, float d, bool on_boundary, float local) const;
+    /// `exact_near_half`: decide by the exact sum where the estimate is within 0.03 of 1/2, so the
+    /// answer does not depend on the estimate's tree (on the mesh's pose).
+    bool inside_by_winding(const float3& p, bool exact_near_half) const;
+    /// Pseudo-normal sign, replaced by the winding number when the closest feature is a boundary.
+    float sign_fixed(const float3& p, float d, bool on_boundary, bool exact_near_half) const;
     /// The winding number of the mesh, built on first use (thread-safe): only open meshes need it.
     const WindingNumber& winding() const;
 
@@ -158,12 +159,21 @@ struct ScalpField::Impl {
         return band_;
     }
 
+    /// Voxels beside a jump of the distance (see fill_band_from_sdf), left out of the query bricks.
+    /// 0 means the band is 1-Lipschitz: no opening's seam and no sheets disagreeing on inside.
+    int64_t seam_voxels() const
+    {
+        band();
+        return seam_voxels_;
+    }
+
 private:
     /// Fills `band_` from `sdf` alone, gradients by central differences: the same whether the grid
     /// was just built or read from a .vdb.
     void fill_band_from_sdf() const;
     mutable std::once_flag band_built_;
     mutable detail::BrickMap band_;
+    mutable int64_t seam_voxels_ = 0;
 };
 
 }  // namespace groom

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace groom {
@@ -170,9 +171,27 @@ double squared_size(const std::vector<Point>& pts)
     return 4.0 * r2;
 }
 
-/// Triangulates every polygon, then drops zero-area triangles (collinear vertices): they carry no
-/// surface and have no normal to sign a distance with. `invalid` polygons were dropped already and
-/// count as degenerate too. Throws InvalidGeometry when nothing is left.
+/// True when triangle t is flat to within the float rounding of its own coordinates: its height
+/// over its longest edge below 16 float ulps of its largest coordinate (the points came in as
+/// floats, so three collinear points moved, turned or scaled are collinear only to that), or its
+/// area below 1e-12 of the mesh's size squared.
+bool flat_triangle(const std::vector<Point>& pts, const Polygon& t, double min_area2)
+{
+    const double cross2 = tri_cross(pts, t).squared_length();
+    if (cross2 <= min_area2) return true;
+    double edge2 = 0.0, coord = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const Point& a = pts[t[k]];
+        edge2 = std::max(edge2, CGAL::squared_distance(a, pts[t[(k + 1) % 3]]));
+        coord = std::max({coord, std::fabs(a.x()), std::fabs(a.y()), std::fabs(a.z())});
+    }
+    const double tol = 16.0 * double(std::numeric_limits<float>::epsilon()) * coord;
+    return cross2 <= edge2 * tol * tol;  // height = |cross| / longest edge
+}
+
+/// Triangulates every polygon, then drops flat triangles (collinear vertices, to float rounding):
+/// they carry no surface and have no normal to sign a distance with. `invalid` polygons were
+/// dropped already and count as degenerate too. Throws InvalidGeometry when nothing is left.
 std::vector<Polygon> triangulate(std::vector<Point>& pts, const std::vector<Polygon>& polys, size_t invalid, double size2,
                                  const std::string& what, RepairReport& report)
 {
@@ -191,7 +210,7 @@ std::vector<Polygon> triangulate(std::vector<Point>& pts, const std::vector<Poly
             report.triangles_from_ngons += static_cast<int64_t>(tris.size() - first);
         }
         for (size_t t = first; t < tris.size();) {
-            if (tri_cross(pts, tris[t]).squared_length() <= min_area2) {
+            if (flat_triangle(pts, tris[t], min_area2)) {
                 tris.erase(tris.begin() + static_cast<std::ptrdiff_t>(t));
                 ++degenerate;
             }

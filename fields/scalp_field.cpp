@@ -42,7 +42,10 @@ float ScalpField::distance(const float3& p) const
 {
     float d = 0.0f;
     float3 g;
-    if (impl_->sample(p, d, g)) return d;
+    // The same test as query(): where the band's gradient is short (a thin sheet, a seam) its
+    // distance is not one either, and the mesh answers. Reading the band here while query() read
+    // the mesh, keep_outside found points inside that its move had put on the surface.
+    if (impl_->sample(p, d, g) && length_squared(g) > 0.25f) return d;
     float3 closest;
     int32_t face = -1;
     return impl_->query->signed_distance(p, closest, face);
@@ -63,6 +66,7 @@ float3 ScalpField::closest_point(const float3& p) const
     return c;
 }
 
+bool ScalpField::lipschitz() const { return impl_->seam_voxels() == 0; }
 float ScalpField::voxel_size() const { return impl_->voxel; }
 float ScalpField::band_voxels() const { return impl_->band_voxels; }
 bool ScalpField::has_source_mesh() const { return impl_->mesh_exact; }

@@ -45,7 +45,8 @@ public:
     ScalpField(ScalpField&&) noexcept;
     ScalpField& operator=(ScalpField&&) noexcept;
 
-    /// Signed distance (scene units; negative inside). Trilinear in the band, exact from the mesh outside.
+    /// Signed distance (scene units; negative inside). Trilinear in the band, exact from the mesh
+    /// outside it and where the band's gradient is short (thin sheets); the same as query()'s.
     float distance(const float3& p) const override;
     /// Unit outward normal: the normalised gradient of the distance (central differences of the grid,
     /// interpolated trilinearly over the cell's voxels that are in the band, so it reaches a voxel
@@ -57,6 +58,10 @@ public:
     float3 closest_point(const float3& p) const override;
     /// Signed distance, unit normal and closest point in one call (cheaper than three).
     float query(const float3& p, float3& normal, float3& closest) const override;
+
+    /// False when the band holds a seam (neighbouring voxels differing by more than 1.2 voxels):
+    /// an open mesh's rims, overlapping shells that disagree on inside.
+    bool lipschitz() const override;
 
     float voxel_size() const;
     float band_voxels() const;

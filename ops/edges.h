@@ -43,20 +43,20 @@ struct EdgesParams {
     int64_t count = 0;  ///< exact number of hairs, spread evenly along the chosen part; 0 = from density (--count)
     /// Arc length of a hair from the hairline to its tip (a root inside the hairline adds its depth),
     /// scene units, > 0 (--length).
-    float length = 2.0f;
+    float length = 2.4f;
     /// Swirl radius: the tightest radius of curvature in a swoop (its innermost hair's), scene
     /// units, > 0 (--radius).
-    float radius = 0.2f;
+    float radius = 0.15f;
     /// Arcs per hair, bending alternately one way and the other: 1 a C, 2 an S, 3 or more a wave;
     /// [1, 16] (--bends).
     int bends = 2;
     EdgeDirection direction = EdgeDirection::Face;  ///< (--direction)
     /// Width of a swoop: the hairline length whose hairs are laid together as one ribbon (same side,
     /// parallel curves), scene units, > 0 (--swoop).
-    float swoop = 1.0f;
+    float swoop = 1.2f;
     /// Random variation, as a fraction, [0, 0.9] (--variation): of each swoop's turning (+-v/2), each
     /// hair's turning (+-v/5) and length (+-v), and its heading (+-v/10 radians).
-    float variation = 0.15f;
+    float variation = 0.3f;
     /// Height of a hair above the skin, scene units, >= 0: each hair lies at its own height in
     /// [height/2, height], reached one step from its root (--height).
     float height = 0.05f;
@@ -84,8 +84,9 @@ struct EdgesParams {
 /// swoop's end on the lean side has radius radius + t on the arcs bending toward the lean (all of
 /// the swoop's hairs circle one centre there, `radius` past that end) and radius + w - t on the
 /// others, so the tightest radius in a swoop is `radius`. It leaves the hairline straight out of it
-/// (toward the face); with `along` it leaves along the hairline away from the middle, every arc of
-/// radius radius + w/2, the first bending out onto the face (the ribbon runs along its own length).
+/// (toward the face). With `along` every arc has radius radius + w/2 (the ribbon runs along its own
+/// length) and the hair's mean heading is along the hairline away from the middle: it leaves tilted
+/// by tau/2 into the hairline, and its first bend takes it out toward the face.
 /// The curve is walked on the scalp in `points` - 1 equal steps (each a chord: turn by the
 /// curvature over the step's first half, move in the tangent plane, back onto the surface, carry the
 /// heading into the new tangent plane, turn by the second half), then every point but the root is

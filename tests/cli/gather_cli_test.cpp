@@ -4,6 +4,8 @@
 
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
+#include "fields/surface.h"
+#include "ops/hair_region.h"
 #include "support/sphere_mesh.h"
 
 #include <cmath>
@@ -121,4 +123,42 @@ TEST(GatherCli, RefusesHairlinesAndPartingsThatCannotBeRead)
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("--forward"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("h.usda")));
+}
+
+TEST(GatherCli, GenerateAndPartitionRootOnlyInsideTheHairline)
+{
+    TempDir dir;
+    const std::string scalp = dir.file("head.vdb");
+    ASSERT_EQ(run_groom({"scalp", sphere_scalp(dir), "-o", scalp}).exit_code, 0);
+    const std::string hairline = dir.file("hairline.usda"), guides = dir.file("guides.usda");
+    ASSERT_EQ(run_groom({"hairline", "--scalp", scalp, "-o", hairline}).exit_code, 0);
+    auto r = run_groom({"cornrow-guides", "--scalp", scalp, "-o", guides, "--count", "6"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // Which roots the hairline keeps, by the same reading every command uses (ops/hair_region.h; its
+    // closed-form tests are in tests/ops/hair_region_test.cpp): this test checks the plumbing.
+    const AnalyticSphere sphere({0, 0, 0}, kR);
+    const HairRegion region(sphere, read_curves(hairline), CurveSet(), HairRegionParams{});
+    auto outside = [&](const std::string& path) {
+        const CurveSet cs = read_curves(path);
+        int n = 0;
+        for (size_t c = 0; c < cs.num_curves(); ++c) n += !region.inside_hairline(cs.positions()[cs.points_of(c).begin]);
+        return std::pair<int, size_t>(n, cs.num_curves());
+    };
+    for (const char* command : {"generate", "partition"}) {
+        const std::string free = dir.file(std::string(command) + "_free.usda"), kept = dir.file(std::string(command) + "_kept.usda");
+        std::vector<std::string> args{command, guides, "--scalp", scalp, "-o", free};
+        if (std::string(command) == "generate") args.insert(args.end(), {"--count", "1500", "--max-angle", "180"});
+        else args.insert(args.end(), {"--count", "40"});
+        r = run_groom(args);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        args[5] = kept;
+        args.insert(args.end(), {"--hairline", hairline});
+        r = run_groom(args);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const auto [out_free, n_free] = outside(free);
+        const auto [out_kept, n_kept] = outside(kept);
+        EXPECT_GT(out_free, 0) << command;  // the guides reach past the hairline
+        EXPECT_EQ(out_kept, 0) << command;
+        EXPECT_GT(n_kept, 0u) << command;
+    }
 }

@@ -59,7 +59,7 @@ TEST(SurfacePath, LiftsAlongTheNormalAndPassesThroughWaypoints)
     EXPECT_NEAR(distance(path.back(), kC + float3(0, 0, -kR - 0.05f)), 0.0f, 1e-3f);
 }
 
-TEST(SurfacePath, OneLongStepOrGivesUpAtAGap)
+TEST(SurfacePath, OneLongStepAndAStallAtAGap)
 {
     // A step longer than the whole path ends at the target at once.
     const AnalyticPlane plane({0, 0, 0}, {0, 1, 0});
@@ -77,5 +77,11 @@ TEST(SurfacePath, OneLongStepOrGivesUpAtAGap)
         float distance(const float3& p) const override { return groom::distance(p, closest_point(p)) * (p.y < 0 ? -1.0f : 1.0f); }
         float3 normal(const float3&) const override { return {0, 1, 0}; }
     } point;
-    EXPECT_FALSE(surface_path(point, {0, 0, 0}, {5, 0, 0}, 0.4f, 0.0f, path));  // 1.0 + 0.4 projects back to 1.0
+    // 1.0 + 0.4 projects back to 1.0: stalled, the walk finishes along the chord, on the surface.
+    EXPECT_TRUE(surface_path(point, {0, 0, 0}, {5, 0, 0}, 0.4f, 0.0f, path));
+    EXPECT_EQ(path.back(), float3(5, 0, 0));
+    for (const float3& p : path) EXPECT_EQ(point.closest_point(p), p);
+    int at_edge = 0;
+    for (const float3& p : path) at_edge += p.x == 1.0f;
+    EXPECT_GE(at_edge, 8);  // it did stall there first
 }

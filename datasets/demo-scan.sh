@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The demo's grooms on a real head scan instead of the synthetic head: Lee Perry-Smith's bust
-# (../shared/datasets/lee_perry_smith, CC BY 3.0, Infinite Realities via Morgan McGuire's archive;
+# (../shared/datasets/lee_perry_smith: "Infinite, 3D Head Scan by Lee Perry-Smith", CC BY 3.0, based on a work at triplegangers.com;
 # +Y up, face +Z, about 5.7 cm per unit). Skipped, saying so, when ../shared/datasets is absent (a
 # fresh clone has no ../shared; the scan is never copied into this repository).
 # Usage: datasets/demo-scan.sh [OUT_DIR]   (expects `groom` on PATH; build first: bash scripts/build.sh)

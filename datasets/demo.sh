@@ -118,7 +118,7 @@ if have puff; then
         step "parting" groom parting --scalp "$scalp" -o "$out/izzy_parting.usda" --through 0,8,12/0,14,-1/0,-2,-14
         step "gather" groom gather "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" --scalp "$scalp" \
             --hairline "$out/hairline.usda" --parting "$out/izzy_parting.usda" -o "$out/izzy_gathered.usda" \
-            --hairs 12000 --type 4a --seed 3
+            --hairs 24000 --type 4a --seed 3
         izzy+=("$out/izzy_gathered.usda")
     else
         skip "groom gather (the scalp's hair pulled into the puffs) is not in this build"

@@ -10,8 +10,10 @@
 #include "ops/hairline.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
+#include <utility>
 
 namespace groom::cli {
 namespace {
@@ -21,6 +23,7 @@ struct Args {
     ScalpBuildParams scalp_params;
     EdgesParams params;
     HairRegionParams region;
+    float units_per_cm = 1.0f;
 };
 
 float3 parse_direction(const std::string& option, const std::string& text)
@@ -62,19 +65,32 @@ void setup(CommandContext& ctx)
     app->add_option("--seed", p.seed, "Seed for every random choice")->capture_default_str();
     app->add_option("--first-id", p.first_id, "Curve ids start here, >= 0")->capture_default_str();
     app->add_option("--kind", p.kind, "Curve `kind` written on every hair, >= 0")->capture_default_str();
+    app->add_option("--units-per-cm", args->units_per_cm,
+                    "Scene units per centimetre (> 0): the defaults above are centimetres, scaled by this unless given")
+        ->capture_default_str();
     add_scalp_build_options(app, args->scalp_params);
     const CommonOptions& common = *ctx.common;
-    ctx.run = [args, &common] {
+    ctx.run = [args, &common, app] {
         for (const std::string& in : {args->scalp, args->hairline, args->parting}) {
             if (!in.empty() && in == args->output && !common.force) throw InvalidParam("edges: output " + in + " is also an input (use --force to overwrite it)");
         }
         check_output(args->output, {args->scalp}, common);
         EdgesParams params = args->params;
+        const float u = args->units_per_cm;
+        if (!(u > 0.0f) || !std::isfinite(u)) throw InvalidParam("edges: --units-per-cm must be a finite number > 0 (got " + format_number(u) + ")");
+        // The defaults are a head in centimetres; a scene in other units gets them scaled, while
+        // every length the user typed is taken as given (scene units).
+        for (auto [option, value] : {std::pair{"--depth", &params.depth}, {"--length", &params.length}, {"--radius", &params.radius},
+                                     {"--swoop", &params.swoop}, {"--height", &params.height}, {"--width", &params.width}}) {
+            if (app->count(option) == 0) *value *= u;
+        }
+        if (app->count("--density") == 0) params.density /= u;
         params.up = parse_direction("--up", args->up);
         params.forward = parse_direction("--forward", args->forward);
         params.direction = parse_edge_direction(args->direction);
         params.validate();
         HairRegionParams region_params = args->region;
+        if (app->count("--parting-gap") == 0) region_params.parting_gap *= u;
         region_params.up = params.up;
         region_params.validate();
 

@@ -101,7 +101,7 @@ struct EdgesParams {
 ///                  dropped when that crosses too.
 /// Writes point P, point `width`; curve int64 `id` (first_id + station, so dropping one hair does
 /// not renumber the others), int32 `kind`, int32 `group` (swoop index along the hairline).
-/// Deterministic: every random draw is Rng(seed, station, stream); any thread count gives the same.
+/// Deterministic: every random draw is Rng(seed, hair id or swoop, stream); any thread count gives the same.
 /// Throws InvalidParam (params), InvalidGeometry (hairline not one closed curve around `up`, or no
 /// part of it in [from, to]).
 CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams& params, const HairRegion* region = nullptr);

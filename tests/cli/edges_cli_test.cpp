@@ -84,6 +84,41 @@ TEST(EdgesCli, HairlineFileCountAndThreadsDoNotChangeOutput)
     EXPECT_EQ(groom::test::read_bytes(dir.file("e1.ply")), groom::test::read_bytes(dir.file("e2.ply")));
 }
 
+TEST(EdgesCli, UnitsPerCmScaleTheDefaultsButNotWhatIsGiven)
+{
+    TempDir dir;
+    const std::string scalp = dir.file("sphere.obj");
+    write_mesh(icosphere(float3(0, 0, 0), kR, 4), scalp);
+    const std::string line = circle_hairline(dir);
+    auto lengths = [&](const std::vector<std::string>& extra) {
+        std::vector<std::string> args{"edges", "--scalp", scalp, "--hairline", line, "-o", dir.file("e.usda"), "--force", "--count", "30",
+                                      "--variation", "0"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto r = run_groom(args);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        const CurveSet cs = read_curves(dir.file("e.usda"));
+        std::vector<double> out;
+        for (size_t c = 0; c < cs.num_curves(); ++c) {
+            const IndexRange rg = cs.points_of(c);
+            double l = 0.0;
+            for (int64_t q = rg.begin + 1; q < rg.end; ++q) l += distance(cs.positions()[q], cs.positions()[q - 1]);
+            out.push_back(l);
+        }
+        return out;
+    };
+    // An S of two arcs is exactly `length` long past the hairline, plus the root's depth in the band
+    // (default 0.25 cm); the chords of 23 steps are shorter than the arcs, the lift to the hair's
+    // height (scaled too) makes the walk on a sphere of radius 10 longer, each by under 1%.
+    for (double l : lengths({"--units-per-cm", "0.5"})) {
+        EXPECT_GT(l, 0.99 * 2.4 * 0.5);
+        EXPECT_LT(l, 1.01 * (2.4 + 0.25) * 0.5);
+    }
+    for (double l : lengths({"--units-per-cm", "0.5", "--length", "3"})) {
+        EXPECT_GT(l, 0.99 * 3.0);
+        EXPECT_LT(l, 1.01 * (3.0 + 0.25 * 0.5));
+    }
+}
+
 TEST(EdgesCli, RejectsBadOptionsWithoutWritingOutput)
 {
     TempDir dir;
@@ -102,6 +137,7 @@ TEST(EdgesCli, RejectsBadOptionsWithoutWritingOutput)
         {{"--radius", "0"}, "--radius must be a finite number > 0 (got 0)", 2},
         {{"--variation", "2"}, "--variation must be in [0, 0.9]", 2},
         {{"--up", "0,1"}, "--up", 2},
+        {{"--units-per-cm", "0"}, "--units-per-cm must be a finite number > 0 (got 0)", 2},
         {{"--hairline", scalp}, "", 1},  // a mesh is no curve file; whatever the reader says, no output
     };
     for (const Case& c : cases) {

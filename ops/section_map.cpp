@@ -1,6 +1,7 @@
 #include "ops/section_map.h"
 
 #include "kernel/error.h"
+#include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
 
 #include <algorithm>
@@ -34,6 +35,8 @@ SectionMap::SectionMap(const Surface& scalp, const CurveSet& hairline, const Hai
     side_ = cross(up_, fwd_);
     back_ = -fwd_;
     const auto hl = hairline.positions();
+    hairline_.assign(hl.begin(), hl.end());
+    hairline_index_ = std::make_shared<PointIndex>(hairline_);
     float far = 0.0f;
     for (const float3& p : hl) far = std::max(far, distance(p, c_));
     reach_ = 3.0f * far + 1e-3f;
@@ -423,6 +426,22 @@ float3 SectionMap::hit(const float3& dir) const
 
 // --- Queries ------------------------------------------------------------------------------------------
 
+float SectionMap::hairline_distance(const float3& p) const
+{
+    // The nearest hairline points and the segments either side of them (the points are as close as
+    // the hairline's own spacing, so the nearest segment touches one of the two nearest points).
+    std::vector<PointIndex::Neighbour> nb;
+    hairline_index_->nearest(p, 2, nb);
+    const size_t n = hairline_.size();
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& q : nb) {
+        const size_t i = q.index;
+        for (size_t j : {(i + 1) % n, (i + n - 1) % n}) best = std::min(best, segment_distance_sq(p, p, hairline_[i], hairline_[j]));
+    }
+    const float d = float(std::sqrt(best));
+    return region_.inside_hairline(p) ? d : -d;
+}
+
 int SectionMap::section_of(const float3& p) const
 {
     if (!region_.inside_hairline(p)) return -1;
@@ -436,7 +455,7 @@ float SectionMap::margin(const float3& p, int section) const
     const SectionInfo& info = sections_[size_t(section)];
     const float r = distance(p, c_);
     const Param q = to_param(normalize(p - c_, up_));
-    double m = double(region_.hairline_margin(p)) * r;
+    double m = hairline_distance(p);
     // Borders between bands are partings; the chart's own ends are not (the hairline is there).
     const double lo = edges_[info.band], hi = edges_[info.band + 1];
     const double ss = s_scale(q.s, q.t, r), ts = t_scale(q.s, q.t, r);

@@ -9,11 +9,13 @@
 // from its section's border, and where the border lines run (for the partings).
 #pragma once
 
+#include "fields/point_index.h"
 #include "fields/surface.h"
 #include "ops/hair_region.h"
 #include "ops/sections.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace groom {
@@ -39,6 +41,9 @@ public:
     /// How far p lies inside its section `section` (scene units, along the scalp, approximate): the
     /// least distance to a border with a parting or to the hairline; negative when p is outside it.
     float margin(const float3& p, int section) const;
+
+    /// Distance from p to the hairline curve, scene units: positive inside it, negative outside.
+    float hairline_distance(const float3& p) const;
 
     /// Where the ray from the centroid along `dir` (unit) meets the scalp (the outermost surface).
     /// Throws InvalidGeometry when it does not.
@@ -85,6 +90,8 @@ private:
     float3 up_{}, fwd_{}, side_{}, back_{};  ///< grid/rows frame (side = up x forward)
     float3 pole_{}, e1_{}, e2_{};       ///< radial frame
     std::vector<double> phi_, theta_;   ///< radial: the hairline's (azimuth, polar angle), by azimuth
+    std::vector<float3> hairline_;      ///< the closed hairline's points
+    std::shared_ptr<const PointIndex> hairline_index_;
     float reach_ = 0.0f;                ///< rays start this far from the centre
     float mean_r_ = 0.0f;
     double s0_ = 0.0;                   ///< the chart's s starts here

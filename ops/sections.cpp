@@ -83,8 +83,10 @@ void march(const Surface& scalp, float3 p, float3 d, double length, double h, do
         const float ramp = std::min(1.0f, float(walked / fall.ramp));
         const float clear = fall.clearance + fall.layer * ramp * ramp * (3.0f - 2.0f * ramp);
         float3 target = fall.gravity;
-        if (dist < clear + fall.reach) {
-            // Down the scalp's fall line, combed back only where that line runs toward the face.
+        if (dist < clear + fall.reach && dot(fall.gravity, n) < 0.0f) {
+            // On scalp that bears it (gravity presses the guide onto it; under a chin or the cut of a
+            // neck it falls free): down the scalp's fall line, combed back only where that line runs
+            // toward the face.
             const float3 tg = fall.gravity - n * dot(fall.gravity, n), ta = away - n * dot(away, n);
             const float toward_face = std::max(0.0f, dot(normalize(tg), fall.forward));
             target = normalize(tg + ta * (fall.sweep * toward_face), fall.gravity);
@@ -283,7 +285,9 @@ SectionsResult sections(const Surface& scalp, const CurveSet& hairline, const Ro
                 std::vector<float3> even = resample_by_count(pts, count);
                 // Resampled points lie on chords, which dip toward a convex scalp: out again.
                 for (size_t i = 1; i < even.size(); ++i) keep_outside(even[i], scalp, KeepOutside{fall.clearance, tiny, 4});
-                feed_length[s] = scalp_length[s] > 0.0f ? scalp_length[s] : 0.5f * side + fall.clearance;
+                // Roots join a hanging guide at its base (within its clearance of the root), an along
+                // guide beside them.
+                feed_length[s] = scalp_length[s] > 0.0f ? scalp_length[s] : fall.clearance;
                 guides[s] = std::move(even);
             }
             step.advance(e - b);

@@ -79,7 +79,7 @@ struct SectionsParams {
     int points = 48;           ///< points over `length`, [4, 100000] (an along guide has more, spaced the same) (--points)
     /// Arc length over which a guide turns through 90 degrees, scene units, > 0 (--bend): how stiff
     /// the braid is where it leaves the scalp.
-    float bend = 1.5f;
+    float bend = 1.0f;
     /// The direction a free guide falls (gravity), not zero; zero vector = -up (--hang).
     float3 hang{0.0f, 0.0f, 0.0f};
     /// While a guide lies on the scalp it is combed away from the face: its direction along the

@@ -196,6 +196,11 @@ Pieces check_tiling(const SectionsResult& r, const SectionsParams& p, double are
         EXPECT_GE(root_piece[s], 0) << "guide " << s << "'s root is on a parting or outside the hairline";
         if (root_piece[s] >= 0) ++roots_in[size_t(root_piece[s])];
     }
+    // A hanging guide's root keeps a whole gap from every parting (the op asks that of it).
+    if (p.guide != SectionGuide::Along && !(p.guide == SectionGuide::Auto && p.layout == SectionLayout::Rows)) {
+        const PartingDistance dist(r.partings);
+        for (size_t s = 0; s < ns; ++s) EXPECT_GT(dist(P[r.guides.points_of(s).begin]), 0.9f * p.parting_gap) << "guide " << s;
+    }
     // Pieces without a root: slivers a parting cuts off at the hairline; they must be negligible.
     int64_t orphan = 0, total = 0;
     for (size_t k = 0; k < pc.size.size(); ++k) {
@@ -309,6 +314,32 @@ TEST(Sections, RadialWedgesTurnAroundTheCrown)
     int outer = 0;
     for (const SectionInfo& s : r.sections) outer += s.band == 1;
     EXPECT_EQ(outer, 10);
+}
+
+TEST(Sections, RadialWedgesMeetAtTheCrownGiven)
+{
+    // A crown behind the top: the inner ring's wedge borders all start at the scalp point in its
+    // direction from the hairline's centroid, and the wedges still tile the haired scalp.
+    SectionsParams p = test_params(SectionLayout::Radial);
+    p.wedges = 8;
+    p.has_crown = true;
+    const HairRegion region(sphere(), sphere_hairline(), CurveSet(), HairRegionParams{});
+    p.crown = region.centroid() + normalize(float3(0.0f, 1.0f, -0.5f)) * 3.0f;
+    const SectionsResult r = sections(sphere(), sphere_hairline(), nullptr, p);
+    ASSERT_EQ(r.sections.size(), 8u);
+    // The scalp point along the crown's direction from the centroid (a ray onto the sphere).
+    const float3 o = region.centroid(), d = normalize(p.crown - o);
+    const float b = dot(o - kC, d), c = dot(o - kC, o - kC) - kR * kR;
+    const float3 crown = o + d * (-b + std::sqrt(b * b - c));
+    const auto kind = r.partings.find<int32_t>(Domain::Curve, "kind");
+    int wedges = 0;
+    for (size_t k = 0; k < r.partings.num_curves(); ++k) {
+        if (kind[k] != 1) continue;
+        ++wedges;
+        EXPECT_LT(distance(r.partings.positions()[r.partings.points_of(k).begin], crown), 0.01f) << "wedge border " << k;
+    }
+    EXPECT_EQ(wedges, 8);
+    check_tiling(r, p, 1.4);
 }
 
 TEST(Sections, AlongGuidesLieOnTheirRowThenHang)

@@ -238,7 +238,6 @@ SectionMap::SectionMap(const Surface& scalp, const CurveSet& hairline, const Hai
         while (bands_ > 2 && band_area(bands_ - 1) < 0.5 * target) merge(bands_ - 2);
         grid_target_ = target;
     }
-    middle = std::clamp(middle, 0, bands_ - 1);
 
     // --- Cells along each band: equal areas.
     cuts_.assign(size_t(bands_), {});

@@ -249,11 +249,12 @@ SectionsResult sections(const Surface& scalp, const CurveSet& hairline, const Ro
                 fall.rate = float(0.5 * kPi / params.bend);
                 fall.reach = 0.5f * params.bend;
                 fall.margin = tiny;
-                // Braids rooted higher lie over the ones below them: one `layer` per section side
-                // between the root and the hairline, eased in over the first section side.
+                // Hanging braids rooted higher lie over the ones below them: one `layer` per section
+                // side between the root and the hairline, eased in over the first section side. Along
+                // guides lie beside each other, not over.
                 const float above = std::max(0.0f, region.hairline_margin(info.root) * distance(info.root, region.centroid()));
                 fall.clearance = params.clearance;
-                fall.layer = params.layer * above / side;
+                fall.layer = along ? 0.0f : params.layer * above / side;
                 fall.ramp = side;
                 Rng rng(params.seed, uint64_t(params.first_id + s), 1);
                 const float3 e1 = any_perpendicular(gravity), e2 = cross(gravity, e1);

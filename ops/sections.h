@@ -88,7 +88,7 @@ struct SectionsParams {
     float sweep = 1.5f;
     float clearance = 0.3f;    ///< least distance of a guide from the scalp, scene units, >= 0 (--clearance)
     /// Extra height per section side between a root and the hairline, scene units, >= 0 (--layer):
-    /// braids from high sections lie over those from lower ones instead of through them.
+    /// hanging braids from high sections lie over those from lower ones instead of through them.
     float layer = 0.15f;
     float jitter = 4.0f;       ///< random tilt of each guide's fall, degrees, [0, 45] (--jitter)
 

@@ -7,7 +7,8 @@
 #   2. builds an Alisha-style groom: cornrow guides front to back over the scalp, braided lying on the
 #      scalp (`--orient scalp`), edge hairs between the rows pulled into each knot, loose curly ends
 #      past the nape;
-#   3. builds an Izzy-style groom: two afro puffs of curls with mixed cross-sections;
+#   3. builds an Izzy-style groom: two afro puffs of curls with mixed cross-sections, the rest of the
+#      scalp's hair gathered into them flat on the scalp (default hairline, centre parting, bands);
 #   4. writes each groom as .usda and renders front, side and top pictures;
 #   5. prints what it made (curves, points, seconds per step) and where the files are.
 # Every length is in centimetres (the head's units).
@@ -98,18 +99,30 @@ else
     skip "groom cornrow-guides is not in this build"
 fi
 
-# --- 3. Izzy: two afro puffs --------------------------------------------------------------------------
+# --- 3. Izzy: two afro puffs, the whole scalp gathered into them --------------------------------------
 echo "3. Izzy: afro puffs"
 izzy=()
 if have puff; then
     # Left and right of the crown; each puff's sphere sits above and outside its root patch.
     step "puff left" groom puff --scalp "$scalp" -o "$out/izzy_puff_left.usda" \
-        --center -4.8,9.5,-1.5 --radius 4.2 --sphere-center -7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
-        --hairs 6000 --type 4a --seed 1
+        --center -4.8,9.5,-1.5 --radius 3 --sphere-center -7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
+        --hairs 5000 --type 4a --seed 1
     step "puff right" groom puff --scalp "$scalp" -o "$out/izzy_puff_right.usda" \
-        --center 4.8,9.5,-1.5 --radius 4.2 --sphere-center 7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
-        --hairs 6000 --type 4a --seed 2
+        --center 4.8,9.5,-1.5 --radius 3 --sphere-center 7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
+        --hairs 5000 --type 4a --seed 2
     izzy+=("$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda")
+    if have gather; then
+        # Every other hair of the scalp, inside the hairline, combed flat to the nearer puff on its side
+        # of a centre parting (forehead, over the crown, down to the nape), under a band at each base.
+        step "hairline" groom hairline --scalp "$scalp" -o "$out/hairline.usda"
+        step "parting" groom parting --scalp "$scalp" -o "$out/izzy_parting.usda" --through 0,8,12/0,14,-1/0,-2,-14
+        step "gather" groom gather "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" --scalp "$scalp" \
+            --hairline "$out/hairline.usda" --parting "$out/izzy_parting.usda" -o "$out/izzy_gathered.usda" \
+            --hairs 24000 --type 4a --seed 3
+        izzy+=("$out/izzy_gathered.usda")
+    else
+        skip "groom gather (the scalp's hair pulled into the puffs) is not in this build"
+    fi
 else
     skip "groom puff is not in this build"
 fi

@@ -22,12 +22,6 @@ struct Args {
     SectionsParams params;
 };
 
-float3 parse_vector(const std::string& option, const std::string& text)
-{
-    const std::vector<float> v = parse_floats(option, text, 3, 3);
-    return {v[0], v[1], v[2]};
-}
-
 void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
@@ -78,11 +72,11 @@ void setup(CommandContext& ctx)
         SectionsParams params = args->params;
         params.layout = parse_section_layout(args->layout);
         params.guide = parse_section_guide(args->guide);
-        params.up = parse_vector("--up", args->up);
-        params.forward = parse_vector("--forward", args->forward);
-        params.hang = parse_vector("--hang", args->hang);
+        params.up = parse_float3("--up", args->up);
+        params.forward = parse_float3("--forward", args->forward);
+        params.hang = parse_float3("--hang", args->hang);
         if (!args->crown.empty()) {
-            params.crown = parse_vector("--crown", args->crown);
+            params.crown = parse_float3("--crown", args->crown);
             params.has_crown = true;
         }
         if (params.roots != 0 && args->roots_out.empty()) throw InvalidParam("sections: --roots needs --roots-out FILE to write them to");

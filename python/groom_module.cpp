@@ -472,6 +472,8 @@ PYBIND11_MODULE(groom, m)
     def_op(m, "cornrow_guides", "cornrow-guides", false, true, "Cornrow guide rows over the scalp (scalp= required)");
     def_op(m, "hairline", "hairline", false, true, "A default hairline around the head (scalp= required)");
     def_op(m, "parting", "parting", false, true, "Parting curves on the scalp, through='x,y,z/x,y,z/...' (scalp= required)");
+    def_op(m, "sections", "sections", false, true,
+           "One guide per section of the scalp inside the hairline, layout='grid'|'rows'|'radial' (scalp= required; hairline= takes curves)");
     m.def(
         "gather",
         [](const std::vector<std::shared_ptr<CurveSet>>& puffs, py::object scalp, py::kwargs kw) {

@@ -17,8 +17,7 @@ void add_region_options(CLI::App* app, RegionOptions& o)
 std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp)
 {
     HairRegionParams params = o.params;
-    const std::vector<float> up = parse_floats("--up", o.up, 3, 3);
-    params.up = {up[0], up[1], up[2]};
+    params.up = parse_float3("--up", o.up);
     params.validate();
     if (!o.given()) return nullptr;
     // Readers name the file in their own errors.

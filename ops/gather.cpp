@@ -78,7 +78,7 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
         }
     }
     const size_t np = puffs.size();
-    std::vector<uint32_t> puff_section(np);
+    std::vector<uint64_t> puff_section(np);
     for (size_t k = 0; k < np; ++k) puff_section[k] = region.section(puffs[k].base);
 
     // --- Roots: area-uniform rounds, kept where the region is haired and no puff's base is.
@@ -97,7 +97,7 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
                 bool under_base = false;
                 for (const GatherPuff& puff : puffs) under_base = under_base || distance(p, puff.base) < puff.base_radius;
                 if (under_base) continue;
-                const uint32_t sec = region.section(p);
+                const uint64_t sec = region.section(p);
                 float best = std::numeric_limits<float>::infinity();
                 int32_t k_best = -2;
                 for (size_t k = 0; k < np; ++k) {

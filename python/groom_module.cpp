@@ -474,6 +474,8 @@ PYBIND11_MODULE(groom, m)
     def_op(m, "parting", "parting", false, true, "Parting curves on the scalp, through='x,y,z/x,y,z/...' (scalp= required)");
     def_op(m, "edges", "edges", false, true,
            "Baby hairs laid flat in swirls along the hairline (scalp= required; hairline= and parting= take curves)");
+    def_op(m, "sections", "sections", false, true,
+           "One guide per section of the scalp inside the hairline, layout='grid'|'rows'|'radial' (scalp= required; hairline= takes curves)");
     m.def(
         "gather",
         [](const std::vector<std::shared_ptr<CurveSet>>& puffs, py::object scalp, py::kwargs kw) {

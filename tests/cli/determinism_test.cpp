@@ -69,6 +69,7 @@ std::vector<Case> cases()
         {"project", "usda", {"project", "{guides}", "--scalp", "{sphere}", "-o", "{out}", "--mode", "root", "--offset", "0.1"}},
         {"cull", "usda", {"cull", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--mode", "push", "--clearance", "0.5"}},
         {"cornrow-guides", "usda", {"cornrow-guides", "--scalp", "{head}", "-o", "{out}", "--count", "6"}},
+        {"sections", "usda", {"sections", "--scalp", "{head}", "-o", "{out}", "--cols", "5", "--seed", "4"}},
         {"partition", "usda", {"partition", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--count", "6", "--samples", "5"}},
         {"generate", "usda", {"generate", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--count", "400", "--seed", "3"}},
         {"puff", "usda", {"puff", "--scalp", "{sphere}", "-o", "{out}", "--center", "0,12,0", "--radius", "3", "--sphere-center", "0,15,0",

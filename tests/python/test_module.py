@@ -228,3 +228,21 @@ def test_edges_lie_flat_along_a_hairline_given_as_curves(sphere):
     assert (r >= 1.0 - 0.01).all() and (r <= 1.0 + 0.005 + 0.01).all()
     with pytest.raises(groom.ParamError, match="bends"):
         groom.edges(scalp=sphere, bends=0)
+
+
+def test_sections_part_the_scalp_inside_the_hairline(sphere, tmp_path):
+    """Grid sections on the unit sphere: one hanging guide per section, rooted on the sphere inside
+    the hairline, the partings to a file; a count that does not fit the layout names the keyword."""
+    hairline = groom.hairline(scalp=sphere)
+    partings = tmp_path / "partings.usda"
+    kw = dict(hairline=hairline, length=1.5, points=12, bend=0.1, clearance=0.02, layer=0.01, parting_gap=0.03, step=0.03)
+    guides = groom.sections(scalp=sphere, cols=4, partings_out=str(partings), **kw)
+    section = guides.curve_attributes["section"]
+    np.testing.assert_array_equal(section, np.arange(guides.num_curves))
+    assert guides.num_curves >= 8
+    roots = guides.points[guides.offsets[:-1]]
+    np.testing.assert_allclose(np.linalg.norm(roots, axis=1), 1.0, atol=0.01)
+    assert (np.linalg.norm(guides.points, axis=1) >= 1.0 - 0.01).all()
+    assert groom.read(str(partings)).num_curves >= 3
+    with pytest.raises(groom.ParamError, match="cols"):
+        groom.sections(scalp=sphere, layout="rows", cols=4, **kw)

@@ -26,12 +26,6 @@ struct Args {
     float units_per_cm = 1.0f;
 };
 
-float3 parse_direction(const std::string& option, const std::string& text)
-{
-    const std::vector<float> v = parse_floats(option, text, 3, 3);
-    return {v[0], v[1], v[2]};
-}
-
 void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
@@ -85,8 +79,8 @@ void setup(CommandContext& ctx)
             if (app->count(option) == 0) *value *= u;
         }
         if (app->count("--density") == 0) params.density /= u;
-        params.up = parse_direction("--up", args->up);
-        params.forward = parse_direction("--forward", args->forward);
+        params.up = parse_float3("--up", args->up);
+        params.forward = parse_float3("--forward", args->forward);
         params.direction = parse_edge_direction(args->direction);
         params.validate();
         HairRegionParams region_params = args->region;

@@ -472,6 +472,8 @@ PYBIND11_MODULE(groom, m)
     def_op(m, "cornrow_guides", "cornrow-guides", false, true, "Cornrow guide rows over the scalp (scalp= required)");
     def_op(m, "hairline", "hairline", false, true, "A default hairline around the head (scalp= required)");
     def_op(m, "parting", "parting", false, true, "Parting curves on the scalp, through='x,y,z/x,y,z/...' (scalp= required)");
+    def_op(m, "edges", "edges", false, true,
+           "Baby hairs laid flat in swirls along the hairline (scalp= required; hairline= and parting= take curves)");
     def_op(m, "sections", "sections", false, true,
            "One guide per section of the scalp inside the hairline, layout='grid'|'rows'|'radial' (scalp= required; hairline= takes curves)");
     m.def(

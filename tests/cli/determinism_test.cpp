@@ -84,6 +84,7 @@ std::vector<Case> cases()
         {"populate", "usda", {"populate", "{guides}", "-o", "{out}", "--count", "8", "--radius", "0.3", "--seed", "2"}},
         {"curl", "usda", {"curl", "{guides}", "-o", "{out}", "--type", "3b", "--uniformity", "0.4", "--seed", "7"}},
         {"head", "obj", {"head", "-o", "{out}", "--resolution", "96"}},
+        {"edges", "usda", {"edges", "--scalp", "{head}", "-o", "{out}", "--direction", "random", "--from", "-180", "--to", "180", "--seed", "4"}},
         {"render", "png", {"render", "{guides}", "--scalp", "{head}", "-o", "{out}", "--size", "160x120", "--color-by", "strand"}},
     };
 }

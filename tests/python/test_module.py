@@ -216,6 +216,20 @@ def test_gather_takes_puffs_hairline_and_parting_as_curves(sphere):
         groom.gather(puffs, scalp=sphere, lift=-1)
 
 
+def test_edges_lie_flat_along_a_hairline_given_as_curves(sphere):
+    """Edges from Python on the unit sphere: the hairline goes in as a CurveSet; every point stays
+    within the hairs' height of the sphere (plus the mesh's chordal error) and none inside."""
+    hairline = groom.hairline(scalp=sphere)
+    out = groom.edges(scalp=sphere, hairline=hairline, count=60, length=0.2, radius=0.015, swoop=0.1, depth=0.02,
+                      height=0.005, width=0.001, seed=3)
+    assert out.num_curves == 60
+    assert (out.curve_attributes["kind"] == 3).all()
+    r = np.linalg.norm(out.points, axis=1)
+    assert (r >= 1.0 - 0.01).all() and (r <= 1.0 + 0.005 + 0.01).all()
+    with pytest.raises(groom.ParamError, match="bends"):
+        groom.edges(scalp=sphere, bends=0)
+
+
 def test_sections_part_the_scalp_inside_the_hairline(sphere, tmp_path):
     """Grid sections on the unit sphere: one hanging guide per section, rooted on the sphere inside
     the hairline, the partings to a file; a count that does not fit the layout names the keyword."""

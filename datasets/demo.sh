@@ -9,8 +9,9 @@
 #      past the nape;
 #   3. builds an Izzy-style groom: two afro puffs of curls with mixed cross-sections, the rest of the
 #      scalp's hair gathered into them flat on the scalp (default hairline, centre parting, bands);
-#   4. writes each groom as .usda and renders front, side and top pictures;
-#   5. prints what it made (curves, points, seconds per step) and where the files are.
+#   4. builds box braids: the scalp inside the hairline parted into square sections, a plait each;
+#   5. writes each groom as .usda and renders front, side and top pictures;
+#   6. prints what it made (curves, points, seconds per step) and where the files are.
 # Every length is in centimetres (the head's units).
 set -euo pipefail
 out=${1:-out/demo}
@@ -63,6 +64,12 @@ if have scalp; then
 else
     skip "groom scalp (scalp field conversion) is not in this build"
 fi
+hairline=""
+if have hairline; then
+    # The head's default hairline (forehead, temples, sideburns, over the ears, nape): where hair grows.
+    step "hairline" groom hairline --scalp "$scalp" -o "$out/hairline.usda"
+    hairline="$out/hairline.usda"
+fi
 
 # --- 2. Alisha: cornrows, edge hairs, loose curly ends -----------------------------------------------
 echo "2. Alisha: cornrows"
@@ -111,10 +118,9 @@ if have puff; then
         --center 4.8,9.5,-1.5 --radius 3 --sphere-center 7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
         --hairs 5000 --type 4a --seed 2
     izzy+=("$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda")
-    if have gather; then
+    if have gather && [[ -n $hairline ]]; then
         # Every other hair of the scalp, inside the hairline, combed flat to the nearer puff on its side
         # of a centre parting (forehead, over the crown, down to the nape), under a band at each base.
-        step "hairline" groom hairline --scalp "$scalp" -o "$out/hairline.usda"
         step "parting" groom parting --scalp "$scalp" -o "$out/izzy_parting.usda" --through 0,8,12/0,14,-1/0,-2,-14
         step "gather" groom gather "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" --scalp "$scalp" \
             --hairline "$out/hairline.usda" --parting "$out/izzy_parting.usda" -o "$out/izzy_gathered.usda" \
@@ -127,7 +133,22 @@ else
     skip "groom puff is not in this build"
 fi
 
-# --- 4. pictures ----------------------------------------------------------------------------------------
+# --- 4. box braids from sections ---------------------------------------------------------------------
+echo "4. box braids"
+boxes=()
+if have sections && [[ -n $hairline ]]; then
+    # The scalp inside the hairline parted into a grid of square sections (about 3.4 cm), one hanging
+    # guide each and every root of each section joined to it; a 3-strand plait per section.
+    step "sections" groom sections --scalp "$scalp" --hairline "$hairline" --layout grid --cols 8 --length 24 \
+        -o "$out/box_guides.usda" --partings-out "$out/box_partings.usda" --roots-out "$out/box_roots.usda" --roots 30000
+    step "box braids" groom braid "$out/box_guides.usda" --scalp "$scalp" -o "$out/box_braids.usda" --pattern plait --strands 3 \
+        --knot-length 1.2 --width 0.45 --taper 0.55,1,1,1,1,1,1,1,1,1,1,1 --fibers 16 --clearance 0.05 --loose-length 2
+    boxes+=("$out/box_braids.usda" "$out/box_roots.usda" "$out/box_partings.usda")
+else
+    skip "groom sections (parted sections for box braids) is not in this build"
+fi
+
+# --- 5. pictures ----------------------------------------------------------------------------------------
 echo "4. pictures"
 render_groom() {  # NAME FILES...
     local name=$1
@@ -140,8 +161,9 @@ render_groom() {  # NAME FILES...
 step "render head" groom render --scalp "$out/head.obj" -o "$out/head.png" --views front,left,top --size 400x400
 if ((${#alisha[@]})); then render_groom alisha "${alisha[@]}"; fi
 if ((${#izzy[@]})); then render_groom izzy "${izzy[@]}"; fi
+if ((${#boxes[@]})); then render_groom box_braids "${boxes[@]}"; fi
 
-# --- 5. what was made ---------------------------------------------------------------------------------
+# --- 6. what was made ---------------------------------------------------------------------------------
 echo
 echo "demo: done. Steps (seconds, and what each made):"
 printf '  %s\n' "${summary[@]}"

@@ -102,6 +102,11 @@ if have cornrow-guides; then
     fi
     step "curl tails" groom curl "$tails" -o "$out/alisha_curls.usda" --type 3c --root-ease 1 --seed 1
     alisha+=("$out/alisha_curls.usda")
+    if have edges && [[ -n $hairline ]]; then
+        # Her edges: baby hairs laid flat along the front of the hairline, swept away from the face.
+        step "edges" groom edges --scalp "$scalp" --hairline "$hairline" -o "$out/alisha_baby_hairs.usda" --seed 1
+        alisha+=("$out/alisha_baby_hairs.usda")
+    fi
 else
     skip "groom cornrow-guides is not in this build"
 fi
@@ -126,6 +131,12 @@ if have puff; then
             --hairline "$out/hairline.usda" --parting "$out/izzy_parting.usda" -o "$out/izzy_gathered.usda" \
             --hairs 24000 --type 4a --seed 3
         izzy+=("$out/izzy_gathered.usda")
+        if have edges; then
+            # Edges along the front, in swoops leaning alternately left and right, off the parting.
+            step "edges" groom edges --scalp "$scalp" --hairline "$hairline" --parting "$out/izzy_parting.usda" \
+                -o "$out/izzy_baby_hairs.usda" --direction alternate --seed 2
+            izzy+=("$out/izzy_baby_hairs.usda")
+        fi
     else
         skip "groom gather (the scalp's hair pulled into the puffs) is not in this build"
     fi

@@ -37,7 +37,19 @@ run groom gather "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" --scalp 
     --hairline "$out/hairline.usda" --parting "$out/parting.usda" --parting-gap 0.05 -o "$out/izzy_gathered.usda" \
     --hairs 12000 --lift 0.014 --step 0.045 --band-width 0.14 --band-thickness 0.02 --type 4a --amplitude 0.03,0.045 --seed 3
 
-echo "3. pictures"
-run groom render "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" "$out/izzy_gathered.usda" --scalp "$scan" \
+run groom edges --scalp "$out/scan.vdb" --hairline "$out/hairline.usda" --parting "$out/parting.usda" --parting-gap 0.05 \
+    -o "$out/izzy_baby_hairs.usda" --direction alternate --units-per-cm 0.175 --seed 2
+
+echo "3. box braids on the scan: sections about 3.4 cm square, a plait each"
+run groom sections --scalp "$out/scan.vdb" --hairline "$out/hairline.usda" --layout grid --cols 8 --length 4.2 \
+    --parting-gap 0.05 --step 0.045 --bend 0.175 --clearance 0.05 --layer 0.026 \
+    -o "$out/box_guides.usda" --partings-out "$out/box_partings.usda" --roots-out "$out/box_roots.usda" --roots 30000
+run groom braid "$out/box_guides.usda" --scalp "$out/scan.vdb" -o "$out/box_braids.usda" --pattern plait --strands 3 \
+    --knot-length 0.21 --width 0.079 --taper 0.55,1,1,1,1,1,1,1,1,1,1,1 --fibers 16 --clearance 0.009 --loose-length 0.35
+
+echo "4. pictures"
+run groom render "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" "$out/izzy_gathered.usda" "$out/izzy_baby_hairs.usda" --scalp "$scan" \
     -o "$out/izzy_scan.png" --views front,left,back --size 420x420
+run groom render "$out/box_braids.usda" "$out/box_roots.usda" "$out/box_partings.usda" --scalp "$scan" \
+    -o "$out/box_braids_scan.png" --views front,left,back --size 420x420
 echo "demo-scan: done -> $out"

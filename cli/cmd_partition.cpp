@@ -1,5 +1,6 @@
 // `groom partition`: edge hairs between braids (talk, Sec. 2.2), from the guides the braids follow.
 #include "cli/command.h"
+#include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
@@ -21,6 +22,7 @@ struct Args {
     ScalpBuildParams scalp_params;
     float frequency = 0.0f, knot_length = 0.0f, knot_bias = 0.0f;
     PartitionParams params;
+    RegionOptions hair_region;
 };
 
 /// Lines of a small text file with their numbers, comments (#) and blank lines dropped, each split at
@@ -128,6 +130,7 @@ void setup(CommandContext& ctx)
     app->add_option("-o,--output", args->output, "Output edge-hair curves")->required();
     app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp`, or a mesh converted on the fly")->required();
     add_scalp_build_options(app, args->scalp_params);
+    add_region_options(app, args->hair_region);
     app->add_option("--adjacent", args->adjacent_file,
                     "Neighbours instead of searching: lines 'source,left,right' (guide indices, -1 = none); only listed guides are partitioned");
     app->add_option("--write-adjacent", args->write_adjacent, "Write the neighbours found (or given) in --adjacent's format, to edit and reuse");
@@ -152,7 +155,7 @@ void setup(CommandContext& ctx)
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, count, spacing, frequency, knot_length, knot_bias, knot_density, &common] {
         PartitionParams& params = args->params;
-        check_output(args->output, {args->input, args->scalp}, common);
+        check_output(args->output, {args->input, args->scalp, args->hair_region.hairline, args->hair_region.parting}, common);
         if (!args->write_adjacent.empty()) check_output(args->write_adjacent, {args->input, args->scalp, args->output}, common);
         if (spacing->count() && !count->count()) params.count = 0;
         const std::string& spec = args->centroids;
@@ -198,6 +201,8 @@ void setup(CommandContext& ctx)
         }
         if (!args->write_adjacent.empty()) write_adjacent(params.adjacent, args->write_adjacent);
 
+        const std::unique_ptr<HairRegion> region = make_region(args->hair_region, *scalp);
+        params.region = region.get();
         const CurveSet out = partition(guides, *scalp, params, progress.get());
         write_curves(out, args->output);
         note(common, "partition: " + std::to_string(out.num_curves()) + " segments from " + std::to_string(guides.num_curves()) +

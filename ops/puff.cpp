@@ -191,6 +191,11 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
                               " apart); the region and the sphere cap fold onto each other: lower `cap_angle` or "
                               "`bend`, or move `sphere_center` over the region");
     }
+    // What `groom gather` needs to pull the rest of the scalp's hair into this puff.
+    dst.add<float3>(Domain::Detail, "puff_base")[0] = c0;
+    dst.add<float>(Domain::Detail, "puff_radius")[0] = params.radius;
+    dst.add<float3>(Domain::Detail, "puff_sphere_center")[0] = params.sphere_center;
+    dst.add<float>(Domain::Detail, "puff_sphere_radius")[0] = params.sphere_radius;
     return dst;
 }
 
@@ -213,24 +218,7 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     gen.first_id = params.first_id + int64_t(result.guides.num_curves());
     CurveSet centres = generate(result.guides, scalp, sample, gen, progress);
 
-    // Tips onto the sphere, by a warp that vanishes with its derivative at the root.
-    auto P = centres.positions_for_write();
-    const float3 C = params.sphere_center;
-    const float R = params.sphere_radius;
-    parallel_for(int64_t(centres.num_curves()), 256, [&](int64_t b, int64_t e) {
-        for (int64_t c = b; c < e; ++c) {
-            const IndexRange r = centres.points_of(c);
-            const auto pts = P.subspan(r.begin, r.size());
-            const auto cum = cumulative_lengths(pts);
-            const float3 tip = pts.back();
-            const float3 shift = C + normalize(tip - C, normalize(tip - pts.front())) * R - tip;
-            for (size_t i = 1; i < pts.size(); ++i) {
-                const float s = cum.back() > 0.0 ? float(cum[i] / cum.back()) : 1.0f;
-                pts[i] += shift * (s * s);
-            }
-            pts.back() = C + normalize(tip - C, normalize(tip - pts.front())) * R;  // exact, not up to rounding
-        }
-    });
+    warp_tips_to_sphere(centres, params.sphere_center, params.sphere_radius);
     keep_outside(centres, scalp, KeepOutside{});
 
     CurlParams curl_params = params.curl;
@@ -243,6 +231,27 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     keep_outside(result.hairs, scalp, KeepOutside{});
     for (int32_t& k : result.hairs.add<int32_t>(Domain::Curve, "kind")) k = 1;
     return result;
+}
+
+void warp_tips_to_sphere(CurveSet& centres, const float3& C, float R)
+{
+    // A warp that vanishes with its derivative at the root: the root and its direction stay.
+    auto P = centres.positions_for_write();
+    parallel_for(int64_t(centres.num_curves()), 256, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = centres.points_of(c);
+            if (r.size() < 2) continue;
+            const auto pts = P.subspan(r.begin, r.size());
+            const auto cum = cumulative_lengths(pts);
+            const float3 tip = pts.back();
+            const float3 shift = C + normalize(tip - C, normalize(tip - pts.front())) * R - tip;
+            for (size_t i = 1; i < pts.size(); ++i) {
+                const float s = cum.back() > 0.0 ? float(cum[i] / cum.back()) : 1.0f;
+                pts[i] += shift * (s * s);
+            }
+            pts.back() = C + normalize(tip - C, normalize(tip - pts.front())) * R;  // exact, not up to rounding
+        }
+    });
 }
 
 double min_curve_separation(const CurveSet& curves)

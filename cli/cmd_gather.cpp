@@ -2,6 +2,7 @@
 // give it the puffs' files, the scalp, and optionally a hairline and partings.
 #include "cli/command.h"
 #include "cli/curl_options.h"
+#include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/curve_set_edit.h"
@@ -17,10 +18,10 @@ namespace {
 
 struct Args {
     std::vector<std::string> puffs;
-    std::string scalp, output, bands_out, hairline, parting, up = "0,1,0";
+    std::string scalp, output, bands_out;
     ScalpBuildParams scalp_params;
     GatherParams params;
-    HairRegionParams region;
+    RegionOptions region;
     CurlOptions curl;
 };
 
@@ -63,10 +64,7 @@ void setup(CommandContext& ctx)
     app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp` or a mesh (" + mesh_formats() + ")")->required();
     app->add_option("-o,--output", args->output, "Output curves: the gathered hairs (kind 1) and the bands (kind 2)")->required();
     app->add_option("--bands-out", args->bands_out, "Write the bands to this file instead of with the hairs");
-    app->add_option("--hairline", args->hairline, "Hairline: one closed curve around the head (`groom hairline`); default: the whole scalp");
-    app->add_option("--parting", args->parting, "Partings: curves on the scalp (`groom parting`) that bound the sections no hair crosses");
-    app->add_option("--parting-gap", args->region.parting_gap, "Bare width along each parting, scene units, >= 0")->capture_default_str();
-    app->add_option("--up", args->up, "X,Y,Z: the head's up direction (reading the hairline)")->capture_default_str();
+    add_region_options(app, args->region);
     app->add_option("--hairs", p.hairs, "Gathered hairs over the haired scalp outside the puffs' bases, >= 1")->capture_default_str();
     app->add_option("--lift", p.lift, "Greatest height of the gathered hair above the scalp, scene units, > 0")->capture_default_str();
     app->add_option("--step", p.step, "Spacing of a hair's points along the scalp, scene units, > 0")->capture_default_str();
@@ -82,7 +80,8 @@ void setup(CommandContext& ctx)
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         std::vector<std::string> inputs = args->puffs;
-        inputs.insert(inputs.end(), {args->scalp, args->hairline, args->parting});
+        inputs.push_back(args->scalp);
+        for (const std::string& f : args->region.inputs()) inputs.push_back(f);
         for (const std::string& out : {args->output, args->bands_out}) {
             if (out.empty()) continue;
             for (const std::string& in : inputs) {
@@ -92,21 +91,16 @@ void setup(CommandContext& ctx)
         check_outputs({{"-o", args->output}, {"--bands-out", args->bands_out}}, {args->scalp}, common);
         GatherParams params = args->params;
         params.curl = curl_params_from(args->curl);
-        const std::vector<float> up = parse_floats("--up", args->up, 3, 3);
-        HairRegionParams region_params = args->region;
-        region_params.up = {up[0], up[1], up[2]};
         params.validate();
-        region_params.validate();
 
         const auto start = std::chrono::steady_clock::now();
         std::vector<GatherPuff> puffs;
         for (const std::string& f : args->puffs) puffs.push_back(read_puff(f));
-        const CurveSet hairline = args->hairline.empty() ? CurveSet() : read_curves(args->hairline);
-        const CurveSet partings = args->parting.empty() ? CurveSet() : read_curves(args->parting);
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
-        const HairRegion region(*scalp, hairline, partings, region_params);
-        const GatherResult r = gather(*scalp, scalp_root_sampler(*scalp), puffs, region, params, progress.get());
+        std::unique_ptr<HairRegion> region = make_region(args->region, *scalp);
+        if (!region) region = std::make_unique<HairRegion>(*scalp, CurveSet(), CurveSet(), HairRegionParams{});  // the whole scalp
+        const GatherResult r = gather(*scalp, scalp_root_sampler(*scalp), puffs, *region, params, progress.get());
         if (args->bands_out.empty()) {
             write_curves(r.bands.num_curves() ? join(r.hairs, r.bands) : r.hairs, args->output);
         }

@@ -19,12 +19,6 @@ struct Args {
     HairlineParams params;
 };
 
-float3 parse_direction(const std::string& option, const std::string& text)
-{
-    const std::vector<float> v = parse_floats(option, text, 3, 3);
-    return {v[0], v[1], v[2]};
-}
-
 void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
@@ -47,10 +41,10 @@ void setup(CommandContext& ctx)
     ctx.run = [args, &common] {
         check_output(args->output, {args->scalp}, common);
         HairlineParams params = args->params;
-        params.up = parse_direction("--up", args->up);
-        params.forward = parse_direction("--forward", args->forward);
+        params.up = parse_float3("--up", args->up);
+        params.forward = parse_float3("--forward", args->forward);
         if (!args->center.empty()) {
-            params.center = parse_direction("--center", args->center);
+            params.center = parse_float3("--center", args->center);
             params.has_center = true;
         }
         params.validate();

@@ -43,8 +43,7 @@ void setup(CommandContext& ctx)
             std::vector<float3> w;
             std::stringstream ss(text);
             for (std::string item; std::getline(ss, item, '/');) {
-                const std::vector<float> v = parse_floats("--through", item, 3, 3);
-                w.push_back({v[0], v[1], v[2]});
+                w.push_back(parse_float3("--through", item));
             }
             if (w.size() < 2) throw InvalidParam("parting: --through needs at least two points X,Y,Z/X,Y,Z (got '" + text + "')");
             waypoints.push_back(std::move(w));

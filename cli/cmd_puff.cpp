@@ -23,12 +23,6 @@ struct Args {
     CurlOptions curl;
 };
 
-float3 parse_point(const std::string& option, const std::string& text)
-{
-    const std::vector<float> v = parse_floats(option, text, 3, 3);
-    return {v[0], v[1], v[2]};
-}
-
 void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
@@ -57,8 +51,8 @@ void setup(CommandContext& ctx)
     ctx.run = [args, &common] {
         check_outputs({{"-o", args->output}, {"--guides-out", args->guides_out}}, {args->scalp}, common);
         PuffParams params = args->params;
-        params.center = parse_point("--center", args->center);
-        params.sphere_center = parse_point("--sphere-center", args->sphere_center);
+        params.center = parse_float3("--center", args->center);
+        params.sphere_center = parse_float3("--sphere-center", args->sphere_center);
         params.curl = curl_params_from(args->curl);
         params.validate();
         if (!args->guides_out.empty() && params.hairs == 0) {

@@ -3,6 +3,7 @@
 // layer that parses arguments, prints, or decides exit codes.
 #pragma once
 
+#include "kernel/math/vec.h"
 #include "kernel/progress.h"
 
 #include <CLI/CLI.hpp>
@@ -95,5 +96,8 @@ std::string mesh_formats();
 
 /// Parses "x,y,z" (or "a,b" etc.) into floats, naming the option in errors.
 std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max);
+
+/// Parses "x,y,z" (a point, a direction, a colour), naming the option in errors.
+float3 parse_float3(const std::string& option, const std::string& text);
 
 }  // namespace groom::cli

@@ -193,6 +193,12 @@ std::unique_ptr<Progress> make_progress(const CommonOptions& o)
     return std::make_unique<TerminalProgress>(tty, o.verbose);
 }
 
+float3 parse_float3(const std::string& option, const std::string& text)
+{
+    const std::vector<float> v = parse_floats(option, text, 3, 3);
+    return {v[0], v[1], v[2]};
+}
+
 std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max)
 {
     std::vector<float> out;

@@ -41,7 +41,11 @@ float ScalpField::distance(const float3& p) const
 {
     float d = 0.0f;
     float3 g;
-    if (impl_->sample(p, d, g)) return d;
+    // The same test as query(): where the interpolated gradient is short (a crease, or a feature
+    // thinner than the voxels, like an ear's rim) the trilinear value can have the wrong sign; the
+    // exact mesh answers there. (Before, distance() trusted the band where query() did not, and a
+    // point query() put outside read inside to keep_outside.)
+    if (impl_->sample(p, d, g) && length_squared(g) > 0.25f) return d;
     float3 closest;
     int32_t face = -1;
     return impl_->query->signed_distance(p, closest, face);

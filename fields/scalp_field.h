@@ -50,7 +50,8 @@ public:
     ScalpField(ScalpField&&) noexcept;
     ScalpField& operator=(ScalpField&&) noexcept;
 
-    /// Signed distance (scene units; negative inside). Trilinear in the band, exact from the mesh outside.
+    /// Signed distance (scene units; negative inside). Trilinear in the band, exact from the mesh outside
+    /// it and where the band's gradient is short (a crease or a feature thinner than the voxels), as query().
     float distance(const float3& p) const override;
     /// Unit outward normal: the normalised gradient of the distance (central differences of the grid
     /// in the band; (p - closest) / distance from the mesh outside it).

@@ -14,10 +14,23 @@ bool surface_path(const Surface& scalp, const float3& from, const float3& to, fl
     scalp.query(to, target_n, target);
     out.push_back(p + n * lift);
     const double max_steps = 4.0 * double(distance(from, to)) / double(step) + 16.0;
+    float best = distance(p, target);
+    int stalled = 0;
     for (int k = 0; k < max_steps; ++k) {
         const float3 d = target - p;
         if (length(d) <= step) {
             if (length(d) > 1e-6f * step || out.size() == 1) out.push_back(target + target_n * lift);
+            return true;
+        }
+        if (stalled >= 8) {
+            // Eight steps without getting closer: a concave fold (behind an ear) pulls each step back
+            // where it came from. Finish along the chord, each point put back on the surface.
+            const int m = int(std::ceil(length(d) / step));
+            for (int j = 1; j <= m; ++j) {
+                scalp.query(p + d * (float(j) / float(m)), n, c);
+                out.push_back(c + n * lift);
+            }
+            out.back() = target + target_n * lift;
             return true;
         }
         // Toward the target within the tangent plane (a chord through the head would cut inside).
@@ -26,6 +39,14 @@ bool surface_path(const Surface& scalp, const float3& from, const float3& to, fl
         scalp.query(p + t * step, n, c);
         p = c;
         out.push_back(p + n * lift);
+        const float now = distance(p, target);
+        if (now < best - 0.05f * step) {
+            best = now;
+            stalled = 0;
+        }
+        else {
+            ++stalled;
+        }
     }
     return false;
 }

@@ -14,9 +14,10 @@ namespace groom {
 
 /// @brief Points on `scalp` from the surface point nearest `from` to the one nearest `to`, `step`
 /// apart (the last step may be shorter), lifted `lift` along the normal (0 = on the surface).
-/// @param step  scene units, > 0. The walk gives up after 4 |from - to| / step + 16 steps (a target
-///              it cannot reach, such as one across a hole) and returns false; `out` then holds the
-///              path so far.
+/// @param step  scene units, > 0. When eight steps in a row bring it no closer to the target (a fold
+///              that pulls each step back, behind an ear), the walk finishes along the chord to the
+///              target with each point put back on the surface. It gives up after 4 |from - to| / step
+///              + 16 steps and returns false; `out` then holds the path so far.
 /// Both ends are included; a point on a fold where the tangent direction vanishes steps along any
 /// tangent. Deterministic; thread-safe.
 bool surface_path(const Surface& scalp, const float3& from, const float3& to, float step, float lift, std::vector<float3>& out);

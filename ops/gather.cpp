@@ -83,7 +83,7 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
         throw InvalidParam("gather: `first_id` " + std::to_string(params.first_id) + " + " + std::to_string(params.hairs) +
                            " hairs and the bands passes the largest id, 2^63 - 1 (ids would wrap to negative)");
     }
-    std::vector<uint32_t> puff_section(np);
+    std::vector<uint64_t> puff_section(np);
     for (size_t k = 0; k < np; ++k) puff_section[k] = region.section(puffs[k].base);
 
     // --- Roots: area-uniform rounds, kept where the region is haired and no puff's base is.
@@ -102,7 +102,7 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
                 bool under_base = false;
                 for (const GatherPuff& puff : puffs) under_base = under_base || distance(p, puff.base) < puff.base_radius;
                 if (under_base) continue;
-                const uint32_t sec = region.section(p);
+                const uint64_t sec = region.section(p);
                 float best = std::numeric_limits<float>::infinity();
                 int32_t k_best = -2;
                 for (size_t k = 0; k < np; ++k) {
@@ -135,7 +135,8 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
         for (int64_t i = b; i < e; ++i) {
             const GatherPuff& puff = puffs[owner[i]];
             const float3 target = base_point_toward(scalp, puff, roots[i].position);
-            surface_path(scalp, roots[i].position, target, params.step, 0.0f, path);
+            // A walk that runs out of steps still ends at the base: the puff part starts there.
+            if (!surface_path(scalp, roots[i].position, target, params.step, 0.0f, path)) path.push_back(target);
             FlatPart& f = flat[i];
             f.points = path;
             f.points.front() = roots[i].position;  // the root exactly where it was drawn
@@ -193,6 +194,9 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
     auto ids = out.add<int64_t>(Domain::Curve, attr::id);
     auto kind = out.add<int32_t>(Domain::Curve, "kind");
     auto puff_of = out.add<int32_t>(Domain::Curve, "puff");
+    KeepOutside settle;
+    settle.margin = 0.05f * params.lift;
+    settle.max_steps = 4;
     parallel_for(nh, 64, [&](int64_t b, int64_t e) {
         for (int64_t i = b; i < e; ++i) {
             const IndexRange r = out.points_of(size_t(i));
@@ -203,7 +207,19 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
             int64_t o = r.begin;
             for (size_t j = 0; j + 1 < f.points.size(); ++j) {
                 if (j > 0) s += double(distance(f.points[j], f.points[j - 1]));
-                P[o] = f.points[j] + f.normals[j] * (h * smoothstep01(float(s / params.step)));
+                const float want = j == 0 ? 0.0f : h * smoothstep01(float(s / params.step));
+                float3 q = f.points[j] + f.normals[j] * want;
+                // Settle onto the level set at that height: one projection from the field is accurate
+                // to a fraction of a voxel, less in creases (behind an ear); two Newton steps along the
+                // normal fix it. The root stays where it was drawn.
+                for (int it = 0; j > 0 && it < 2; ++it) {
+                    float3 n, c;
+                    const float d = scalp.query(q, n, c);
+                    q += n * (want - d);
+                }
+                // In a crease the field's normal turns under a step; the one rule keeps the point out.
+                if (j > 0) keep_outside(q, scalp, settle);
+                P[o] = q;
                 flat_attr[o++] = 1;
             }
             const auto [k, c] = where[i];

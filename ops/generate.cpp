@@ -193,6 +193,7 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
         if (!use_footprint && !(double(distance(s.position, center)) <= double(radius))) return false;
         index.nearest(s.position, 1, hits);
         if (use_footprint && !(hits.front().distance <= footprint)) return false;
+        if (params.region && !params.region->haired(s.position)) return false;
         return min_cos < -1.0f || dot(normalize(s.normal), guide_normals[hits.front().index]) >= min_cos;
     };
 
@@ -207,7 +208,8 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
             throw LimitExceeded("generate: found only " + std::to_string(out.size()) + " of " +
                                 std::to_string(params.count) + " roots on the scalp inside the " +
                                 (use_footprint ? std::string("guides' footprint") : std::string("`region` ball")) +
-                                " after 64 rounds of sampling; is the region on the scalp, facing the way the guides' roots do (`max_angle`)?");
+                                " after 64 rounds of sampling" + (params.region ? std::string(" (and inside the hairline, off the partings)") : std::string()) +
+                                "; is the region on the scalp, facing the way the guides' roots do (`max_angle`)?");
         }
         const int64_t want = params.count - int64_t(out.size());
         const int64_t ask = std::min<int64_t>(int64_t(std::ceil(double(want) * 1.1 / std::max(rate, 0.02))) + 16,

@@ -80,7 +80,7 @@ HairRegion::HairRegion(const Surface& scalp, const CurveSet& hairline, const Cur
     }
     (void)scalp;
 
-    if (partings.num_curves() > 32) throw InvalidGeometry("parting: at most 32 partings, found " + std::to_string(partings.num_curves()));
+    if (partings.num_curves() > 64) throw InvalidGeometry("parting: at most 64 partings, found " + std::to_string(partings.num_curves()));
     const auto pts = partings.positions();
     for (size_t c = 0; c < partings.num_curves(); ++c) {
         const IndexRange r = partings.points_of(c);
@@ -153,11 +153,11 @@ float HairRegion::parting_distance(const float3& p) const
     return best;
 }
 
-uint32_t HairRegion::section(const float3& p) const
+uint64_t HairRegion::section(const float3& p) const
 {
-    uint32_t mask = 0;
+    uint64_t mask = 0;
     for (size_t i = 0; i < partings_.size(); ++i)
-        if (side_of(partings_[i], p, nullptr)) mask |= 1u << i;
+        if (side_of(partings_[i], p, nullptr)) mask |= uint64_t(1) << i;
     return mask;
 }
 

@@ -31,12 +31,12 @@ struct HairRegionParams {
 /// nape) does go once around.
 /// A parting's side at p is the sign of (p - q) . (t x n) for q the closest point of the parting, t
 /// its tangent there and n = `up`-independent scalp normal at q; the sides of all partings form p's
-/// section (a bitmask, parting i = bit i; at most 32 partings).
+/// section (a bitmask, parting i = bit i; at most 64 partings: a 46-section grid from `groom sections` has 45).
 class HairRegion {
 public:
     /// @param hairline  one closed curve (first point need not repeat at the end), or empty for "all
     ///                  of the scalp"; >= 8 points.
-    /// @param partings  open curves on the scalp, >= 2 points each, at most 32; may be empty.
+    /// @param partings  open curves on the scalp, >= 2 points each, at most 64; may be empty.
     /// Throws InvalidParam / InvalidGeometry naming `hairline` or `parting` and what is wrong.
     HairRegion(const Surface& scalp, const CurveSet& hairline, const CurveSet& partings, const HairRegionParams& params);
 
@@ -50,7 +50,7 @@ public:
     /// Distance from p to the nearest parting polyline, scene units (+infinity with none).
     float parting_distance(const float3& p) const;
     /// Bitmask of p's side of every parting.
-    uint32_t section(const float3& p) const;
+    uint64_t section(const float3& p) const;
     /// Inside the hairline and farther than parting_gap / 2 from every parting.
     bool haired(const float3& p) const;
     /// True when the segment a-b crosses a parting (the section changes between a and b while the

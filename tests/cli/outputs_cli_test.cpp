@@ -67,6 +67,7 @@ TEST(Outputs, TwoOutputsNamingOneFileAreRefusedUpFront)
         {"puff", "--scalp", mesh, "-o", t, "--guides-out", same_by_another_name, "--center", "0,10,0", "--radius", "3",
          "--sphere-center", "0,16,0", "--sphere-radius", "4", "--hairs", "5"},
         {"partition", guides, "--scalp", mesh, "-o", t, "--write-adjacent", same_by_another_name},
+        {"sections", "--scalp", mesh, "-o", dir.file("g.usda"), "--partings-out", t, "--roots-out", same_by_another_name},
     };
     for (const auto& args : cases) {
         const auto r = run_groom(args);

@@ -432,3 +432,39 @@ TEST(Generate, RegionOffTheScalpIsRefused)
         EXPECT_NE(std::string(e.what()).find("`region`"), std::string::npos) << e.what();
     }
 }
+
+TEST(Generate, RootsOnlyInsideTheHairlineAndOffThePartings)
+{
+    // A level circular hairline 0.95 R up the sphere and a parting along the x = 0 great circle: the
+    // region around the pole guides is cut to the cap above the circle, less a bare line.
+    const AnalyticSphere head(kC, kR);
+    const float y0 = 0.95f * kR, r0 = std::sqrt(kR * kR - y0 * y0);
+    CurveSet hairline = CurveSet::from_counts(std::vector<int64_t>{256});
+    auto H = hairline.positions_for_write();
+    for (int i = 0; i < 256; ++i) H[i] = {r0 * std::cos(6.2831853f * i / 256), y0, r0 * std::sin(6.2831853f * i / 256)};
+    CurveSet parting = CurveSet::from_counts(std::vector<int64_t>{101});
+    auto Q = parting.positions_for_write();
+    for (int i = 0; i <= 100; ++i) Q[i] = float3(0, std::cos(-0.6f + 1.2f * i / 100), std::sin(-0.6f + 1.2f * i / 100)) * kR;
+    HairRegionParams rp;
+    rp.parting_gap = 0.2f;
+    const HairRegion region(head, hairline, parting, rp);
+    GenerateParams params;
+    params.count = 2000;
+    params.region_center = on_sphere(0, 0);
+    params.region_radius = 4.0f;
+    params.region = &region;
+    const std::vector<SurfaceSample> roots = scatter_roots(pole_guides(), head, test::sphere_cap_sampler(kC, kR), params);
+    ASSERT_EQ(roots.size(), 2000u);
+    int near_line = 0;
+    for (const SurfaceSample& s : roots) {
+        EXPECT_GT(s.position.y, y0 - 1e-3f * kR);   // inside the hairline (closed form: the cap above its plane)
+        EXPECT_GT(std::fabs(s.position.x), 0.1f - 1e-4f);  // off the bare line (half the gap)
+        near_line += std::fabs(s.position.x) < 0.3f;
+    }
+    EXPECT_GT(near_line, 0);  // the gap is only as wide as asked
+    // Without the region the same ball reaches below the hairline.
+    params.region = nullptr;
+    int below = 0;
+    for (const SurfaceSample& s : scatter_roots(pole_guides(), head, test::sphere_cap_sampler(kC, kR), params)) below += s.position.y < y0;
+    EXPECT_GT(below, 100);
+}

@@ -88,11 +88,7 @@ void setup(CommandContext& ctx)
                 if (!in.empty() && in == out && !common.force) throw InvalidParam("gather: output " + out + " is also an input (use --force to overwrite it)");
             }
         }
-        check_output(args->output, {args->scalp}, common);
-        if (!args->bands_out.empty()) {
-            check_output(args->bands_out, {args->scalp, args->output}, common);
-            if (args->bands_out == args->output) throw InvalidParam("gather: --bands-out and -o name the same file");
-        }
+        check_outputs({{"-o", args->output}, {"--bands-out", args->bands_out}}, {args->scalp}, common);
         GatherParams params = args->params;
         params.curl = curl_params_from(args->curl);
         params.validate();
@@ -109,8 +105,10 @@ void setup(CommandContext& ctx)
             write_curves(r.bands.num_curves() ? join(r.hairs, r.bands) : r.hairs, args->output);
         }
         else {
-            write_curves(r.hairs, args->output);
-            write_curves(r.bands, args->bands_out);
+            OutputBatch outputs;  // both files land together, or neither
+            write_curves(r.hairs, args->output, outputs);
+            write_curves(r.bands, args->bands_out, outputs);
+            outputs.commit();
         }
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char line[256];

@@ -61,14 +61,8 @@ void setup(CommandContext& ctx)
     add_scalp_build_options(app, args->scalp_params);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
-        const std::vector<std::string> outputs{args->output, args->partings_out, args->roots_out};
-        for (size_t i = 0; i < outputs.size(); ++i) {
-            if (outputs[i].empty()) continue;
-            check_output(outputs[i], {args->scalp, args->hairline}, common);
-            for (size_t j = 0; j < i; ++j) {
-                if (outputs[i] == outputs[j]) throw InvalidParam("sections: -o, --partings-out and --roots-out must name different files (" + outputs[i] + ")");
-            }
-        }
+        check_outputs({{"-o", args->output}, {"--partings-out", args->partings_out}, {"--roots-out", args->roots_out}},
+                      {args->scalp, args->hairline}, common);
         SectionsParams params = args->params;
         params.layout = parse_section_layout(args->layout);
         params.guide = parse_section_guide(args->guide);
@@ -98,9 +92,11 @@ void setup(CommandContext& ctx)
         }
         const RootSampler sampler = scalp_root_sampler(*scalp);
         const SectionsResult r = sections(*scalp, hairline, &sampler, params, progress.get());
-        write_curves(r.guides, args->output);
-        if (!args->partings_out.empty()) write_curves(r.partings, args->partings_out);
-        if (!args->roots_out.empty()) write_curves(r.roots, args->roots_out);
+        OutputBatch outputs;  // every file lands together, or none
+        write_curves(r.guides, args->output, outputs);
+        if (!args->partings_out.empty()) write_curves(r.partings, args->partings_out, outputs);
+        if (!args->roots_out.empty()) write_curves(r.roots, args->roots_out, outputs);
+        outputs.commit();
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char line[320];
         std::snprintf(line, sizeof line,

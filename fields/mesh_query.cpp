@@ -2,6 +2,8 @@
 // and a CGAL AABB tree for the queries that fall outside the level set's narrow band.
 #include "fields/scalp_impl.h"
 
+#include "kernel/error.h"
+
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -215,6 +217,13 @@ MeshQuery::~MeshQuery() = default;
 
 float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face) const
 {
+    // CGAL's exact predicates convert the point to GMP rationals, and GMP raises SIGFPE on inf or
+    // NaN: an op whose arithmetic overflowed must fail here with an error, not kill the process.
+    // (Inputs and parameters are checked on ingest; this is the last line.)
+    if (!isfinite(p)) {
+        throw InvalidGeometry("scalp query at a non-finite point (" + format_number(p.x) + ", " + format_number(p.y) + ", " +
+                              format_number(p.z) + "): a computation overflowed float; are the inputs or parameters extreme?");
+    }
     const auto hit = tree().tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
     face = static_cast<int32_t>(hit.second - tree().triangles.cbegin());
     // The AABB tree finds the face; the pseudo-normal of the feature hit gives the sign.

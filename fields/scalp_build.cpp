@@ -5,6 +5,7 @@
 #include "fields/scalp_impl.h"
 
 #include "kernel/error.h"
+#include "kernel/memory_budget.h"
 
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <sstream>
@@ -40,7 +42,6 @@ void ScalpBuildParams::validate() const
     if (!(band_voxels >= 1.0f && band_voxels <= 64.0f)) {
         throw InvalidParam("scalp: `band` must be in [1, 64] voxels (got " + format_number(band_voxels) + ")");
     }
-    if (memory_budget == 0) throw InvalidParam("scalp: memory budget must be > 0 bytes");
 }
 
 void ScalpField::Impl::set_transform(const std::string& what)
@@ -143,15 +144,45 @@ void ScalpField::Impl::fill_band_from_sdf() const
 
 namespace {
 
+/// The voxel size and the bytes its band is estimated to need.
+struct VoxelChoice {
+    double h = 0.0;
+    double bytes = 0.0;
+};
+
 /// The voxel size (the given one, else the bounding-box diagonal / 256), refused with a suggestion
-/// when the band would need more memory than the budget.
-double choose_voxel(std::span<const float3> points, std::span<const std::array<int32_t, 3>> tris, const ScalpBuildParams& params)
+/// when the band would need more memory than the budget, and refused outright for a mesh whose size
+/// overflows float (the voxel would be inf and every distance NaN) or that lies so far from the
+/// origin that float positions there cannot tell neighbouring voxels apart.
+VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::array<int32_t, 3>> tris, const ScalpBuildParams& params)
 {
     Bounds3 box;
     for (const float3& p : points) box.extend(p);
-    const float diag = length(box.hi - box.lo);
-    if (!(diag > 0.0f)) throw InvalidGeometry("scalp: the mesh has no extent (all vertices at one point)");
+    // In double: the float diagonal of a mesh 1e20 across overflows (its square does).
+    const double dx = double(box.hi.x) - double(box.lo.x), dy = double(box.hi.y) - double(box.lo.y),
+                 dz = double(box.hi.z) - double(box.lo.z);
+    const double diag = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(diag > 0.0)) throw InvalidGeometry(params.source + ": the mesh has no extent (all vertices at one point)");
+    // Squared distances between points of the mesh are taken in float everywhere (queries, repair):
+    // they must not overflow. 1e18 leaves a factor of 100 below FLT_MAX.
+    constexpr double kMaxExtent = 1.0e18;
+    if (!(diag <= kMaxExtent)) {
+        throw InvalidGeometry(params.source + ": the mesh is " + format_number(diag) + " units across (bounds " + format_number(box.lo.x) + ", " +
+                              format_number(box.lo.y) + ", " + format_number(box.lo.z) + " to " + format_number(box.hi.x) + ", " +
+                              format_number(box.hi.y) + ", " + format_number(box.hi.z) + "); the largest size groom handles is " +
+                              format_number(kMaxExtent) + " (distances would overflow float): scale it down");
+    }
     const double h = params.voxel_size > 0.0f ? params.voxel_size : diag / 256.0;
+    double far = 0.0;
+    for (const double c : {box.lo.x, box.lo.y, box.lo.z, box.hi.x, box.hi.y, box.hi.z}) far = std::max(far, std::fabs(c));
+    // A float holds 24 bits: 2^24 voxels from the origin, neighbouring voxel centres round to one
+    // position (and OpenVDB's int32 coordinates are not far beyond).
+    constexpr double kMaxVoxelsFromOrigin = double(1 << 24);
+    if (far / h > kMaxVoxelsFromOrigin) {
+        throw InvalidGeometry(params.source + ": the mesh lies " + format_number(far) + " units from the origin, " + format_number(far / h) +
+                              " voxels of " + format_number(h) + "; float positions cannot resolve a voxel beyond " +
+                              format_number(kMaxVoxelsFromOrigin) + " voxels: move the mesh near the origin or use a larger `voxel`");
+    }
 
     // Memory estimate before allocating anything: the band holds about area / h^2 * 2 * band voxels,
     // each costing the distance, its polygon index, meshToVolume's temporaries and, once queried, the
@@ -163,15 +194,16 @@ double choose_voxel(std::span<const float3> points, std::span<const std::array<i
     const double voxels = area / (h * h) * 2.0 * (band + 0.5) + 512.0 * double(tris.size()) / 64.0;
     const double bytes = voxels * 80.0;
     const double extent_voxels = diag / h;
-    if (bytes > double(params.memory_budget) || extent_voxels > 1.0e6) {
-        const double suggest = h * std::sqrt(std::max(bytes / double(params.memory_budget), 1.0)) * 1.1;
+    const double budget = double(params.memory_budget ? params.memory_budget : memory_budget());
+    if (!(bytes <= budget) || extent_voxels > 1.0e6) {
+        const double suggest = h * std::sqrt(std::max(bytes / budget, 1.0)) * 1.1;
         const double suggest2 = std::max(suggest, diag / 1.0e6 * 1.1);
         throw LimitExceeded("scalp: voxel size " + format_number(h) + " needs about " + format_number(bytes / double(1ull << 30)) +
                             " GiB for the level set (" + format_number(voxels) + " voxels), over the " +
-                            format_number(double(params.memory_budget) / double(1ull << 30)) + " GiB budget; use `voxel` " +
+                            format_number(budget / double(1ull << 30)) + " GiB budget (`memory`); use `voxel` " +
                             format_number(suggest2) + " or larger (the mesh is " + format_number(diag) + " units across)");
     }
-    return h;
+    return {h, bytes};
 }
 
 /// meshToVolume's unsigned narrow band (world units) and, in `index_grid`, each voxel's closest
@@ -210,12 +242,13 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     detail::RepairOptions options;
     options.flip = params.flip;
     options.remove_enclosed = params.remove_enclosed_shells;
+    options.what = params.source;
 
     // meshToVolume needs only the final positions and faces: started as soon as the repair has them,
     // it runs beside the rest of the repair (CGAL's orientation of a messy soup), the OpenMesh
     // conversion and the mesh geometry, serial work that otherwise left a core idle.
     struct Early {
-        double h = 0.0;
+        double h = 0.0, bytes = 0.0, budget = 0.0;
         std::vector<float3> points;
         std::vector<std::array<int32_t, 3>> tris;
         openvdb::Int32Grid::Ptr index;
@@ -223,6 +256,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         StopFlag stop;
     } early;
     tbb::task_group background;
+    std::optional<MemoryNote> note;  // what an allocation failure in the band is reported as
     options.on_triangles = [&](std::vector<float3> points, std::vector<std::array<int32_t, 3>> tris) {
         if (early.index) {  // the faces changed (shells removed): stop the band of the old ones
             early.stop.stop = true;
@@ -230,11 +264,32 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
             early.stop.stop = false;
             early.sdf.reset();
         }
-        early.h = choose_voxel(points, tris, params);
+        const VoxelChoice choice = choose_voxel(points, tris, params);
+        early.h = choice.h;
+        early.bytes = choice.bytes;
+        early.budget = double(params.memory_budget ? params.memory_budget : memory_budget());
+        note.reset();
+        note.emplace("scalp: building the level set at voxel size " + format_number(early.h) + " (estimated " + format_bytes(early.bytes) +
+                     "); use a larger `voxel`");
         early.points = std::move(points);
         early.tris = std::move(tris);
         early.index = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));  // as meshToVolume expects
-        background.run([&early, band] { early.sdf = unsigned_band(early.points, early.tris, early.h, band, *early.index, early.stop); });
+        background.run([&early, band] {
+            // meshToVolume's own TBB tasks allocate the band: a failed allocation there (the estimate
+            // fitted the budget, the machine did not) comes back through this task group's wait().
+            // Turned into an error naming the voxel here, where the estimate is known.
+            try {
+                early.sdf = unsigned_band(early.points, early.tris, early.h, band, *early.index, early.stop);
+            }
+            catch (const std::bad_alloc&) {
+                early.sdf.reset();
+                early.index.reset();
+                throw LimitExceeded("scalp: out of memory building the level set at voxel size " + format_number(early.h) +
+                                    " (estimated " + format_bytes(early.bytes) + ", within the " +
+                                    format_bytes(early.budget) +
+                                    " budget but more than this process could allocate); use a larger `voxel` or lower `memory`");
+            }
+        });
     };
     RepairReport report;
     ScalpField field;

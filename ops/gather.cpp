@@ -78,6 +78,11 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
         }
     }
     const size_t np = puffs.size();
+    // Ids first_id .. first_id + hairs + bands - 1 must not pass int64 (they would wrap to negative).
+    if (params.first_id > std::numeric_limits<int64_t>::max() - params.hairs - int64_t(params.band_strands) * int64_t(np)) {
+        throw InvalidParam("gather: `first_id` " + std::to_string(params.first_id) + " + " + std::to_string(params.hairs) +
+                           " hairs and the bands passes the largest id, 2^63 - 1 (ids would wrap to negative)");
+    }
     std::vector<uint64_t> puff_section(np);
     for (size_t k = 0; k < np; ++k) puff_section[k] = region.section(puffs[k].base);
 

@@ -2,6 +2,7 @@
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
+#include "kernel/memory_budget.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
@@ -76,6 +77,11 @@ void PuffParams::validate() const
     if (!(bend > 0.0f && bend <= 1.0f)) throw InvalidParam("puff: `bend` must be in (0, 1] (got " + str(bend) + ")");
     if (first_id < 0) throw InvalidParam("puff: `first_id` must be >= 0 (got " + std::to_string(first_id) + ")");
     if (hairs < 0) throw InvalidParam("puff: `hairs` must be >= 0 (got " + std::to_string(hairs) + ")");
+    // Ids first_id .. first_id + rows * cols + hairs - 1 must not pass int64 (they would wrap to negative).
+    if (first_id > std::numeric_limits<int64_t>::max() - int64_t(rows) * cols - hairs) {
+        throw InvalidParam("puff: `first_id` " + std::to_string(first_id) + " + " + std::to_string(int64_t(rows) * cols) + " guides + " +
+                           std::to_string(hairs) + " `hairs` passes the largest id, 2^63 - 1 (ids would wrap to negative)");
+    }
     if (hair_points < 4) throw InvalidParam("puff: `hair_points` must be >= 4 (got " + std::to_string(hair_points) + ")");
     if (neighbours < 1) throw InvalidParam("puff: `neighbours` must be >= 1 (got " + std::to_string(neighbours) + ")");
     if (!(power > 0.0f) || !std::isfinite(power)) {
@@ -202,6 +208,9 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
 PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParams& params, Progress* progress)
 {
     params.validate();
+    // The hairs' centrelines, before curling: a position and a source point each, and the roots.
+    check_memory("puff: " + std::to_string(params.hairs) + " `hairs` x " + std::to_string(params.hair_points) + " `hair_points`",
+                 double(params.hairs) * (double(params.hair_points) * 32.0 + 128.0), "ask for fewer `hairs`");
     PuffResult result;
     result.guides = puff_guides(scalp, params, progress);
     if (params.hairs == 0) return result;

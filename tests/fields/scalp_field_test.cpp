@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 namespace groom {
 namespace {
@@ -241,6 +242,39 @@ TEST(ScalpField, RejectsBadInput)
     catch (const LimitExceeded& e) {
         EXPECT_NE(std::string(e.what()).find("use `voxel`"), std::string::npos) << e.what();
     }
+}
+
+TEST(ScalpField, NonFiniteQueryPointIsAnErrorNotASignal)
+{
+    // Exact queries outside the band convert the point to GMP rationals, which raise SIGFPE on inf
+    // and NaN: an op whose arithmetic overflowed (braid --width 3e38) died of it.
+    const ScalpField field = build_scalp(icosphere({0, 0, 0}, 10, 2), {1.0f, 3.0f});
+    for (const float bad : {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+        EXPECT_THROW(field.distance(float3(bad, 0, 0)), InvalidGeometry);
+        float3 n, c;
+        EXPECT_THROW(field.query(float3(0, -bad, 1), n, c), InvalidGeometry);
+    }
+    // Far but finite points are answered.
+    EXPECT_NEAR(field.distance(float3(1e15f, 0, 0)), 1e15f, 1e9f);
+}
+
+TEST(ScalpField, MeshWhoseSizeOverflowsFloatIsRefused)
+{
+    PolygonSoup huge = icosphere({0, 0, 0}, 1e30f, 2);
+    ScalpBuildParams p;
+    p.source = "huge.obj";
+    try {
+        build_scalp(huge, p);
+        FAIL() << "no error";
+    }
+    catch (const InvalidGeometry& e) {
+        EXPECT_NE(std::string(e.what()).find("huge.obj: the mesh is"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("scale it down"), std::string::npos) << e.what();
+    }
+    PolygonSoup far = icosphere({1e12f, 0, 0}, 10, 2);
+    EXPECT_THROW(build_scalp(far, p), InvalidGeometry);
+    // The same sphere near the origin, and far with a voxel float can still resolve there, convert.
+    EXPECT_NO_THROW(build_scalp(icosphere({1e5f, 0, 0}, 10, 2), p));
 }
 
 TEST(ScalpReal, SintelColliderMatchesIndependentSdf)

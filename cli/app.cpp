@@ -2,10 +2,15 @@
 #include "cli/command.h"
 
 #include "kernel/error.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
+#include <mutex>
 #include <string_view>
 #include <vector>
 
@@ -51,13 +56,98 @@ std::string closest(std::string_view word, const std::vector<std::string>& candi
 /// Where error() puts its message: stderr, or a caller's string (run_captured).
 thread_local std::string* error_sink = nullptr;
 
+/// The command being run and its long option names, for out_of_memory_message().
+std::string g_command;
+std::vector<std::string> g_options;
+std::mutex g_running_mutex;
+
 void error(const std::string& message)
 {
     if (error_sink) *error_sink = message;
     else std::cerr << "groom: error: " << message << "\n";
 }
 
+/// Integer options take decimal integers only. CLI11 reads them with strtoll(..., 0), so `--count 010`
+/// was octal 8 and `0x10` 16, and a value past the type's range was clamped to its largest (ids then
+/// wrapped); an unsigned option took -1 as 2^64 - 1. This check runs before CLI11's conversion:
+/// leading zeros are dropped ("010" is ten), anything but an optional sign and digits is refused,
+/// and so is a value outside int64 (uint64 for unsigned options, where a sign is refused).
+void decimal_integers_only(CLI::Option* opt)
+{
+    const std::string type = opt->get_type_name();
+    const bool is_unsigned = type.rfind("UINT", 0) == 0;
+    if (!is_unsigned && type.rfind("INT", 0) != 0) return;
+    opt->transform(CLI::Validator(
+        [is_unsigned](std::string& text) -> std::string {
+            std::string digits = text;
+            const bool negative = !digits.empty() && digits[0] == '-';
+            if (!digits.empty() && (digits[0] == '-' || digits[0] == '+')) digits.erase(0, 1);
+            const bool decimal = !digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos;
+            if (!decimal || (is_unsigned && negative)) {
+                return std::string("expected a decimal integer") + (is_unsigned ? " >= 0" : "") + ", got '" + text + "'";
+            }
+            digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size() - 1));
+            text = (negative ? "-" : "") + digits;
+            bool in_range = false;
+            if (is_unsigned) {
+                uint64_t v = 0;
+                const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+                in_range = r.ec == std::errc() && r.ptr == text.data() + text.size();
+            }
+            else {
+                int64_t v = 0;
+                const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+                in_range = r.ec == std::errc() && r.ptr == text.data() + text.size();
+            }
+            if (!in_range) return "'" + text + "' is out of range for a 64-bit integer";
+            return {};
+        },
+        ""));
+}
+
+/// The command's memory budget in bytes from --memory GiB, else GROOM_MEMORY (GiB), else 0 (the
+/// default, half the machine's memory: kernel/memory_budget.h).
+uint64_t memory_budget_from(const CommonOptions& common)
+{
+    auto bytes = [](double gib, const std::string& where) {
+        if (!(std::isfinite(gib) && gib > 0.0 && gib <= 1.0e6)) {
+            throw InvalidParam(where + " must be a memory budget in GiB, > 0 and at most 1e6 (got " + format_number(gib) + ")");
+        }
+        return static_cast<uint64_t>(std::max(gib * double(1ull << 30), 1.0));
+    };
+    if (common.memory_gib != 0.0) return bytes(common.memory_gib, "--memory");
+    if (const char* env = std::getenv("GROOM_MEMORY"); env && *env) {
+        const std::string text = env;
+        double gib = 0.0;
+        const auto r = std::from_chars(text.data(), text.data() + text.size(), gib);
+        if (r.ec != std::errc() || r.ptr != text.data() + text.size()) {
+            throw InvalidParam("GROOM_MEMORY must be a number of GiB (got '" + text + "')");
+        }
+        return bytes(gib, "GROOM_MEMORY");
+    }
+    return 0;
+}
+
 }  // namespace
+
+std::string out_of_memory_message()
+{
+    std::string command;
+    std::vector<std::string> options;
+    {
+        std::unique_lock lock(g_running_mutex, std::try_to_lock);
+        if (lock) {
+            command = g_command;
+            options = g_options;
+        }
+    }
+    const std::string note = memory_note();
+    std::string msg = (command.empty() ? std::string() : command + ": ") + "out of memory";
+    if (!note.empty()) msg += " (" + with_option_names(note, options) + ")";
+    return msg + ": an allocation failed within the " + format_bytes(double(memory_budget())) +
+           " memory budget (--memory, GROOM_MEMORY), so this machine has less free memory than that; ask for less, or lower "
+           "--memory so that groom refuses too large a job before starting it";
+}
 
 Registrar::Registrar(CommandInfo info)
 {
@@ -85,10 +175,14 @@ int run(int argc, char** argv)
             ->check(CLI::NonNegativeNumber);
         sub->add_flag("-q,--quiet", common.quiet, "Print errors only");
         sub->add_flag("-v,--verbose", common.verbose, "Print more detail");
-        sub->add_flag("--force", common.force, "Allow writing over an input file");
+        sub->add_flag("--force", common.force, "Allow writing over an input file or a read-only file");
+        sub->add_option("--memory", common.memory_gib,
+                        "Memory budget, GiB: larger outputs and scalp grids are refused before allocating (default: $GROOM_MEMORY, "
+                        "else half this machine's memory, " + format_bytes(double(default_memory_budget())) + ")");
         contexts[i].app = sub;
         contexts[i].common = &common;
         commands[i].setup(contexts[i]);
+        for (CLI::Option* opt : sub->get_options()) decimal_integers_only(opt);
         names.emplace_back(commands[i].name);
     }
 
@@ -115,7 +209,19 @@ int run(int argc, char** argv)
         for (size_t i = 0; i < commands.size(); ++i) {
             if (contexts[i].app->parsed() && contexts[i].run) {
                 ThreadLimit limit(common.threads);
-                contexts[i].run();
+                MemoryLimit memory(memory_budget_from(common));
+                {
+                    const std::lock_guard lock(g_running_mutex);
+                    g_command = commands[i].name;
+                    g_options = parsed_options();
+                }
+                try {
+                    contexts[i].run();
+                }
+                catch (const std::bad_alloc&) {
+                    // Here, while the command's budget is still set, so the message states it.
+                    throw LimitExceeded(out_of_memory_message());
+                }
             }
         }
         return 0;
@@ -173,8 +279,8 @@ int run(int argc, char** argv)
         error(with_option_names(e.what(), parsed_options()));
         return 1;
     }
-    catch (const std::bad_alloc&) {
-        error("out of memory");
+    catch (const std::bad_alloc&) {  // outside a command's run (parsing)
+        error(out_of_memory_message());
         return 1;
     }
     catch (const std::exception& e) {

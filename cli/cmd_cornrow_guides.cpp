@@ -44,11 +44,8 @@ void setup(CommandContext& ctx)
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         Args& a = *args;
-        check_output(a.output, {a.scalp}, common);
-        if (!a.tails_out.empty()) {
-            check_output(a.tails_out, {a.scalp, a.output}, common);
-            if (a.params.tail_length <= 0.0f) a.params.tail_length = 12.0f;
-        }
+        check_outputs({{"-o", a.output}, {"--tails-out", a.tails_out}}, {a.scalp}, common);
+        if (!a.tails_out.empty() && a.params.tail_length <= 0.0f) a.params.tail_length = 12.0f;
         if (!a.center.empty()) {
             const std::vector<float> c = parse_floats("--center", a.center, 3, 3);
             a.params.center = {c[0], c[1], c[2]};
@@ -58,8 +55,10 @@ void setup(CommandContext& ctx)
         auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         const CornrowGuides g = cornrow_guides(*scalp, a.params);
-        write_curves(g.guides, a.output);
-        if (!a.tails_out.empty()) write_curves(g.tails, a.tails_out);
+        OutputBatch outputs;  // both files land together, or neither
+        write_curves(g.guides, a.output, outputs);
+        if (!a.tails_out.empty()) write_curves(g.tails, a.tails_out, outputs);
+        outputs.commit();
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char line[256];
         std::snprintf(line, sizeof line, "cornrow-guides: %zu guides x %d points, %.2f s -> ", g.guides.num_curves(), a.params.samples, secs);

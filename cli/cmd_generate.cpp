@@ -1,6 +1,7 @@
 // `groom generate`: a full groom from a few guides (ops/generate.h): roots scattered area-uniformly
 // on the scalp, shapes interpolated from the nearest guides.
 #include "cli/command.h"
+#include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
@@ -17,6 +18,7 @@ struct Args {
     std::string input, scalp, output, region;
     ScalpBuildParams scalp_params;
     GenerateParams params;
+    RegionOptions hair_region;
 };
 
 void setup(CommandContext& ctx)
@@ -44,9 +46,10 @@ void setup(CommandContext& ctx)
     app->add_option("--first-id", p.first_id, "Curve ids start here, >= 0")->capture_default_str();
     app->add_option("--seed", p.seed, "Random seed for the roots")->capture_default_str();
     add_scalp_build_options(app, args->scalp_params);
+    add_region_options(app, args->hair_region);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
-        check_output(args->output, {args->input, args->scalp}, common);
+        check_output(args->output, {args->input, args->scalp, args->hair_region.hairline, args->hair_region.parting}, common);
         if (!args->region.empty()) {
             const std::vector<float> v = parse_floats("--region", args->region, 4, 4);
             args->params.region_center = {v[0], v[1], v[2]};
@@ -58,7 +61,10 @@ void setup(CommandContext& ctx)
         const CurveSet guides = read_curves(args->input);
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
-        const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), args->params, progress.get());
+        const std::unique_ptr<HairRegion> region = make_region(args->hair_region, *scalp);
+        GenerateParams params = args->params;
+        params.region = region.get();
+        const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), params, progress.get());
         write_curves(out, args->output);
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char line[256];

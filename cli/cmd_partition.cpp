@@ -1,5 +1,6 @@
 // `groom partition`: edge hairs between braids (talk, Sec. 2.2), from the guides the braids follow.
 #include "cli/command.h"
+#include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
@@ -21,6 +22,7 @@ struct Args {
     ScalpBuildParams scalp_params;
     float frequency = 0.0f, knot_length = 0.0f, knot_bias = 0.0f;
     PartitionParams params;
+    RegionOptions hair_region;
 };
 
 /// Lines of a small text file with their numbers, comments (#) and blank lines dropped, each split at
@@ -111,12 +113,11 @@ std::vector<CentroidPoint> read_centroids(const std::string& path, size_t guides
     return out;
 }
 
-void write_adjacent(const std::vector<AdjacentGuides>& adjacent, const std::string& path)
+void write_adjacent(const std::vector<AdjacentGuides>& adjacent, const std::string& path, OutputBatch& outputs)
 {
-    AtomicOutput out(path, false);
-    out.stream() << "# source,left,right (guide indices; -1 = none). Left = scalp normal x guide tangent.\n";
-    for (const AdjacentGuides& a : adjacent) out.stream() << a.source << "," << a.left << "," << a.right << "\n";
-    out.commit();
+    std::ostream& out = outputs.open(path, false);
+    out << "# source,left,right (guide indices; -1 = none). Left = scalp normal x guide tangent.\n";
+    for (const AdjacentGuides& a : adjacent) out << a.source << "," << a.left << "," << a.right << "\n";
 }
 
 void setup(CommandContext& ctx)
@@ -128,6 +129,7 @@ void setup(CommandContext& ctx)
     app->add_option("-o,--output", args->output, "Output edge-hair curves")->required();
     app->add_option("--scalp", args->scalp, "Scalp: a .vdb from `groom scalp`, or a mesh converted on the fly")->required();
     add_scalp_build_options(app, args->scalp_params);
+    add_region_options(app, args->hair_region);
     app->add_option("--adjacent", args->adjacent_file,
                     "Neighbours instead of searching: lines 'source,left,right' (guide indices, -1 = none); only listed guides are partitioned");
     app->add_option("--write-adjacent", args->write_adjacent, "Write the neighbours found (or given) in --adjacent's format, to edit and reuse");
@@ -152,8 +154,8 @@ void setup(CommandContext& ctx)
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, count, spacing, frequency, knot_length, knot_bias, knot_density, &common] {
         PartitionParams& params = args->params;
-        check_output(args->output, {args->input, args->scalp}, common);
-        if (!args->write_adjacent.empty()) check_output(args->write_adjacent, {args->input, args->scalp, args->output}, common);
+        check_outputs({{"-o", args->output}, {"--write-adjacent", args->write_adjacent}},
+                      {args->input, args->scalp, args->adjacent_file, args->hair_region.hairline, args->hair_region.parting}, common);
         if (spacing->count() && !count->count()) params.count = 0;
         const std::string& spec = args->centroids;
         if (spec.rfind("every:", 0) == 0) {
@@ -196,10 +198,13 @@ void setup(CommandContext& ctx)
             detail(common, "partition: guide " + std::to_string(a.source) + ": left " + std::to_string(a.left) + ", right " +
                                std::to_string(a.right));
         }
-        if (!args->write_adjacent.empty()) write_adjacent(params.adjacent, args->write_adjacent);
-
+        const std::unique_ptr<HairRegion> region = make_region(args->hair_region, *scalp);
+        params.region = region.get();
         const CurveSet out = partition(guides, *scalp, params, progress.get());
-        write_curves(out, args->output);
+        OutputBatch outputs;  // both files land together, or neither
+        if (!args->write_adjacent.empty()) write_adjacent(params.adjacent, args->write_adjacent, outputs);
+        write_curves(out, args->output, outputs);
+        outputs.commit();
         note(common, "partition: " + std::to_string(out.num_curves()) + " segments from " + std::to_string(guides.num_curves()) +
                          " guides (" + std::to_string(both) + " with two neighbours, " + std::to_string(one) + " with one) -> " +
                          args->output);

@@ -23,12 +23,6 @@ struct Args {
     CurlOptions curl;
 };
 
-float3 parse_point(const std::string& option, const std::string& text)
-{
-    const std::vector<float> v = parse_floats(option, text, 3, 3);
-    return {v[0], v[1], v[2]};
-}
-
 void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
@@ -55,14 +49,10 @@ void setup(CommandContext& ctx)
     add_curl_options(app, args->curl);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
-        check_output(args->output, {args->scalp}, common);
-        if (!args->guides_out.empty()) {
-            check_output(args->guides_out, {args->scalp, args->output}, common);
-            if (args->guides_out == args->output) throw InvalidParam("puff: --guides-out and -o name the same file");
-        }
+        check_outputs({{"-o", args->output}, {"--guides-out", args->guides_out}}, {args->scalp}, common);
         PuffParams params = args->params;
-        params.center = parse_point("--center", args->center);
-        params.sphere_center = parse_point("--sphere-center", args->sphere_center);
+        params.center = parse_float3("--center", args->center);
+        params.sphere_center = parse_float3("--sphere-center", args->sphere_center);
         params.curl = curl_params_from(args->curl);
         params.validate();
         if (!args->guides_out.empty() && params.hairs == 0) {
@@ -77,8 +67,10 @@ void setup(CommandContext& ctx)
             write_curves(params.hairs > 0 ? join(r.guides, r.hairs) : r.guides, args->output);
         }
         else {
-            write_curves(r.hairs, args->output);
-            write_curves(r.guides, args->guides_out);
+            OutputBatch outputs;  // both files land together, or neither
+            write_curves(r.hairs, args->output, outputs);
+            write_curves(r.guides, args->guides_out, outputs);
+            outputs.commit();
         }
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char line[256];

@@ -53,12 +53,6 @@ void parse_size(const std::string& text, int& w, int& h)
     }
 }
 
-float3 parse_color(const std::string& option, const std::string& text)
-{
-    const std::vector<float> v = parse_floats(option, text, 3, 3);
-    return {v[0], v[1], v[2]};
-}
-
 std::vector<View> parse_views(const std::string& text)
 {
     std::vector<View> out;
@@ -110,9 +104,9 @@ void setup(CommandContext& ctx)
         check_output(a.output, {a.scalp}, common);
         parse_size(a.size, a.params.width, a.params.height);
         a.params.color_by = parse_color_by(a.color_by);
-        if (!a.color.empty()) a.params.color = parse_color("--color", a.color);
-        if (!a.scalp_color.empty()) a.params.scalp_color = parse_color("--scalp-color", a.scalp_color);
-        if (!a.background.empty()) a.params.background = parse_color("--background", a.background);
+        if (!a.color.empty()) a.params.color = parse_float3("--color", a.color);
+        if (!a.scalp_color.empty()) a.params.scalp_color = parse_float3("--scalp-color", a.scalp_color);
+        if (!a.background.empty()) a.params.background = parse_float3("--background", a.background);
         a.params.validate();
 
         std::vector<View> sheet;

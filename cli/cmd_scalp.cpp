@@ -60,7 +60,6 @@ std::string repair_report_json(const RepairReport& r)
 struct Args {
     std::string input, output, report;
     float voxel = 0.0f;
-    float memory_gib = 4.0f;
     bool keep_enclosed = false;
     ScalpBuildParams params;
 };
@@ -76,22 +75,19 @@ void setup(CommandContext& ctx)
     app->add_flag("--flip", args->params.flip, "The mesh is inside out: swap inside and outside");
     app->add_option("--report", args->report, "Write the repair report as JSON to this file");
     app->add_flag("--keep-enclosed", args->keep_enclosed, "Keep shells that lie inside another (eyes, teeth); removed by default");
-    app->add_option("--memory", args->memory_gib, "Memory budget for the grid, GiB (> 0)")->capture_default_str();
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, voxel, &common] {
         Args& a = *args;
-        check_output(a.output, {a.input}, common);
-        if (!a.report.empty()) check_output(a.report, {a.input, a.output}, common);
+        check_outputs({{"-o", a.output}, {"--report", a.report}}, {a.input}, common);
         if (std::filesystem::path(a.output).extension() != ".vdb") {
             throw InvalidParam("scalp: -o must name a .vdb file (got '" + a.output + "')");
         }
         if (voxel->count() > 0 && !(a.voxel > 0.0f)) {
             throw InvalidParam("scalp: --voxel must be > 0 (got " + std::to_string(a.voxel) + "); omit it for an automatic size");
         }
-        if (!(a.memory_gib > 0.0f)) throw InvalidParam("scalp: --memory must be > 0 GiB (got " + std::to_string(a.memory_gib) + ")");
         a.params.voxel_size = a.voxel;
-        a.params.memory_budget = static_cast<uint64_t>(double(a.memory_gib) * double(1ull << 30));
         a.params.remove_enclosed_shells = !a.keep_enclosed;
+        a.params.source = a.input;
         a.params.validate();
 
         const auto start = std::chrono::steady_clock::now();
@@ -100,14 +96,11 @@ void setup(CommandContext& ctx)
         RepairReport report;
         const ScalpField scalp = build_scalp(soup, a.params, &report, progress.get());
         note(common, report.summary());
-        // The report goes to a temporary first and lands only after the grid is written.
-        std::unique_ptr<AtomicOutput> json;
-        if (!a.report.empty()) {
-            json = std::make_unique<AtomicOutput>(a.report, false);
-            json->stream() << repair_report_json(report);
-        }
-        write_scalp(scalp, a.output);
-        if (json) json->commit();
+        // The grid and the report land together, or neither.
+        OutputBatch outputs;
+        write_scalp(scalp, a.output, outputs);
+        if (!a.report.empty()) outputs.open(a.report, false) << repair_report_json(report);
+        outputs.commit();
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char buf[256];
         std::snprintf(buf, sizeof buf, "scalp: voxel %.4g, band %g voxels, %lld triangles -> %s (%.2f s)", scalp.voxel_size(),

@@ -3,6 +3,7 @@
 // layer that parses arguments, prints, or decides exit codes.
 #pragma once
 
+#include "kernel/math/vec.h"
 #include "kernel/progress.h"
 
 #include <CLI/CLI.hpp>
@@ -20,7 +21,8 @@ struct CommonOptions {
     int threads = 0;       ///< 0 = all cores
     bool quiet = false;    ///< errors only
     bool verbose = false;  ///< extra detail on stderr
-    bool force = false;    ///< allow -o onto an input file
+    bool force = false;    ///< allow -o onto an input file or a read-only file
+    double memory_gib = 0; ///< --memory: the command's memory budget, GiB; 0 = GROOM_MEMORY, else half the machine's
 };
 
 /// What a command's setup function gets: its CLI11 subcommand and the common options (already added).
@@ -50,15 +52,33 @@ int run(int argc, char** argv);
 /// the error message is returned in `error_message` instead of printed (empty on success).
 int run_captured(const std::vector<std::string>& args, std::string& error_message);
 
+/// The message for an allocation that failed although the estimates fitted the budget: the command,
+/// what was being allocated (kernel/memory_budget.h MemoryNote) with the option to change, and
+/// --memory. For run()'s handler and for a terminate handler (cli/main.cpp), where OpenVDB's
+/// bad_alloc-in-a-destructor ends up.
+std::string out_of_memory_message();
+
 // --- helpers for command implementations -----------------------------------------------------------
 
 /// Messages on stderr: note() unless --quiet, detail() only with --verbose.
 void note(const CommonOptions& o, const std::string& message);
 void detail(const CommonOptions& o, const std::string& message);
 
-/// Throws InvalidParam when `output` names the same file as one of `inputs` and --force is absent
-/// (so a typo cannot overwrite the user's input), or when output is empty.
+/// Throws InvalidParam when `output` names the same file as one of `inputs` (by any spelling: a
+/// link, `dir/./file`) or names an existing file this user may not write, and --force is absent
+/// (so a typo cannot overwrite the user's input, nor a file protected on purpose), or when output
+/// is empty.
 void check_output(const std::string& output, std::initializer_list<std::string> inputs, const CommonOptions& o);
+
+/// An output file and the option that names it ("-o", "--tails-out").
+struct NamedOutput {
+    std::string option, path;
+};
+
+/// check_output for every output of a command with several (empty paths are skipped: options not
+/// given), and InvalidParam when two of them name one file, which --force does not allow: one
+/// would silently replace the other.
+void check_outputs(std::initializer_list<NamedOutput> outputs, std::initializer_list<std::string> inputs, const CommonOptions& o);
 
 /// A progress bar on stderr when it is a terminal, line-based when not (only with --verbose),
 /// nothing with --quiet.
@@ -76,5 +96,8 @@ std::string mesh_formats();
 
 /// Parses "x,y,z" (or "a,b" etc.) into floats, naming the option in errors.
 std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max);
+
+/// Parses "x,y,z" (a point, a direction, a colour), naming the option in errors.
+float3 parse_float3(const std::string& option, const std::string& text);
 
 }  // namespace groom::cli

@@ -12,6 +12,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <mutex>
 
@@ -41,8 +42,14 @@ std::string with_option_names(const std::string& message, const std::vector<std:
         });
         std::replace(name.begin(), name.end(), '_', '-');
         out.append(message, pos, open - pos);
-        if (identifier && std::find(options.begin(), options.end(), name) != options.end()) {
+        auto has = [&](const std::string& n) { return std::find(options.begin(), options.end(), n) != options.end(); };
+        if (identifier && has(name)) {
             out += "--" + name;
+        }
+        else if (identifier && has("scalp-" + name)) {
+            // A scalp build parameter (`voxel`, `band`, `flip`) is --scalp-voxel etc. on the commands
+            // that convert a --scalp mesh on the fly (cli/scalp_options.h).
+            out += "--scalp-" + name;
         }
         else {
             out.append(message, open, close + 1 - open);
@@ -57,22 +64,66 @@ std::string curve_formats() { return io::format_list(io::kReadCurves); }
 std::string mesh_formats() { return io::format_list(io::kReadMesh); }
 
 namespace {
+
 bool same_file(const std::string& a, const std::string& b)
 {
     struct stat sa {}, sb {};
     if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
     return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
+
+/// The file a path names, for comparing paths of files that may not exist yet: absolute, with every
+/// link of its existing part resolved and `.`/`..` folded.
+std::string resolved(const std::string& path)
+{
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+    return ec ? path : p.string();
+}
+
+bool names_one_file(const std::string& a, const std::string& b)
+{
+    return same_file(a, b) || resolved(a) == resolved(b);
+}
+
+void check_one_output(const std::string& option, const std::string& output, std::initializer_list<std::string> inputs,
+                      const CommonOptions& o)
+{
+    if (output.empty()) throw InvalidParam(option + ": an output path is required");
+    if (output == "-" || o.force) return;
+    for (const std::string& in : inputs) {
+        if (!in.empty() && in != "-" && same_file(in, output)) {
+            throw InvalidParam(option + " " + output + " is also an input file; refusing to overwrite it (pass --force to allow)");
+        }
+    }
+    // The rename that puts an output in place needs only the folder to be writable, so a file the
+    // user made read-only would be replaced without a word: ask for --force, as `mv` asks.
+    struct stat st {};
+    if (::stat(output.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(output.c_str(), W_OK) != 0) {
+        throw InvalidParam(option + " " + output + " exists and is read-only; refusing to replace it (pass --force to replace it)");
+    }
+}
+
 }  // namespace
 
 void check_output(const std::string& output, std::initializer_list<std::string> inputs, const CommonOptions& o)
 {
-    if (output.empty()) throw InvalidParam("-o: an output path is required");
-    if (output == "-" || o.force) return;
-    for (const std::string& in : inputs) {
-        if (!in.empty() && in != "-" && same_file(in, output)) {
-            throw InvalidParam("-o " + output + " is also an input file; refusing to overwrite it (pass --force to allow)");
+    check_one_output("-o", output, inputs, o);
+}
+
+void check_outputs(std::initializer_list<NamedOutput> outputs, std::initializer_list<std::string> inputs, const CommonOptions& o)
+{
+    std::vector<const NamedOutput*> given;
+    for (const NamedOutput& out : outputs) {
+        if (out.path.empty()) continue;
+        for (const NamedOutput* earlier : given) {
+            if (names_one_file(earlier->path, out.path)) {
+                throw InvalidParam(earlier->option + " " + earlier->path + " and " + out.option + " " + out.path +
+                                   " name the same file; one output would replace the other: give them different names");
+            }
         }
+        check_one_output(out.option, out.path, inputs, o);
+        given.push_back(&out);
     }
 }
 
@@ -140,6 +191,12 @@ std::unique_ptr<Progress> make_progress(const CommonOptions& o)
     const bool tty = ::isatty(STDERR_FILENO) != 0;
     if (!tty && !o.verbose) return nullptr;
     return std::make_unique<TerminalProgress>(tty, o.verbose);
+}
+
+float3 parse_float3(const std::string& option, const std::string& text)
+{
+    const std::vector<float> v = parse_floats(option, text, 3, 3);
+    return {v[0], v[1], v[2]};
 }
 
 std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max)

@@ -7,9 +7,11 @@
 #   2. builds an Alisha-style groom: cornrow guides front to back over the scalp, braided lying on the
 #      scalp (`--orient scalp`), edge hairs between the rows pulled into each knot, loose curly ends
 #      past the nape;
-#   3. builds an Izzy-style groom: two afro puffs of curls with mixed cross-sections;
-#   4. writes each groom as .usda and renders front, side and top pictures;
-#   5. prints what it made (curves, points, seconds per step) and where the files are.
+#   3. builds an Izzy-style groom: two afro puffs of curls with mixed cross-sections, the rest of the
+#      scalp's hair gathered into them flat on the scalp (default hairline, centre parting, bands);
+#   4. builds box braids: the scalp inside the hairline parted into square sections, a plait each;
+#   5. writes each groom as .usda and renders front, side and top pictures;
+#   6. prints what it made (curves, points, seconds per step) and where the files are.
 # Every length is in centimetres (the head's units).
 set -euo pipefail
 out=${1:-out/demo}
@@ -62,6 +64,12 @@ if have scalp; then
 else
     skip "groom scalp (scalp field conversion) is not in this build"
 fi
+hairline=""
+if have hairline; then
+    # The head's default hairline (forehead, temples, sideburns, over the ears, nape): where hair grows.
+    step "hairline" groom hairline --scalp "$scalp" -o "$out/hairline.usda"
+    hairline="$out/hairline.usda"
+fi
 
 # --- 2. Alisha: cornrows, edge hairs, loose curly ends -----------------------------------------------
 echo "2. Alisha: cornrows"
@@ -94,27 +102,64 @@ if have cornrow-guides; then
     fi
     step "curl tails" groom curl "$tails" -o "$out/alisha_curls.usda" --type 3c --root-ease 1 --seed 1
     alisha+=("$out/alisha_curls.usda")
+    if have edges && [[ -n $hairline ]]; then
+        # Her edges: baby hairs laid flat along the front of the hairline, swept away from the face.
+        step "edges" groom edges --scalp "$scalp" --hairline "$hairline" -o "$out/alisha_baby_hairs.usda" --seed 1
+        alisha+=("$out/alisha_baby_hairs.usda")
+    fi
 else
     skip "groom cornrow-guides is not in this build"
 fi
 
-# --- 3. Izzy: two afro puffs --------------------------------------------------------------------------
+# --- 3. Izzy: two afro puffs, the whole scalp gathered into them --------------------------------------
 echo "3. Izzy: afro puffs"
 izzy=()
 if have puff; then
     # Left and right of the crown; each puff's sphere sits above and outside its root patch.
     step "puff left" groom puff --scalp "$scalp" -o "$out/izzy_puff_left.usda" \
-        --center -4.8,9.5,-1.5 --radius 4.2 --sphere-center -7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
-        --hairs 6000 --type 4a --seed 1
+        --center -4.8,9.5,-1.5 --radius 3 --sphere-center -7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
+        --hairs 5000 --type 4a --seed 1
     step "puff right" groom puff --scalp "$scalp" -o "$out/izzy_puff_right.usda" \
-        --center 4.8,9.5,-1.5 --radius 4.2 --sphere-center 7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
-        --hairs 6000 --type 4a --seed 2
+        --center 4.8,9.5,-1.5 --radius 3 --sphere-center 7.5,14,-1.5 --sphere-radius 6 --rows 6 --cols 6 --cap-angle 160 \
+        --hairs 5000 --type 4a --seed 2
     izzy+=("$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda")
+    if have gather && [[ -n $hairline ]]; then
+        # Every other hair of the scalp, inside the hairline, combed flat to the nearer puff on its side
+        # of a centre parting (forehead, over the crown, down to the nape), under a band at each base.
+        step "parting" groom parting --scalp "$scalp" -o "$out/izzy_parting.usda" --through 0,8,12/0,14,-1/0,-2,-14
+        step "gather" groom gather "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" --scalp "$scalp" \
+            --hairline "$out/hairline.usda" --parting "$out/izzy_parting.usda" -o "$out/izzy_gathered.usda" \
+            --hairs 24000 --type 4a --seed 3
+        izzy+=("$out/izzy_gathered.usda")
+        if have edges; then
+            # Edges along the front, in swoops leaning alternately left and right, off the parting.
+            step "edges" groom edges --scalp "$scalp" --hairline "$hairline" --parting "$out/izzy_parting.usda" \
+                -o "$out/izzy_baby_hairs.usda" --direction alternate --seed 2
+            izzy+=("$out/izzy_baby_hairs.usda")
+        fi
+    else
+        skip "groom gather (the scalp's hair pulled into the puffs) is not in this build"
+    fi
 else
     skip "groom puff is not in this build"
 fi
 
-# --- 4. pictures ----------------------------------------------------------------------------------------
+# --- 4. box braids from sections ---------------------------------------------------------------------
+echo "4. box braids"
+boxes=()
+if have sections && [[ -n $hairline ]]; then
+    # The scalp inside the hairline parted into a grid of square sections (about 3.4 cm), one hanging
+    # guide each and every root of each section joined to it; a 3-strand plait per section.
+    step "sections" groom sections --scalp "$scalp" --hairline "$hairline" --layout grid --cols 8 --length 24 \
+        -o "$out/box_guides.usda" --partings-out "$out/box_partings.usda" --roots-out "$out/box_roots.usda" --roots 30000
+    step "box braids" groom braid "$out/box_guides.usda" --scalp "$scalp" -o "$out/box_braids.usda" --pattern plait --strands 3 \
+        --knot-length 1.2 --width 0.45 --taper 0.55,1,1,1,1,1,1,1,1,1,1,1 --fibers 16 --clearance 0.05 --loose-length 2
+    boxes+=("$out/box_braids.usda" "$out/box_roots.usda" "$out/box_partings.usda")
+else
+    skip "groom sections (parted sections for box braids) is not in this build"
+fi
+
+# --- 5. pictures ----------------------------------------------------------------------------------------
 echo "4. pictures"
 render_groom() {  # NAME FILES...
     local name=$1
@@ -127,8 +172,9 @@ render_groom() {  # NAME FILES...
 step "render head" groom render --scalp "$out/head.obj" -o "$out/head.png" --views front,left,top --size 400x400
 if ((${#alisha[@]})); then render_groom alisha "${alisha[@]}"; fi
 if ((${#izzy[@]})); then render_groom izzy "${izzy[@]}"; fi
+if ((${#boxes[@]})); then render_groom box_braids "${boxes[@]}"; fi
 
-# --- 5. what was made ---------------------------------------------------------------------------------
+# --- 6. what was made ---------------------------------------------------------------------------------
 echo
 echo "demo: done. Steps (seconds, and what each made):"
 printf '  %s\n' "${summary[@]}"

@@ -122,7 +122,7 @@ void BrickMap::fill_borders()
     });
 }
 
-bool BrickMap::sample(float x, float y, float z, BandValue& out) const
+bool BrickMap::interpolate(float x, float y, float z, float r[4]) const
 {
     if (!values_) return false;  // no band at all
     if (!(std::fabs(x) < 1e9f && std::fabs(y) < 1e9f && std::fabs(z) < 1e9f)) return false;  // also NaN
@@ -133,7 +133,6 @@ bool BrickMap::sample(float x, float y, float z, BandValue& out) const
     const float* c = &values_[size_t(b) * kVolume + size_t(index(ix & 7, iy & 7, iz & 7))].d;
     const float tx = x - fx, ty = y - fy, tz = z - fz;
     constexpr int kY = kSide * 4, kX = kSide * kSide * 4;  // strides in floats; z neighbours are adjacent
-    float r[4];
     for (int i = 0; i < 4; ++i) {
         const float c00 = c[i] + (c[i + 4] - c[i]) * tz;
         const float c01 = c[kY + i] + (c[kY + 4 + i] - c[kY + i]) * tz;
@@ -142,10 +141,25 @@ bool BrickMap::sample(float x, float y, float z, BandValue& out) const
         const float c0 = c00 + (c01 - c00) * ty, c1 = c10 + (c11 - c10) * ty;
         r[i] = c0 + (c1 - c0) * tx;
     }
+    return true;
+}
+
+bool BrickMap::sample(float x, float y, float z, BandValue& out) const
+{
+    float r[4];
+    if (!interpolate(x, y, z, r)) return false;
     // Interpolation weights can be exactly 0, and 0 * NaN is NaN: a corner outside the band fails
     // the sample even where it has no weight, which keeps the band's edge where it was.
     if (!(r[0] == r[0])) return false;
     out = BandValue{r[0], r[1], r[2], r[3]};
+    return true;
+}
+
+bool BrickMap::gradient(float x, float y, float z, float& gx, float& gy, float& gz) const
+{
+    float r[4];
+    if (!interpolate(x, y, z, r)) return false;
+    gx = r[1], gy = r[2], gz = r[3];
     return true;
 }
 

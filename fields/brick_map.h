@@ -47,11 +47,18 @@ public:
     /// Trilinear distance and gradient at index-space position (x, y, z). False when any of the 8
     /// corners is outside the band (or the position is not finite).
     bool sample(float x, float y, float z, BandValue& out) const;
+    /// Trilinear gradient alone, over the corners that are in the band (a corner outside it holds
+    /// a zero gradient, which shortens the result without turning it): the band's normal reaches
+    /// cells at its edge whose distance sample() refuses. False only where no brick holds the cell.
+    bool gradient(float x, float y, float z, float& gx, float& gy, float& gz) const;
 
-    /// Value marking a voxel outside the band: NaN distance, which any interpolation carries along.
+    /// Value marking a voxel outside the band: NaN distance, which any interpolation carries along,
+    /// and a zero gradient, which gradient() may average in.
     static BandValue outside();
 
 private:
+    /// Trilinear interpolation of all four channels at (x, y, z); false where no brick holds the cell.
+    bool interpolate(float x, float y, float z, float r[4]) const;
     /// Brick of the leaf with origin (8 lx, 8 ly, 8 lz), or -1.
     int32_t find(int32_t lx, int32_t ly, int32_t lz) const;
     void release();

@@ -80,6 +80,9 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
     auto P = curves.positions_for_write();
     const int64_t nc = int64_t(curves.num_curves());
     const float need = rule.clearance;
+    // The walk's bound holds only for a 1-Lipschitz distance: across an opening's 1/2 surface the
+    // sign jumps, and hair that went in through Sintel's eye sockets was left inside, skipped.
+    const bool bounded = scalp.lipschitz();
     std::vector<int64_t> moved(size_t(nc), 0);
     parallel_for(nc, 256, [&](int64_t b, int64_t e) {
         for (int64_t c = b; c < e; ++c) {
@@ -87,7 +90,7 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
             float lower = -std::numeric_limits<float>::infinity();  // nothing known of the root
             for (int64_t q = r.begin + 1; q < r.end; ++q) {
                 lower -= distance(P[q], P[q - 1]);
-                if (lower > need) continue;
+                if (bounded && lower > need) continue;
                 // A bound where the point is clear by more than `need`: still a lower bound for the walk.
                 const float d = distance_for(scalp, P[q], need);
                 lower = d;

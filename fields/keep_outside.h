@@ -74,7 +74,7 @@ struct KeepOutsideCount {
 /// the scalp, and stays there (a root inside the scalp stays inside). Walking from the root, a point
 /// whose predecessor's distance less the segment between them is above `need` is clear without a
 /// query (far from a level set's narrow band each query is an exact mesh search); a moved point
-/// counts as being at `need`. Writes point P only. Parallel over the curves.
+/// counts as being at `need`. That bound is used only where scalp.lipschitz(). Writes point P only. Parallel over the curves.
 KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const KeepOutside& rule);
 
 /// @brief The rule for a group that moves as one: the least lift along `direction` (unit) that puts

@@ -2,6 +2,8 @@
 // and a CGAL AABB tree for the queries that fall outside the level set's narrow band.
 #include "fields/scalp_impl.h"
 
+#include "kernel/error.h"
+
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -217,6 +219,13 @@ MeshQuery::~MeshQuery() = default;
 
 float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face) const
 {
+    // CGAL's exact predicates convert the point to GMP rationals, and GMP raises SIGFPE on inf or
+    // NaN: an op whose arithmetic overflowed must fail here with an error, not kill the process.
+    // (Inputs and parameters are checked on ingest; this is the last line.)
+    if (!isfinite(p)) {
+        throw InvalidGeometry("scalp query at a non-finite point (" + format_number(p.x) + ", " + format_number(p.y) + ", " +
+                              format_number(p.z) + "): a computation overflowed float; are the inputs or parameters extreme?");
+    }
     // Far out, a stand-in on the same ray (see the header). The centre and radius of the mesh's box.
     const double cx = 0.5 * (double(geometry_.bounds_lo.x) + geometry_.bounds_hi.x);
     const double cy = 0.5 * (double(geometry_.bounds_lo.y) + geometry_.bounds_hi.y);
@@ -225,7 +234,7 @@ float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face
     const double dx = double(p.x) - cx, dy = double(p.y) - cy, dz = double(p.z) - cz;
     const double out = std::sqrt(dx * dx + dy * dy + dz * dz);
     const double far = kFarRadii * std::max(radius, 1e-30);
-    const bool stand_in = out > far;  // false for NaN
+    const bool stand_in = out > far;
     const float3 q = stand_in ? float3(float(cx + dx * (far / out)), float(cy + dy * (far / out)), float(cz + dz * (far / out))) : p;
 
     const auto hit = tree().tree.closest_point_and_primitive(K::Point_3(q.x, q.y, q.z));
@@ -233,7 +242,7 @@ float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face
     // The AABB tree finds the face; the pseudo-normal of the feature hit gives the sign.
     bool boundary = false;
     const float pseudo = geometry_.signed_distance_to_face(q, face, closest, &boundary);
-    const float d = sign_fixed(q, pseudo, boundary, 0.0f);
+    const float d = sign_fixed(q, pseudo, boundary, true);
     if (!stand_in) return d;
     const double ex = double(p.x) - closest.x, ey = double(p.y) - closest.y, ez = double(p.z) - closest.z;
     const float dist = float(std::sqrt(ex * ex + ey * ey + ez * ez));
@@ -275,18 +284,25 @@ const WindingNumber& MeshQuery::winding() const
     return *winding_;
 }
 
-bool MeshQuery::inside_by_winding(const float3& p) const
+bool MeshQuery::inside_by_winding(const float3& p, bool exact_near_half) const
 {
     // The fast estimate (error up to 0.07) decides where it is clear; near 1/2 (beside an opening,
-    // 7-15% of the queries on open heads) a finer one (error up to 0.02) does.
+    // 7-15% of the queries on open heads) a finer one (error up to 0.02) does. Those errors depend
+    // on how the tree split the triangles, that is on the mesh's pose: with `exact_near_half`, the
+    // exact sum decides within 0.03 of 1/2, so a point reads the same in any pose.
     const double w = winding()(p, 2.0);
-    return (std::fabs(w - 0.5) > 0.1 ? w : winding()(p, 4.0)) > 0.5;
+    if (std::fabs(w - 0.5) > 0.1) return w > 0.5;
+    const double finer = winding()(p, 4.0);
+    if (!exact_near_half || std::fabs(finer - 0.5) > 0.03) return finer > 0.5;
+    const double finest = winding()(p, 8.0);
+    if (std::fabs(finest - 0.5) > 0.008) return finest > 0.5;
+    return winding().exact(p) > 0.5;
 }
 
-float MeshQuery::sign_fixed(const float3& p, float d, bool on_boundary, float local) const
+float MeshQuery::sign_fixed(const float3& p, float d, bool on_boundary, bool exact_near_half) const
 {
-    if (!on_boundary || std::fabs(d) <= local) return d;
-    return inside_by_winding(p) ? -std::fabs(d) : std::fabs(d);
+    if (!on_boundary) return d;
+    return inside_by_winding(p, exact_near_half) ? -std::fabs(d) : std::fabs(d);
 }
 
 }  // namespace groom::detail

@@ -31,6 +31,7 @@ float ScalpField::query(const float3& p, float3& n, float3& closest) const
     }
     int32_t face = -1;
     const float sd = im.query->signed_distance(p, closest, face);
+    if (im.band_normal(p, n)) return sd;  // near the band's edge the band's normal is the smoother one
     const float3 delta = p - closest;
     const float len = length(delta);
     if (std::isinf(len) && isfinite(delta)) {
@@ -47,17 +48,24 @@ float ScalpField::distance(const float3& p) const
 {
     float d = 0.0f;
     float3 g;
-    if (impl_->sample(p, d, g)) return d;
+    // The same test as query(): where the interpolated gradient is short (a crease, or a feature
+    // thinner than the voxels, like an ear's rim) the trilinear value can have the wrong sign; the
+    // exact mesh answers there. (Before, distance() trusted the band where query() did not, and a
+    // point query() put outside read inside to keep_outside.)
+    if (impl_->sample(p, d, g) && length_squared(g) > 0.25f) return d;
     float3 closest;
     int32_t face = -1;
     return impl_->query->signed_distance(p, closest, face);
 }
 
+
 float ScalpField::distance_within(const float3& p, float reach) const
 {
     float d = 0.0f;
     float3 g;
-    if (impl_->sample(p, d, g)) return d;
+    // The band where distance() reads it; elsewhere what distance() would find on the mesh, or a
+    // certified bound of it.
+    if (impl_->sample(p, d, g) && length_squared(g) > 0.25f) return d;
     const float bound = impl_->far().bound(p);
     if (bound != 0.0f && std::fabs(bound) >= reach) return bound;
     float3 closest;
@@ -67,10 +75,8 @@ float ScalpField::distance_within(const float3& p, float reach) const
 
 float3 ScalpField::normal(const float3& p) const
 {
-    float d = 0.0f;
-    float3 g;
-    if (impl_->sample(p, d, g) && length_squared(g) > 0.25f) return normalize(g);
     float3 n, c;
+    if (impl_->band_normal(p, n)) return n;
     query(p, n, c);
     return n;
 }
@@ -82,6 +88,7 @@ float3 ScalpField::closest_point(const float3& p) const
     return c;
 }
 
+bool ScalpField::lipschitz() const { return impl_->seam_voxels() == 0; }
 float ScalpField::voxel_size() const { return impl_->voxel; }
 float ScalpField::band_voxels() const { return impl_->band_voxels; }
 bool ScalpField::has_source_mesh() const { return impl_->mesh_exact; }

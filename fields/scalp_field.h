@@ -23,12 +23,17 @@
 
 namespace groom {
 
+class OutputBatch;  // kernel/io/atomic_file.h
+
 struct ScalpBuildParams {
     float voxel_size = 0.0f;      ///< scene units; 0 = automatic (bounding-box diagonal / 256)
     float band_voxels = 3.0f;     ///< narrow-band half width in voxels; 1..64
     bool flip = false;            ///< treat the mesh as inside out (after automatic orientation)
-    uint64_t memory_budget = 4ull << 30;  ///< bytes; larger grids are refused with a suggested voxel size
+    /// Bytes; larger grids are refused with a suggested voxel size. 0 = the command's budget
+    /// (kernel/memory_budget.h: --memory, else half the machine's memory).
+    uint64_t memory_budget = 0;
     bool remove_enclosed_shells = true;   ///< drop shells lying inside a larger one (eyes, teeth)
+    std::string source = "scalp";         ///< names the mesh (its file) in messages
     void validate() const;        ///< throws InvalidParam naming the option, value and range
 };
 
@@ -46,10 +51,13 @@ public:
     ScalpField(ScalpField&&) noexcept;
     ScalpField& operator=(ScalpField&&) noexcept;
 
-    /// Signed distance (scene units; negative inside). Trilinear in the band, exact from the mesh outside.
+    /// Signed distance (scene units; negative inside). Trilinear in the band, exact from the mesh outside
+    /// it and where the band's gradient is short (a crease or a feature thinner than the voxels), as query().
     float distance(const float3& p) const override;
-    /// Unit outward normal: the normalised gradient of the distance (central differences of the grid
-    /// in the band; (p - closest) / distance from the mesh outside it).
+    /// Unit outward normal: the normalised gradient of the distance (central differences of the grid,
+    /// interpolated trilinearly over the cell's voxels that are in the band, so it reaches a voxel
+    /// beyond where the distance itself is interpolated; (p - closest) / distance from the mesh
+    /// farther out).
     float3 normal(const float3& p) const override;
     /// Projection onto the surface: p - d * n from one trilinear sample in the band; exact closest
     /// point on the mesh outside it.
@@ -61,6 +69,10 @@ public:
     /// bound instead (fields/far_field.h): no exact mesh search, and the same answer as distance(p)
     /// to every comparison with a threshold in (-reach, reach].
     float distance_within(const float3& p, float reach) const override;
+
+    /// False when the band holds a seam (neighbouring voxels differing by more than 1.2 voxels):
+    /// an open mesh's rims, overlapping shells that disagree on inside.
+    bool lipschitz() const override;
 
     float voxel_size() const;
     float band_voxels() const;
@@ -89,18 +101,25 @@ private:
 };
 
 /// Repairs `soup` (see RepairReport) and converts it to a narrow-band level set named "scalp".
-/// Throws InvalidGeometry (empty mesh, NaN, index out of range, nothing left after repair),
-/// InvalidParam (bad params) or LimitExceeded (the grid would exceed params.memory_budget; the
-/// message suggests a voxel size that fits).
+/// Throws InvalidGeometry (empty mesh, NaN, index out of range, nothing left after repair, a mesh
+/// whose size overflows float or that lies too far from the origin for float positions to resolve
+/// a voxel), InvalidParam (bad params) or LimitExceeded (the grid would exceed params.memory_budget,
+/// or allocating it failed; the message gives the estimate and suggests a voxel size).
 ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params = {}, RepairReport* report = nullptr,
                        Progress* progress = nullptr);
 
 /// Writes the level set (grid "scalp", class level set, half-float off) to a .vdb file atomically:
 /// readable by vdb_print, pyopenvdb and Houdini. Throws IoError.
 void write_scalp(const ScalpField& scalp, const std::string& path);
+/// The same into `batch` (kernel/io/atomic_file.h), renamed into place with the command's other outputs.
+void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& batch);
 
 /// Reads a .vdb holding a float level set named "scalp" (groom's, vdb_tool's, Houdini's); the mesh for
-/// far queries and sampling is extracted from its zero crossing. Throws IoError / ParseError.
+/// far queries and sampling is extracted from its zero crossing. What OpenVDB decodes is checked
+/// before use (a truncated or corrupt file is a ParseError naming it, never a crash): one float grid
+/// of class level set, a linear transform with uniform, finite, positive voxels, a finite positive
+/// background, a tree with active voxels whose values and index bounds are sane. Throws IoError /
+/// ParseError.
 ScalpField read_scalp_vdb(const std::string& path, Progress* progress = nullptr);
 
 /// Loads the scalp for any command's --scalp: a .vdb written by `groom scalp` (grid "scalp"), a

@@ -9,12 +9,22 @@
 #include "kernel/io/io_util.h"
 #include "kernel/io/memory_files.h"
 #include "kernel/io/mesh_io.h"
+#include "kernel/memory_budget.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <sstream>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -22,6 +32,13 @@
 namespace groom {
 
 void write_scalp(const ScalpField& scalp, const std::string& path)
+{
+    OutputBatch batch;
+    write_scalp(scalp, path, batch);
+    batch.commit();
+}
+
+void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& batch)
 {
     detail::init_openvdb();
     const ScalpField::Impl& im = scalp.impl();
@@ -31,42 +48,190 @@ void write_scalp(const ScalpField& scalp, const std::string& path)
     // left a truncated file and no exception, and reading the file back to find out cost as much as
     // writing it. io::Stream writes the same file format to a stream whose state we check.
     try {
-        AtomicOutput out(path);
-        openvdb::io::Stream(out.stream()).write(openvdb::GridCPtrVec{im.sdf});
-        out.commit();
+        openvdb::io::Stream(batch.open(path)).write(openvdb::GridCPtrVec{im.sdf});
     }
     catch (const openvdb::Exception& e) {
         throw IoError(path + ": cannot write the level set (" + e.what() + ")");
     }
 }
 
+namespace {
+
+/// What decode_isolated() brings back: the file's grid names, and the grid "scalp" re-encoded by
+/// OpenVDB (empty when the file has none).
+struct DecodedVdb {
+    std::string names, grid_stream;
+};
+
+/// Reads grid "scalp" of `path` in a child process and brings it back re-encoded. OpenVDB's decoder
+/// trusts the sizes it reads: a flipped bit in a chunk's length makes it write past a buffer (heap
+/// corruption, then an abort) before any check of ours could run, 1 in a few hundred single-bit
+/// flips of a small scalp. A crash in the child is an error naming the file; the grid the child
+/// read is written again by OpenVDB itself, so the stream this process decodes is consistent.
+/// The child only reads and writes (no TBB, which does not survive fork()) and leaves with _exit().
+DecodedVdb decode_isolated(const std::string& path)
+{
+    // The child may use the command's memory budget beyond what it inherits (its address space
+    // starts as a copy of ours): a length field flipped to gigabytes is then a bad_alloc there, not
+    // gigabytes zeroed for nothing.
+    uint64_t inherited = 0;
+    if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
+        unsigned long long pages = 0;
+        if (std::fscanf(f, "%llu", &pages) == 1) inherited = uint64_t(pages) * uint64_t(::sysconf(_SC_PAGESIZE));
+        std::fclose(f);
+    }
+    const uint64_t child_limit = inherited + memory_budget();
+    int fds[2];
+    if (::pipe(fds) != 0) throw IoError(path + ": cannot read (pipe: " + std::strerror(errno) + ")");
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+        const int err = errno;
+        ::close(fds[0]);
+        ::close(fds[1]);
+        throw IoError(path + ": cannot read (fork: " + std::strerror(err) + ")");
+    }
+    if (pid == 0) {
+        ::close(fds[0]);
+        if (inherited > 0) {
+            rlimit rl{};
+            if (::getrlimit(RLIMIT_AS, &rl) == 0 && (rl.rlim_cur == RLIM_INFINITY || rl.rlim_cur > child_limit)) {
+                rl.rlim_cur = rlim_t(child_limit);
+                ::setrlimit(RLIMIT_AS, &rl);
+            }
+        }
+        std::string reply;
+        try {
+            std::string names;
+            openvdb::GridBase::Ptr grid;
+            openvdb::io::File file(path);
+            // Everything now (no delayed loading): a delayed-loaded leaf of a truncated file is read
+            // from the mapped file on first access, past its end.
+            file.open(/*delayLoad=*/false);
+            for (auto it = file.beginName(); it != file.endName(); ++it) names += (names.empty() ? "" : ", ") + it.gridName();
+            if (file.hasGrid("scalp")) grid = file.readGrid("scalp");
+            file.close();
+            std::ostringstream out;
+            if (grid) {
+                openvdb::io::Stream stream(out);
+                stream.setCompression(openvdb::io::COMPRESS_NONE);  // a pipe, not a disk: no time on compression
+                stream.write(openvdb::GridCPtrVec{grid});
+            }
+            reply = "O" + names + '\n' + out.str();
+        }
+        catch (const std::exception& e) {
+            reply = std::string("E") + e.what();
+        }
+        for (size_t done = 0; done < reply.size();) {
+            const ssize_t n = ::write(fds[1], reply.data() + done, reply.size() - done);
+            if (n <= 0) ::_exit(3);
+            done += size_t(n);
+        }
+        ::_exit(0);
+    }
+    ::close(fds[1]);
+    std::string reply;
+    char buf[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(fds[0], buf, sizeof buf);
+        if (n > 0) reply.append(buf, size_t(n));
+        else if (n == 0 || errno != EINTR) break;
+    }
+    ::close(fds[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFSIGNALED(status)) {
+        throw ParseError(path + ": corrupt .vdb file: OpenVDB's decoder crashed reading it (" + ::strsignal(WTERMSIG(status)) +
+                         "); is it truncated or damaged?");
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || reply.empty()) {
+        throw IoError(path + ": cannot read (the reading process failed)");
+    }
+    if (reply[0] == 'E') throw ParseError(path + ": not a readable .vdb file (" + reply.substr(1) + ")");
+    const size_t eol = reply.find('\n');
+    return {reply.substr(1, eol - 1), reply.substr(eol + 1)};
+}
+
+/// Everything the queries rely on, checked on what OpenVDB decoded from `path`: a corrupt file that
+/// OpenVDB reads without complaint (a flipped bit in a value, the transform or a leaf's origin) is
+/// refused here rather than met later as NaN distances, a huge allocation or a crash.
+void check_scalp_grid(const openvdb::FloatGrid& sdf, const std::string& path)
+{
+    const std::string where = path + ": grid 'scalp' ";
+    if (sdf.getGridClass() != openvdb::GRID_LEVEL_SET) {
+        throw ParseError(where + "is not a level set (class '" + openvdb::GridBase::gridClassToString(sdf.getGridClass()) +
+                         "'); expected a signed distance field from `groom scalp`");
+    }
+    const openvdb::math::Transform& xf = sdf.transform();
+    if (!xf.isLinear() || !xf.hasUniformScale()) {
+        throw ParseError(where + "has a non-linear or non-uniform transform; groom needs cubic, axis-aligned voxels "
+                                 "(resample it, e.g. with vdb_tool -resample)");
+    }
+    const openvdb::Vec3d vs = xf.voxelSize();
+    const openvdb::Vec3d o = xf.indexToWorld(openvdb::Vec3d(0, 0, 0));
+    if (!(std::isfinite(vs[0]) && vs[0] > 0.0 && vs[0] < 1e18) || !std::isfinite(o.x()) || !std::isfinite(o.y()) ||
+        !std::isfinite(o.z())) {
+        throw ParseError(where + "has voxel size " + format_number(vs[0]) + " at origin (" + format_number(o.x()) + ", " +
+                         format_number(o.y()) + ", " + format_number(o.z()) +
+                         "); expected a finite voxel size > 0 and a finite origin (is the file corrupt?)");
+    }
+    const float bg = sdf.background();
+    if (!(std::isfinite(bg) && bg > 0.0f && double(bg) < 1e6 * vs[0])) {
+        throw ParseError(where + "has background " + format_number(bg) + "; a level set's is its band's half width, > 0 and finite " +
+                         "(is the file corrupt?)");
+    }
+    if (sdf.tree().leafCount() == 0 || sdf.activeVoxelCount() == 0) throw ParseError(where + "has no active voxels");
+    // Index coordinates: OpenVDB's are int32; ours (BrickMap, the extracted mesh) are floats, which
+    // must still resolve a voxel.
+    const openvdb::CoordBBox box = sdf.evalActiveVoxelBoundingBox();
+    constexpr int32_t kMaxIndex = 1 << 24;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (std::abs(int64_t(box.min()[axis])) > kMaxIndex || std::abs(int64_t(box.max()[axis])) > kMaxIndex) {
+            throw ParseError(where + "has active voxels at index " + std::to_string(box.min()[axis]) + " to " +
+                             std::to_string(box.max()[axis]) + " on axis " + std::to_string(axis) + "; expected within +-" +
+                             std::to_string(kMaxIndex) + " (is the file corrupt?)");
+        }
+    }
+    // Every value, tiles and inactive voxels too: they are what the band's edge interpolates.
+    for (auto it = sdf.cbeginValueAll(); it; ++it) {
+        const float v = *it;
+        if (!std::isfinite(v)) {
+            const openvdb::Coord c = it.getCoord();
+            throw ParseError(where + "holds a non-finite distance (" + format_number(v) + ") at voxel (" + std::to_string(c.x()) +
+                             ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + "); is the file corrupt?");
+        }
+    }
+}
+
+}  // namespace
+
 ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
 {
     detail::init_openvdb();
     if (!std::filesystem::exists(path)) throw IoError(path + ": no such file");
+    const DecodedVdb decoded = decode_isolated(path);
     openvdb::GridBase::Ptr base;
-    std::string names;
-    try {
-        openvdb::io::File file(path);
-        file.open();
-        for (auto it = file.beginName(); it != file.endName(); ++it) names += (names.empty() ? "" : ", ") + it.gridName();
-        if (file.hasGrid("scalp")) base = file.readGrid("scalp");
-        file.close();
+    if (!decoded.grid_stream.empty()) {
+        // A stream OpenVDB itself wrote a moment ago, with sizes that agree with its contents: safe to
+        // decode here. What it holds (the values, the transform) is checked below.
+        try {
+            std::istringstream in(decoded.grid_stream);
+            openvdb::io::Stream stream(in, /*delayLoad=*/false);
+            const openvdb::GridPtrVecPtr grids = stream.getGrids();
+            if (grids && !grids->empty()) base = grids->front();
+        }
+        catch (const std::exception& e) {
+            throw ParseError(path + ": not a readable .vdb file (" + e.what() + ")");
+        }
     }
-    catch (const openvdb::Exception& e) {
-        throw ParseError(path + ": not a readable .vdb file (" + e.what() + ")");
-    }
+    const std::string& names = decoded.names;
     if (!base) {
         throw ParseError(path + ": no grid named 'scalp' (found: " + (names.empty() ? std::string("no grids") : names) +
                          "); make one with `groom scalp MESH -o " + std::filesystem::path(path).filename().string() + "`");
     }
     openvdb::FloatGrid::Ptr sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
     if (!sdf) throw ParseError(path + ": grid 'scalp' holds " + base->valueType() + " values; expected a float level set");
-    if (sdf->getGridClass() != openvdb::GRID_LEVEL_SET) {
-        throw ParseError(path + ": grid 'scalp' is not a level set (class '" + openvdb::GridBase::gridClassToString(sdf->getGridClass()) +
-                         "'); expected a signed distance field from `groom scalp`");
-    }
-    if (sdf->activeVoxelCount() == 0) throw ParseError(path + ": grid 'scalp' has no active voxels");
+    check_scalp_grid(*sdf, path);
 
     ProgressStep step(progress, "load scalp", 2);
     ScalpField field;
@@ -76,8 +241,10 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     step.advance(1);
 
     // The mesh for far queries and sampling: the zero crossing, each face turned to agree with the
-    // gradient. A sign flip with large |d| on both sides is the seam an open surface's sign makes
-    // beyond its rim, not surface: such faces (gradient magnitude > 1.5) are dropped.
+    // distance's increase across it. A sign flip with large |d| on both sides is the seam an open
+    // surface's sign makes beyond its rim, not surface: such faces (a rise of more than 1.5 voxels
+    // over one voxel across them) are dropped. Read from the grid itself: the query bricks leave
+    // voxels beside such seams out.
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> tris;
     std::vector<openvdb::Vec4I> quads;
@@ -85,20 +252,16 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     PolygonSoup soup;
     soup.points.reserve(points.size());
     for (const auto& p : points) soup.points.emplace_back(p.x(), p.y(), p.z());
+    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> grid_sample(*sdf);
+    auto value = [&](const float3& p) { return float(grid_sample.wsSample(openvdb::Vec3d(p.x, p.y, p.z))); };
     auto add = [&](std::initializer_list<int32_t> idx) {
         std::vector<int32_t> f(idx);
         const float3 &a = soup.points[f[0]], &b = soup.points[f[1]], &c = soup.points[f[2]];
         const float3 centroid = (a + b + c) / 3.0f;
-        float d = 0.0f;
-        float3 g;
-        const float3 n = normalize(cross(b - a, c - a));
-        if (im.sample(centroid, d, g)) {
-            float dl = 0.0f, dh = 0.0f;
-            float3 gl, gh;
-            const float3 step_n = normalize(g) * (0.5f * im.voxel);
-            if (im.sample(centroid - step_n, dl, gl) && im.sample(centroid + step_n, dh, gh) && (dh - dl) / im.voxel > 1.5f) return;
-            if (dot(n, g) < 0.0f) std::reverse(f.begin(), f.end());
-        }
+        const float3 step_n = normalize(cross(b - a, c - a)) * (0.5f * im.voxel);
+        const float dl = value(centroid - step_n), dh = value(centroid + step_n);
+        if (std::fabs(dh - dl) / im.voxel > 1.5f) return;
+        if (dh < dl) std::reverse(f.begin(), f.end());
         soup.add_face(f);
     };
     for (const auto& t : tris) add({int32_t(t[0]), int32_t(t[1]), int32_t(t[2])});
@@ -162,7 +325,9 @@ std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const Scal
     if (!is_mesh_path(path)) {
         throw InvalidParam("`scalp` " + path + ": expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
     }
-    return std::make_shared<ScalpField>(build_scalp(read_mesh(path), params, nullptr, progress));
+    ScalpBuildParams named = params;
+    named.source = path;
+    return std::make_shared<ScalpField>(build_scalp(read_mesh(path), named, nullptr, progress));
 }
 
 }  // namespace groom

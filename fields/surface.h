@@ -30,6 +30,13 @@ public:
 
     bool inside(const float3& p) const { return distance_within(p, 0.0f) < 0.0f; }
 
+    /// True when the distance is 1-Lipschitz, |distance(p) - distance(q)| <= |p - q| (a true signed
+    /// distance: the analytic surfaces, a closed mesh); false where its sign jumps away from the
+    /// surface (the 1/2 surface across a mesh's opening, overlapping shells that disagree on inside),
+    /// which a path can cross without passing near the surface. Code that skips queries by that
+    /// bound must ask this first.
+    virtual bool lipschitz() const { return true; }
+
     /// First point where the segment a->b enters the surface (sign change from outside to inside),
     /// accurate to `tolerance` (scene units; 0 = a default relative to the segment). Returns false
     /// when the segment never crosses into the inside. The default marches by the distance bound.

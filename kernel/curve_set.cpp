@@ -116,6 +116,22 @@ void CurveSet::validate(std::string_view what) const
                                   ", " + std::to_string(pos[i].z) + ")");
         }
     }
+    // A width is a diameter: NaN, inf or a negative one would be carried into every op's output and
+    // every renderer; refused where it enters, naming the point.
+    for (const Domain dom : {Domain::Point, Domain::Curve}) {
+        const Attribute* w = attributes(dom).find(attr::width);
+        if (!w || w->type() != AttrType::Float) continue;
+        const auto v = w->values<float>();
+        for (size_t i = 0; i < v.size(); ++i) {
+            if (std::isfinite(v[i]) && v[i] >= 0.0f) continue;
+            std::string element = std::string(domain_name(dom)) + " " + std::to_string(i);
+            if (dom == Domain::Point) {
+                const auto c = std::upper_bound(offsets_.begin(), offsets_.end(), static_cast<int64_t>(i)) - offsets_.begin() - 1;
+                element += " (curve " + std::to_string(c) + ")";
+            }
+            throw InvalidGeometry(where + element + " has width " + format_number(v[i]) + "; expected a finite width >= 0");
+        }
+    }
 }
 
 Bounds3 CurveSet::bounds() const

@@ -86,8 +86,9 @@ public:
     void set_detail_string(std::string_view name, std::string_view value);
 
     /// Checks every invariant: offsets start at 0 and never decrease, every column has its domain's
-    /// size, P exists as float3 and is finite, detail columns have one value. Throws InvalidGeometry
-    /// naming the curve/point and what was found. `what` prefixes messages (e.g. the file name).
+    /// size, P exists as float3 and is finite, a float `width` (point or curve) is finite and >= 0,
+    /// detail columns have one value. Throws InvalidGeometry naming the curve/point and what was
+    /// found. `what` prefixes messages (e.g. the file name).
     void validate(std::string_view what = {}) const;
 
     Bounds3 bounds() const;

@@ -6,6 +6,7 @@
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 #include "ops/braid_fibers.h"
 #include "ops/braid_plan.h"
@@ -25,10 +26,17 @@ namespace {
 
 std::string fmt(double v) { return format_number(v); }
 
-void require_finite_at_least(const char* option, float value, float lo)
+// Closed ranges: a length past kMaxLength (or an amplitude scale past kMaxScale times one) puts
+// points so far out that their squared distances overflow float, and the NaN that follows crashed
+// the exact scalp queries (`width` 3e38 with --rest --orient scalp: SIGFPE in GMP).
+constexpr float kMaxLength = 1e15f;  // scene units
+constexpr float kMaxScale = 1000.0f;
+
+void require_finite_at_least(const char* option, float value, float lo, float hi = kMaxLength)
 {
-    if (!std::isfinite(value) || value < lo) {
-        throw InvalidParam(std::string("braid: ") + option + " must be a finite number >= " + fmt(lo) + " (got " + fmt(value) + ")");
+    if (!std::isfinite(value) || value < lo || value > hi) {
+        throw InvalidParam(std::string("braid: ") + option + " must be a finite number >= " + fmt(lo) + " and <= " + fmt(hi) + " (got " +
+                           fmt(value) + ")");
     }
 }
 
@@ -49,7 +57,7 @@ void BraidParams::validate() const
                            ", `knot_length` " + fmt(*knot_length) + ")");
     }
     if (frequency) require_finite_at_least("`frequency`", *frequency, 0.0f);
-    if (knot_length && !(std::isfinite(*knot_length) && *knot_length > 0.0f)) {
+    if (knot_length && !(std::isfinite(*knot_length) && *knot_length > 0.0f && *knot_length <= kMaxLength)) {
         throw InvalidParam("braid: `knot_length` must be a finite number > 0 (got " + fmt(*knot_length) + ")");
     }
     if (width) require_finite_at_least("`width`", *width, 0.0f);
@@ -57,12 +65,12 @@ void BraidParams::validate() const
     if (samples != 0 && samples < 2) {
         throw InvalidParam("braid: `samples` must be >= 2, or 0 for automatic (got " + std::to_string(samples) + ")");
     }
-    require_finite_at_least("`root_amplitude`", root_amplitude, 0.0f);
-    require_finite_at_least("`tip_amplitude`", tip_amplitude, 0.0f);
+    require_finite_at_least("`root_amplitude`", root_amplitude, 0.0f, kMaxScale);
+    require_finite_at_least("`tip_amplitude`", tip_amplitude, 0.0f, kMaxScale);
     for (size_t i = 0; i < taper.size(); ++i) {
-        if (!std::isfinite(taper[i]) || taper[i] < 0.0f) {
-            throw InvalidParam("braid: `taper` values must be finite and >= 0 (value " + std::to_string(i + 1) + " is " +
-                               fmt(taper[i]) + ")");
+        if (!std::isfinite(taper[i]) || taper[i] < 0.0f || taper[i] > kMaxScale) {
+            throw InvalidParam("braid: `taper` values must be finite, >= 0 and <= " + fmt(kMaxScale) + " (value " + std::to_string(i + 1) +
+                               " is " + fmt(taper[i]) + ")");
         }
     }
     if (!std::isfinite(knot_bias) || knot_bias <= -1.0f || knot_bias >= 1.0f) {
@@ -90,8 +98,7 @@ void BraidParams::validate() const
         throw InvalidParam("braid: `flatten` must be in [0, 0.9] (got " + fmt(flatten) + ")");
     }
     require_finite_at_least("`loose_length`", loose_length, 0.0f);
-    require_finite_at_least("`flare`", flare, 0.0f);
-    if (flare > 100.0f) throw InvalidParam("braid: `flare` must be <= 100 (got " + fmt(flare) + ")");
+    require_finite_at_least("`flare`", flare, 0.0f, 100.0f);
     if (tie && !(std::isfinite(*tie) && *tie >= 0.0f && *tie <= 1.0f)) {
         throw InvalidParam("braid: `tie` must be an arc-length fraction in [0, 1] (got " + fmt(*tie) + ")");
     }
@@ -153,6 +160,10 @@ CurveSet allocate_strands(std::span<const GuidePlan> plans, std::span<const int6
         first_strand[g] = int64_t(strand_counts.size());
         for (int i = 0; i < N; ++i) strand_counts.push_back(plans[g].samples);
     }
+    // Each output point holds a position, a width and a source index, and the fibers' pass keeps a
+    // frame per strand point beside them: about 32 bytes a point.
+    check_memory("braid: " + format_number(total_points) + " output points", total_points * 32.0,
+                 "lower `samples`, `fibers`, `strands` or `frequency`");
 
     // Count -> scan -> fill: the strand centrelines' curves first.
     CurveSet strands = CurveSet::from_counts(strand_counts);

@@ -9,6 +9,7 @@
 #include "fields/surface.h"
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
+#include "ops/hair_region.h"
 
 #include <cstdint>
 #include <functional>
@@ -54,6 +55,9 @@ struct GenerateParams {
     float clearance = 0.0f;   ///< points found inside the scalp are pushed out to this distance, scene units, >= 0
     uint64_t seed = 0;        ///< root scattering (--seed)
     int64_t first_id = 0;     ///< curve ids are first_id, first_id+1, ..., in root order (--first-id), >= 0
+    /// Where hair grows (--hairline, --parting): roots only where region->haired(); null = anywhere.
+    /// Not owned; must outlive the call.
+    const HairRegion* region = nullptr;
 
     /// Throws InvalidParam naming the option, the value and the valid range.
     void validate() const;
@@ -74,7 +78,7 @@ CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSample
 
 /// The roots generate() would use: params.count samples, area-uniform inside the region (or
 /// footprint) among those within params.max_angle of their nearest guide's root normal (taken from
-/// `scalp`), in a deterministic order for params.seed.
+/// `scalp`) and haired in params.region (when given), in a deterministic order for params.seed.
 std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& scalp, const RootSampler& sample,
                                          const GenerateParams& params);
 

@@ -185,6 +185,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                         // Sec. 2.2: rooted at the midpoint (or the mediated fraction) between the source
                         // point and the nearest adjacent point, on the scalp.
                         plan.root = scalp.closest_point(lerp(p, hit.point, params.mediate));
+                        if (params.region && !params.region->haired(plan.root)) continue;  // outside the hairline, on a parting
                         double end_s = s;
                         plan.group = i;
                         if (params.centroids == CentroidMode::Every) {

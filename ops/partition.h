@@ -4,6 +4,8 @@
 // between two braids reads as parted down the middle and pulled into each braid.
 #pragma once
 
+#include "ops/hair_region.h"
+
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
 #include "ops/adjacency.h"
@@ -64,6 +66,10 @@ struct PartitionParams {
     /// Neighbours chosen by the user; empty = found by find_adjacent_guides(). When given, only the
     /// sources listed get segments.
     std::vector<AdjacentGuides> adjacent;
+
+    /// Where hair grows (--hairline, --parting): a segment whose root is not haired there is not
+    /// made (past the hairline, on a parting's bare line). Null = everywhere. Not owned.
+    const HairRegion* region = nullptr;
 
     /// Throws InvalidParam naming the option, the value and the valid range. Guide indices (in
     /// `adjacent`, `centroid_points`) are checked by partition(), which knows the guide count.

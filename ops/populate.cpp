@@ -3,6 +3,7 @@
 #include "kernel/error.h"
 #include "kernel/math/frames.h"
 #include "kernel/math/polyline.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
 
@@ -59,6 +60,14 @@ CurveSet populate(const CurveSet& src, const PopulateParams& params, Progress* p
                             " fibers would make more than " + std::to_string(kMaxPopulatePoints) +
                             " points; lower `count` or resample the curves");
     }
+    // What the output holds (every source column carried, plus position, width, fiber, id) and this
+    // op's own arrays (the source point and curve of each output element, the counts).
+    const double out_points = double(src.num_points()) * double(M), out_curves = double(nc) * double(M);
+    check_memory("populate: " + std::to_string(src.num_curves()) + " curves x " + std::to_string(M) + " fibers (`count`) = " +
+                     format_number(out_points) + " points",
+                 out_points * (double(sizeof(float3) + sizeof(float) + sizeof(int64_t)) + bytes_per_point(src)) +
+                     out_curves * (double(3 * sizeof(int64_t) + sizeof(int32_t) + sizeof(int64_t)) + bytes_per_curve(src)),
+                 "lower `count`");
     const std::vector<int64_t> ids = src.curve_ids();
     for (const int64_t id : ids) {
         // id * M + f must not overflow, so ids stay unique and deterministic.

@@ -2,6 +2,7 @@
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
+#include "kernel/memory_budget.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
@@ -76,6 +77,11 @@ void PuffParams::validate() const
     if (!(bend > 0.0f && bend <= 1.0f)) throw InvalidParam("puff: `bend` must be in (0, 1] (got " + str(bend) + ")");
     if (first_id < 0) throw InvalidParam("puff: `first_id` must be >= 0 (got " + std::to_string(first_id) + ")");
     if (hairs < 0) throw InvalidParam("puff: `hairs` must be >= 0 (got " + std::to_string(hairs) + ")");
+    // Ids first_id .. first_id + rows * cols + hairs - 1 must not pass int64 (they would wrap to negative).
+    if (first_id > std::numeric_limits<int64_t>::max() - int64_t(rows) * cols - hairs) {
+        throw InvalidParam("puff: `first_id` " + std::to_string(first_id) + " + " + std::to_string(int64_t(rows) * cols) + " guides + " +
+                           std::to_string(hairs) + " `hairs` passes the largest id, 2^63 - 1 (ids would wrap to negative)");
+    }
     if (hair_points < 4) throw InvalidParam("puff: `hair_points` must be >= 4 (got " + std::to_string(hair_points) + ")");
     if (neighbours < 1) throw InvalidParam("puff: `neighbours` must be >= 1 (got " + std::to_string(neighbours) + ")");
     if (!(power > 0.0f) || !std::isfinite(power)) {
@@ -191,12 +197,20 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
                               " apart); the region and the sphere cap fold onto each other: lower `cap_angle` or "
                               "`bend`, or move `sphere_center` over the region");
     }
+    // What `groom gather` needs to pull the rest of the scalp's hair into this puff.
+    dst.add<float3>(Domain::Detail, "puff_base")[0] = c0;
+    dst.add<float>(Domain::Detail, "puff_radius")[0] = params.radius;
+    dst.add<float3>(Domain::Detail, "puff_sphere_center")[0] = params.sphere_center;
+    dst.add<float>(Domain::Detail, "puff_sphere_radius")[0] = params.sphere_radius;
     return dst;
 }
 
 PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParams& params, Progress* progress)
 {
     params.validate();
+    // The hairs' centrelines, before curling: a position and a source point each, and the roots.
+    check_memory("puff: " + std::to_string(params.hairs) + " `hairs` x " + std::to_string(params.hair_points) + " `hair_points`",
+                 double(params.hairs) * (double(params.hair_points) * 32.0 + 128.0), "ask for fewer `hairs`");
     PuffResult result;
     result.guides = puff_guides(scalp, params, progress);
     if (params.hairs == 0) return result;
@@ -213,24 +227,7 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     gen.first_id = params.first_id + int64_t(result.guides.num_curves());
     CurveSet centres = generate(result.guides, scalp, sample, gen, progress);
 
-    // Tips onto the sphere, by a warp that vanishes with its derivative at the root.
-    auto P = centres.positions_for_write();
-    const float3 C = params.sphere_center;
-    const float R = params.sphere_radius;
-    parallel_for(int64_t(centres.num_curves()), 256, [&](int64_t b, int64_t e) {
-        for (int64_t c = b; c < e; ++c) {
-            const IndexRange r = centres.points_of(c);
-            const auto pts = P.subspan(r.begin, r.size());
-            const auto cum = cumulative_lengths(pts);
-            const float3 tip = pts.back();
-            const float3 shift = C + normalize(tip - C, normalize(tip - pts.front())) * R - tip;
-            for (size_t i = 1; i < pts.size(); ++i) {
-                const float s = cum.back() > 0.0 ? float(cum[i] / cum.back()) : 1.0f;
-                pts[i] += shift * (s * s);
-            }
-            pts.back() = C + normalize(tip - C, normalize(tip - pts.front())) * R;  // exact, not up to rounding
-        }
-    });
+    warp_tips_to_sphere(centres, params.sphere_center, params.sphere_radius);
     keep_outside(centres, scalp, KeepOutside{});
 
     CurlParams curl_params = params.curl;
@@ -243,6 +240,27 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     keep_outside(result.hairs, scalp, KeepOutside{});
     for (int32_t& k : result.hairs.add<int32_t>(Domain::Curve, "kind")) k = 1;
     return result;
+}
+
+void warp_tips_to_sphere(CurveSet& centres, const float3& C, float R)
+{
+    // A warp that vanishes with its derivative at the root: the root and its direction stay.
+    auto P = centres.positions_for_write();
+    parallel_for(int64_t(centres.num_curves()), 256, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = centres.points_of(c);
+            if (r.size() < 2) continue;
+            const auto pts = P.subspan(r.begin, r.size());
+            const auto cum = cumulative_lengths(pts);
+            const float3 tip = pts.back();
+            const float3 shift = C + normalize(tip - C, normalize(tip - pts.front())) * R - tip;
+            for (size_t i = 1; i < pts.size(); ++i) {
+                const float s = cum.back() > 0.0 ? float(cum[i] / cum.back()) : 1.0f;
+                pts[i] += shift * (s * s);
+            }
+            pts.back() = C + normalize(tip - C, normalize(tip - pts.front())) * R;  // exact, not up to rounding
+        }
+    });
 }
 
 double min_curve_separation(const CurveSet& curves)

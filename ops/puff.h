@@ -62,7 +62,9 @@ struct PuffParams {
 /// guide_points points evenly spaced in arc length; its tip is sphere_center + sphere_radius * d
 /// (on the sphere to float rounding). Interior points inside the scalp are moved onto it (keep_outside,
 /// fields/keep_outside.h, clearance 0).
-/// Writes point P, curve int64 `id`, int32 `kind` (0 = guide), int32 `guide` (its own index).
+/// Writes point P, curve int64 `id`, int32 `kind` (0 = guide), int32 `guide` (its own index), and
+/// the detail attributes `groom gather` reads: float3 `puff_base` (c0), float `puff_radius`, float3
+/// `puff_sphere_center`, float `puff_sphere_radius`.
 /// Throws InvalidParam (params; a tip that would lie inside the scalp), InvalidGeometry (the region
 /// has no scalp within `radius` of c0 along the grid, or guides would cross).
 CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* progress = nullptr);
@@ -92,6 +94,11 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
 /// amplitude (the hair type's radius x units_per_cm x 1.2 when unset) times the largest radius of a
 /// unit cross-section (2^(1/2 - 1/n) for a Lame curve with exponent n > 2, else 1), plus the largest offset.
 float curl_reach(const CurlParams& params);
+
+/// Moves each curve's tip onto the sphere (C, R) along the direction from C (for a tip at C: along the
+/// curve's root-to-tip direction) by the warp p += (tip' - tip) s^2, s the arc-length fraction, which
+/// keeps the root and the root direction. Curves with fewer than 2 points are left as they are.
+void warp_tips_to_sphere(CurveSet& centres, const float3& C, float R);
 
 /// Smallest distance between two different curves of `curves` (segment to segment), scene units;
 /// +infinity with fewer than two curves. O(points^2): for checks and tests, not big grooms.

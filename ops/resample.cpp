@@ -2,6 +2,7 @@
 
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 
 #include <algorithm>
@@ -28,18 +29,40 @@ CurveSet resample(const CurveSet& src, const ResampleParams& params)
     const auto P = src.positions();
     const size_t nc = src.num_curves();
 
-    // Count -> scan -> fill: each curve's new point count first, then offsets, then points.
-    std::vector<int64_t> counts(nc);
-    std::vector<float> lengths(nc);
+    // Count -> scan -> fill: each curve's new point count first, then offsets, then points. The counts
+    // are taken in double and summed before anything is allocated: a 1e30-long curve asked llround
+    // for a count past int64 (2 points came out), and a short file can ask for billions of points.
+    std::vector<double> wanted(nc);
     parallel_for(int64_t(nc), 256, [&](int64_t b, int64_t e) {
         for (int64_t c = b; c < e; ++c) {
             const IndexRange r = src.points_of(c);
-            lengths[c] = polyline_length(P.subspan(r.begin, r.size()));
-            if (params.count) counts[c] = params.count;
-            else counts[c] = std::max<int64_t>(2, int64_t(std::llround(lengths[c] / params.segment_length)) + 1);
-            if (r.empty()) counts[c] = 0;
+            const double length = double(polyline_length(P.subspan(r.begin, r.size())));
+            if (r.empty()) wanted[c] = 0.0;
+            else if (!std::isfinite(length)) wanted[c] = length;
+            else if (params.count) wanted[c] = params.count;
+            else wanted[c] = std::max(2.0, std::round(length / double(params.segment_length)) + 1.0);
         }
     });
+    double total = 0.0;
+    size_t longest = 0;
+    for (size_t c = 0; c < nc; ++c) {
+        if (!std::isfinite(wanted[c])) {
+            throw InvalidGeometry("resample: curve " + std::to_string(c) +
+                                  " is too long for float to measure (its length overflows): scale the curves down");
+        }
+        total += wanted[c];
+        if (wanted[c] > wanted[longest]) longest = c;
+    }
+    // Each output point costs its position, its source index and every other point column carried.
+    const double per_point = double(sizeof(float3) + sizeof(int64_t)) + bytes_per_point(src);
+    const std::string what = "resample: " + format_number(total) + " points" +
+                             (params.count ? " (`count` " + std::to_string(params.count) + " per curve)"
+                                           : " at `segment_length` " + format_number(params.segment_length) + " (curve " +
+                                                 std::to_string(longest) + " alone needs " + format_number(nc ? wanted[longest] : 0.0) + ")");
+    check_memory(what, total * per_point + double(nc) * bytes_per_curve(src),
+                 params.count ? "use a smaller `count`" : "use a larger `segment_length` or `count`");
+    std::vector<int64_t> counts(nc);
+    for (size_t c = 0; c < nc; ++c) counts[c] = int64_t(wanted[c]);
 
     CurveSet dst = CurveSet::from_counts(counts);
     auto dP = dst.positions_for_write();

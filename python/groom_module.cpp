@@ -147,13 +147,23 @@ std::atomic<uint64_t> g_call{0};
 
 /// Keyword arguments as the command's options: True -> a flag, False/None -> left out, sequences
 /// -> "a,b,c", everything else -> str(value).
-void append_options(std::vector<std::string>& args, const py::kwargs& kw)
+/// Keyword arguments as options. A CurveSet value (hairline=, parting=) is handed over as an
+/// in-memory file named after `prefix`; its name is added to `stored` for the caller to erase.
+void append_options(std::vector<std::string>& args, const py::kwargs& kw, const std::string& prefix, std::vector<std::string>& stored)
 {
     for (auto item : kw) {
         std::string name = item.first.cast<std::string>();
         std::replace(name.begin(), name.end(), '_', '-');
         const py::handle v = item.second;
         if (v.is_none()) continue;
+        if (py::isinstance<CurveSet>(v)) {
+            const std::string path = prefix + name;
+            store_memory_curves(path, v.cast<const CurveSet&>());
+            stored.push_back(path);
+            args.push_back("--" + name);
+            args.push_back(path);
+            continue;
+        }
         if (py::isinstance<py::bool_>(v)) {
             if (v.cast<bool>()) args.push_back("--" + name);
             continue;
@@ -175,8 +185,9 @@ void append_options(std::vector<std::string>& args, const py::kwargs& kw)
 
 class Scalp;
 
-/// Runs `groom COMMAND [INPUT] -o OUT --quiet [--scalp S] OPTIONS...` and returns OUT.
-std::shared_ptr<CurveSet> run_command(const std::string& command, const CurveSet* input, py::object scalp, const py::kwargs& kw);
+/// Runs `groom COMMAND [INPUTS...] -o OUT --quiet [--scalp S] OPTIONS...` and returns OUT.
+std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vector<const CurveSet*>& inputs, py::object scalp,
+                                      const py::kwargs& kw);
 
 // --- the scalp --------------------------------------------------------------------------------------
 
@@ -200,13 +211,16 @@ public:
     }
 };
 
-std::shared_ptr<CurveSet> run_command(const std::string& command, const CurveSet* input, py::object scalp, const py::kwargs& kw)
+std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vector<const CurveSet*>& inputs, py::object scalp,
+                                      const py::kwargs& kw)
 {
     const std::string id = std::to_string(g_call++);
-    const std::string in_path = "mem:in" + id, out_path = "mem:out" + id, scalp_path = "mem:scalp" + id;
-    std::vector<std::string> args{command};
-    if (input) {
-        store_memory_curves(in_path, *input);
+    const std::string out_path = "mem:out" + id, scalp_path = "mem:scalp" + id;
+    std::vector<std::string> args{command}, stored;
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        const std::string in_path = "mem:in" + id + "_" + std::to_string(i);
+        store_memory_curves(in_path, *inputs[i]);
+        stored.push_back(in_path);
         args.push_back(in_path);
     }
     args.insert(args.end(), {"-o", out_path, "--quiet"});
@@ -220,14 +234,14 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const CurveSet
             args.push_back(py::str(scalp));
         }
     }
-    append_options(args, kw);
+    append_options(args, kw, "mem:kw" + id + "_", stored);
     std::string message;
     int code = 0;
     {
         py::gil_scoped_release release;
         code = cli::run_captured(args, message);
     }
-    erase_memory_curves(in_path);
+    for (const std::string& path : stored) erase_memory_curves(path);
     erase_memory_scalp(scalp_path);
     if (code != 0) {
         erase_memory_curves(out_path);
@@ -280,12 +294,12 @@ void def_op(py::module_& m, const char* name, const char* command, bool takes_cu
     if (takes_curves) {
         m.def(
             name,
-            [cmd](std::shared_ptr<CurveSet> curves, py::object scalp, py::kwargs kw) { return run_command(cmd, curves.get(), scalp, kw); },
+            [cmd](std::shared_ptr<CurveSet> curves, py::object scalp, py::kwargs kw) { return run_command(cmd, {curves.get()}, scalp, kw); },
             py::arg("curves"), py::arg("scalp") = py::none(), doc);
     }
     else {
         m.def(
-            name, [cmd, takes_scalp](py::object scalp, py::kwargs kw) { return run_command(cmd, nullptr, scalp, kw); },
+            name, [cmd, takes_scalp](py::object scalp, py::kwargs kw) { return run_command(cmd, {}, scalp, kw); },
             py::arg("scalp") = py::none(), doc);
     }
     (void)takes_scalp;
@@ -456,4 +470,19 @@ PYBIND11_MODULE(groom, m)
     def_op(m, "populate", "populate", true, false, "More hairs around each curve");
     def_op(m, "puff", "puff", false, true, "An afro puff on the scalp (scalp= required)");
     def_op(m, "cornrow_guides", "cornrow-guides", false, true, "Cornrow guide rows over the scalp (scalp= required)");
+    def_op(m, "hairline", "hairline", false, true, "A default hairline around the head (scalp= required)");
+    def_op(m, "parting", "parting", false, true, "Parting curves on the scalp, through='x,y,z/x,y,z/...' (scalp= required)");
+    def_op(m, "edges", "edges", false, true,
+           "Baby hairs laid flat in swirls along the hairline (scalp= required; hairline= and parting= take curves)");
+    def_op(m, "sections", "sections", false, true,
+           "One guide per section of the scalp inside the hairline, layout='grid'|'rows'|'radial' (scalp= required; hairline= takes curves)");
+    m.def(
+        "gather",
+        [](const std::vector<std::shared_ptr<CurveSet>>& puffs, py::object scalp, py::kwargs kw) {
+            std::vector<const CurveSet*> inputs;
+            for (const auto& p : puffs) inputs.push_back(p.get());
+            return run_command("gather", inputs, scalp, kw);
+        },
+        py::arg("puffs"), py::arg("scalp") = py::none(),
+        "The rest of the scalp's hair gathered into puffs (each as `puff` returned it); hairline= and parting= take curves");
 }

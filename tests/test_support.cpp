@@ -1,6 +1,7 @@
 #include "test_support.h"
 
 #include <fcntl.h>
+#include <grp.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -57,9 +58,18 @@ void write_text(const std::string& path, const std::string& text)
 
 RunResult run_groom(const std::vector<std::string>& args, const std::string& stdin_text, uint64_t file_size_limit)
 {
+    RunOptions o;
+    o.stdin_text = stdin_text;
+    o.file_size_limit = file_size_limit;
+    o.ignore_sigxfsz = true;
+    return run_groom(args, o);
+}
+
+RunResult run_groom(const std::vector<std::string>& args, const RunOptions& options)
+{
     TempDir dir;
     const std::string in = dir.file("stdin"), out = dir.file("stdout"), err = dir.file("stderr");
-    write_text(in, stdin_text);
+    write_text(in, options.stdin_text);
     const pid_t pid = ::fork();
     if (pid == 0) {
         const int fi = ::open(in.c_str(), O_RDONLY), fo = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644),
@@ -67,11 +77,22 @@ RunResult run_groom(const std::vector<std::string>& args, const std::string& std
         ::dup2(fi, 0);
         ::dup2(fo, 1);
         ::dup2(fe, 2);
-        if (file_size_limit > 0) {
+        ::signal(SIGXFSZ, options.ignore_sigxfsz ? SIG_IGN : SIG_DFL);
+        if (options.file_size_limit > 0) {
             // The limit applies to our capture files too: they are opened already, and stay small.
-            ::signal(SIGXFSZ, SIG_IGN);
-            const rlimit rl{rlim_t(file_size_limit), rlim_t(file_size_limit)};
+            const rlimit rl{rlim_t(options.file_size_limit), rlim_t(options.file_size_limit)};
             ::setrlimit(RLIMIT_FSIZE, &rl);
+        }
+        if (options.address_space_limit > 0) {
+            const rlimit rl{rlim_t(options.address_space_limit), rlim_t(options.address_space_limit)};
+            ::setrlimit(RLIMIT_AS, &rl);
+        }
+        for (const auto& [name, value] : options.env) ::setenv(name.c_str(), value.c_str(), 1);
+        if (::geteuid() == 0 && options.uid >= 0) {
+            if (::setgroups(0, nullptr) != 0 || ::setgid(gid_t(options.gid >= 0 ? options.gid : options.uid)) != 0 ||
+                ::setuid(uid_t(options.uid)) != 0) {
+                ::_exit(126);
+            }
         }
         std::vector<std::string> all{GROOM_BINARY};
         all.insert(all.end(), args.begin(), args.end());

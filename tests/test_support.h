@@ -39,6 +39,21 @@ struct RunResult {
 /// past it fails part-way exactly as on a full disk.
 RunResult run_groom(const std::vector<std::string>& args, const std::string& stdin_text = {}, uint64_t file_size_limit = 0);
 
+/// How run_groom(args, options) starts the process, for tests of hostile environments.
+struct RunOptions {
+    std::string stdin_text;
+    /// RLIMIT_FSIZE in bytes (0 = none). SIGXFSZ keeps the disposition below, as `ulimit -f` in a
+    /// shell leaves it: groom must ignore it itself.
+    uint64_t file_size_limit = 0;
+    bool ignore_sigxfsz = false;
+    uint64_t address_space_limit = 0;  ///< RLIMIT_AS in bytes (0 = none), as `ulimit -v`
+    /// Run as this user and group id when the test runs as root (-1 = as the test), so that file
+    /// permissions apply as they do to a normal user.
+    int uid = -1, gid = -1;
+    std::vector<std::pair<std::string, std::string>> env;  ///< set in the child before exec
+};
+RunResult run_groom(const std::vector<std::string>& args, const RunOptions& options);
+
 /// Whole file as bytes (empty if missing).
 std::string read_bytes(const std::string& path);
 void write_text(const std::string& path, const std::string& text);

@@ -2,23 +2,143 @@
 
 #include "kernel/error.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
-#include <unistd.h>
+#include <streambuf>
 
 namespace groom {
 
 namespace {
+
 std::string temp_name(const std::string& path)
 {
     static std::atomic<unsigned> counter{0};
     // Same directory as the target so rename() is atomic (no cross-device move).
     return path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
 }
+
+// The temporaries in flight, readable from a signal handler: fixed slots of fixed buffers (a handler
+// may not allocate or take a lock), each claimed with a compare-and-swap. A slot's path is written
+// before its state becomes kReady and the state is cleared before the slot is reused, so a handler
+// only ever reads a whole path. A command has a handful of outputs; past kSlots they are simply not
+// listed (the normal error path still removes them).
+constexpr int kSlots = 32;
+constexpr size_t kPathBytes = 4096;  // PATH_MAX on Linux
+enum : int { kFree = 0, kClaimed = 1, kReady = 2 };
+struct Slot {
+    std::atomic<int> state{kFree};
+    char path[kPathBytes];
+};
+std::array<Slot, kSlots> g_slots;
+
+int register_temporary(const std::string& path)
+{
+    if (path.size() >= kPathBytes) return -1;
+    for (int i = 0; i < kSlots; ++i) {
+        int expected = kFree;
+        if (g_slots[i].state.compare_exchange_strong(expected, kClaimed)) {
+            std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
+            g_slots[i].state.store(kReady, std::memory_order_release);
+            return i;
+        }
+    }
+    return -1;
+}
+
+void unregister_temporary(int slot)
+{
+    if (slot >= 0) g_slots[slot].state.store(kFree, std::memory_order_release);
+}
+
+/// A stream buffer over a file descriptor that remembers why a write failed: std::ofstream keeps
+/// only "failed", and by the time anyone asks, errno has moved on (EFBIG past `ulimit -f` read as
+/// "disk full?").
+class FdBuffer final : public std::streambuf {
+public:
+    explicit FdBuffer(int fd) : fd_(fd) { setp(buf_, buf_ + sizeof buf_); }
+    int error() const { return error_; }
+    /// Writes what is buffered and closes the descriptor; false (error() says why) on failure.
+    bool close()
+    {
+        const bool ok = flush_buffer();
+        if (fd_ >= 0 && ::close(fd_) != 0 && error_ == 0) error_ = errno;
+        fd_ = -1;
+        return ok && error_ == 0;
+    }
+    ~FdBuffer() override
+    {
+        if (fd_ >= 0) ::close(fd_);
+    }
+
+protected:
+    int_type overflow(int_type c) override
+    {
+        if (!flush_buffer()) return traits_type::eof();
+        if (!traits_type::eq_int_type(c, traits_type::eof())) {
+            *pptr() = traits_type::to_char_type(c);
+            pbump(1);
+        }
+        return traits_type::not_eof(c);
+    }
+    std::streamsize xsputn(const char* s, std::streamsize n) override
+    {
+        if (n >= std::streamsize(sizeof buf_)) {  // large writes go straight to the file
+            if (!flush_buffer() || !write_all(s, size_t(n))) return 0;
+            return n;
+        }
+        return std::streambuf::xsputn(s, n);
+    }
+    int sync() override { return flush_buffer() ? 0 : -1; }
+
+private:
+    bool write_all(const char* p, size_t n)
+    {
+        if (error_) return false;
+        while (n > 0) {
+            const ssize_t w = ::write(fd_, p, n);
+            if (w < 0 && errno == EINTR) continue;
+            if (w <= 0) {
+                error_ = w < 0 ? errno : EIO;
+                return false;
+            }
+            p += w;
+            n -= size_t(w);
+        }
+        return true;
+    }
+    bool flush_buffer()
+    {
+        const size_t n = size_t(pptr() - pbase());
+        setp(buf_, buf_ + sizeof buf_);
+        return write_all(buf_, n);
+    }
+
+    int fd_;
+    int error_ = 0;
+    char buf_[1 << 16];
+};
+
 }  // namespace
+
+struct AtomicOutput::File {
+    explicit File(int fd) : buffer(fd), stream(&buffer) {}
+    FdBuffer buffer;
+    std::ostream stream;
+};
+
+void remove_temporaries_on_signal() noexcept
+{
+    for (Slot& s : g_slots) {
+        if (s.state.load(std::memory_order_acquire) == kReady) ::unlink(s.path);
+    }
+}
 
 AtomicOutput::AtomicOutput(std::string path, bool binary) : path_(std::move(path))
 {
@@ -28,41 +148,85 @@ AtomicOutput::AtomicOutput(std::string path, bool binary) : path_(std::move(path
     }
     if (path_.empty()) throw IoError("output path is empty");
     temp_ = temp_name(path_);
-    file_.open(temp_, binary ? std::ios::out | std::ios::binary | std::ios::trunc : std::ios::out | std::ios::trunc);
-    if (!file_) throw IoError(path_ + ": cannot open for writing (" + std::strerror(errno) + ")");
+    // Listed before the file exists: a signal between open and registration would leave it behind.
+    slot_ = register_temporary(temp_);
+    (void)binary;  // POSIX files have no text mode
+    const int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) {
+        const int err = errno;
+        unregister_temporary(slot_);
+        throw IoError(path_ + ": cannot open for writing (" + std::strerror(err) + ")");
+    }
+    file_ = std::make_unique<File>(fd);
 }
 
 AtomicOutput::~AtomicOutput()
 {
     if (!committed_ && !to_stdout_) {
-        file_.close();
+        file_.reset();
         std::remove(temp_.c_str());
     }
+    unregister_temporary(slot_);
 }
 
 std::ostream& AtomicOutput::stream()
 {
-    return to_stdout_ ? std::cout : static_cast<std::ostream&>(file_);
+    return to_stdout_ ? std::cout : file_->stream;
+}
+
+void AtomicOutput::finish()
+{
+    if (finished_) return;
+    if (to_stdout_) {
+        std::cout.flush();
+        if (!std::cout) throw IoError("error writing to standard output");
+        finished_ = true;
+        return;
+    }
+    // The reason of the write that failed (EFBIG past `ulimit -f`, ENOSPC on a full disk).
+    const bool ok = file_->buffer.close() && !file_->stream.bad();
+    if (!ok) {
+        const int err = file_->buffer.error();
+        throw IoError(path_ + ": write failed (" + (err ? std::string(std::strerror(err)) : std::string("stream error")) + ")");
+    }
+    finished_ = true;
 }
 
 void AtomicOutput::commit()
 {
+    finish();
     if (to_stdout_) {
-        std::cout.flush();
-        if (!std::cout) throw IoError("error writing to standard output");
         committed_ = true;
         return;
     }
-    file_.flush();
-    const bool ok = static_cast<bool>(file_);
-    file_.close();
-    if (!ok) throw IoError(path_ + ": write failed (disk full?)");
     if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
         const int err = errno;
         std::remove(temp_.c_str());
         throw IoError(path_ + ": cannot rename temporary into place (" + std::strerror(err) + ")");
     }
     committed_ = true;
+    unregister_temporary(slot_);
+    slot_ = -1;
+}
+
+std::ostream& OutputBatch::open(const std::string& path, bool binary)
+{
+    files_.push_back(std::make_unique<AtomicOutput>(path, binary));
+    return files_.back()->stream();
+}
+
+void OutputBatch::defer(std::function<void()> action)
+{
+    deferred_.push_back(std::move(action));
+}
+
+void OutputBatch::commit()
+{
+    for (auto& f : files_) f->finish();
+    for (auto& f : files_) f->commit();
+    for (auto& d : deferred_) d();
+    files_.clear();
+    deferred_.clear();
 }
 
 }  // namespace groom

@@ -1,6 +1,5 @@
 #include "kernel/io/curve_io.h"
 
-#include "kernel/io/atomic_file.h"
 #include "kernel/io/format_table.h"
 #include "kernel/io/io_util.h"
 #include "kernel/io/memory_files.h"
@@ -28,18 +27,23 @@ CurveSet read_curves(const std::string& path, const CurveReadOptions& options)
 
 void write_curves(const CurveSet& curves, const std::string& path, const CurveWriteOptions& options)
 {
+    OutputBatch batch;
+    write_curves(curves, path, batch, options);
+    batch.commit();
+}
+
+void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& batch, const CurveWriteOptions& options)
+{
     if (is_memory_path(path)) {
         curves.validate("writing " + path);
-        store_memory_curves(path, curves);
+        batch.defer([copy = curves, path]() mutable { store_memory_curves(path, std::move(copy)); });
         return;
     }
     const io::Format& fmt = io::format_for(path, io::kWriteCurves, "curve", {}, /*error_is_param=*/true);
     curves.validate("writing " + path);
     // Encode fully before opening the output, so an encoding error leaves no file behind.
     const std::string bytes = fmt.write_curves(curves, options);
-    AtomicOutput out(path);
-    out.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.commit();
+    batch.open(path).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
 std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path)

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "kernel/curve_set.h"
+#include "kernel/io/atomic_file.h"
 
 #include <string>
 #include <vector>
@@ -33,6 +34,10 @@ struct CurveWriteOptions {
 
 /// Writes `curves` atomically to `path` (format by extension). Throws IoError / InvalidParam.
 void write_curves(const CurveSet& curves, const std::string& path, const CurveWriteOptions& options = {});
+
+/// The same into `batch`: encoded and written to its temporary now, renamed into place (or stored,
+/// for a "mem:" path) with the command's other outputs by batch.commit().
+void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& batch, const CurveWriteOptions& options = {});
 
 /// The columns of `curves` that the format of `path` cannot hold ("domain name" each, e.g.
 /// "curve id"): .obj keeps only P; .hair keeps P and point width, opacity, Cd; .usda and .ply

@@ -42,6 +42,25 @@ size_t size_of(PlyType t)
     return 0;
 }
 
+/// The values an integer type holds, for ASCII bodies: "3000000000" for an `int` property would
+/// otherwise wrap when it is stored as int32.
+struct IntRange {
+    double lo, hi;
+    const char* name;
+};
+IntRange int_range(PlyType t)
+{
+    switch (t) {
+        case PlyType::Int8: return {-128.0, 127.0, "char"};
+        case PlyType::UInt8: return {0.0, 255.0, "uchar"};
+        case PlyType::Int16: return {-32768.0, 32767.0, "short"};
+        case PlyType::UInt16: return {0.0, 65535.0, "ushort"};
+        case PlyType::Int32: return {-2147483648.0, 2147483647.0, "int"};
+        case PlyType::UInt32: return {0.0, 4294967295.0, "uint"};
+        default: return {-1e308, 1e308, "float"};
+    }
+}
+
 template <class T> T load(const char* p, bool swap)
 {
     T v;
@@ -150,7 +169,8 @@ PlyData parse_ply(const FileBytes& file)
             }
             for (uint64_t r = 0; r < e.count; ++r) {
                 for (PlyProperty& p : e.props) {
-                    auto number = [&](bool integer) {
+                    auto number = [&](PlyType type) {
+                        const bool integer = !is_float(type);
                         const std::string_view t = cur.token_any_line();
                         double v = 0;
                         if (!parse_double(t, v) || (integer && v != std::floor(v))) {
@@ -158,15 +178,23 @@ PlyData parse_ply(const FileBytes& file)
                                                                     std::to_string(r) + " property '" + p.name + "', found " +
                                                                     (t.empty() ? std::string("end of file") : describe_found(t)));
                         }
+                        if (integer) {
+                            const IntRange range = int_range(type);
+                            if (v < range.lo || v > range.hi) {
+                                fail_at_line(file.name, cur.line(), "value " + std::string(t) + " for " + e.name + " " + std::to_string(r) +
+                                                                        " property '" + p.name + "' is out of range for its type " + range.name +
+                                                                        " (" + number_text(range.lo) + " to " + number_text(range.hi) + ")");
+                            }
+                        }
                         return v;
                     };
                     if (!p.is_list) {
-                        p.values.push_back(number(!is_float(p.type)));
+                        p.values.push_back(number(p.type));
                         continue;
                     }
-                    const double n = number(true);
+                    const double n = number(p.count_type);
                     if (n < 0 || n > static_cast<double>(text.size())) fail_at_line(file.name, cur.line(), "list length " + std::to_string(n) + " is out of range");
-                    for (int64_t k = 0; k < static_cast<int64_t>(n); ++k) p.values.push_back(number(!is_float(p.type)));
+                    for (int64_t k = 0; k < static_cast<int64_t>(n); ++k) p.values.push_back(number(p.type));
                     p.list_offsets.push_back(static_cast<int64_t>(p.values.size()));
                 }
             }

@@ -144,9 +144,9 @@ TEST(BraidCli, RejectsInvalidOptionsWithUsageErrorAndNoOutput)
         EXPECT_FALSE(std::filesystem::exists(out));
     };
     expect_usage({"--strands", "1"}, "braid: --strands must be >= 2 (got 1)");
-    expect_usage({"--frequency", "-2"}, "braid: --frequency must be a finite number >= 0 (got -2)");
-    expect_usage({"--width", "-1"}, "braid: --width must be a finite number >= 0 (got -1)");
-    expect_usage({"--height", "-1"}, "braid: --height must be a finite number >= 0 (got -1)");
+    expect_usage({"--frequency", "-2"}, "braid: --frequency must be a finite number >= 0 and <= 1e+15 (got -2)");
+    expect_usage({"--width", "-1"}, "braid: --width must be a finite number >= 0 and <= 1e+15 (got -1)");
+    expect_usage({"--height", "-1"}, "braid: --height must be a finite number >= 0 and <= 1e+15 (got -1)");
     expect_usage({"--frequency", "2", "--knot-length", "1"}, "braid: --frequency and --knot-length are exclusive");
     expect_usage({"--orient", "sideways"}, "braid: --orient must be frame or scalp (got 'sideways')");
     expect_usage({"--orient", "scalp"}, "braid: --orient scalp needs a scalp");

@@ -58,7 +58,8 @@ struct Case {
     const char* command;
     const char* output_ext;
     /// "{guides}" (240 guides on a plane), "{head}" (head mesh), "{sguides}" (guides on the sphere),
-    /// "{sphere}" (the sphere's level set from `groom scalp`) and "{out}" are replaced.
+    /// "{sphere}" (the sphere's level set from `groom scalp`), "{puff}" (the puff case's output) and "{out}"
+    /// are replaced.
     std::vector<std::string> args;
 };
 
@@ -68,22 +69,28 @@ std::vector<Case> cases()
         {"project", "usda", {"project", "{guides}", "--scalp", "{sphere}", "-o", "{out}", "--mode", "root", "--offset", "0.1"}},
         {"cull", "usda", {"cull", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--mode", "push", "--clearance", "0.5"}},
         {"cornrow-guides", "usda", {"cornrow-guides", "--scalp", "{head}", "-o", "{out}", "--count", "6"}},
+        {"sections", "usda", {"sections", "--scalp", "{head}", "-o", "{out}", "--cols", "5", "--seed", "4"}},
         {"partition", "usda", {"partition", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--count", "6", "--samples", "5"}},
         {"generate", "usda", {"generate", "{sguides}", "--scalp", "{sphere}", "-o", "{out}", "--count", "400", "--seed", "3"}},
         {"puff", "usda", {"puff", "--scalp", "{sphere}", "-o", "{out}", "--center", "0,12,0", "--radius", "3", "--sphere-center", "0,15,0",
                           "--sphere-radius", "6", "--rows", "5", "--cols", "4", "--hairs", "300", "--seed", "5"}},
+        {"hairline", "usda", {"hairline", "--scalp", "{sphere}", "-o", "{out}"}},
+        {"parting", "usda", {"parting", "--scalp", "{sphere}", "-o", "{out}", "--through", "0,0,20/0,20,0/0,0,-20"}},
+        // The puff case's own output (run above) is the puff to gather into.
+        {"gather", "usda", {"gather", "{puff}", "--scalp", "{sphere}", "-o", "{out}", "--hairs", "300", "--seed", "6"}},
         {"convert", "ply", {"convert", "{guides}", "-o", "{out}"}},
         {"resample", "usda", {"resample", "{guides}", "-o", "{out}", "--segment-length", "0.37"}},
         {"braid", "usda", {"braid", "{guides}", "-o", "{out}", "--strands", "3", "--frequency", "3", "--width", "0.5", "--fibers", "4"}},
         {"populate", "usda", {"populate", "{guides}", "-o", "{out}", "--count", "8", "--radius", "0.3", "--seed", "2"}},
         {"curl", "usda", {"curl", "{guides}", "-o", "{out}", "--type", "3b", "--uniformity", "0.4", "--seed", "7"}},
         {"head", "obj", {"head", "-o", "{out}", "--resolution", "96"}},
+        {"edges", "usda", {"edges", "--scalp", "{head}", "-o", "{out}", "--direction", "random", "--from", "-180", "--to", "180", "--seed", "4"}},
         {"render", "png", {"render", "{guides}", "--scalp", "{head}", "-o", "{out}", "--size", "160x120", "--color-by", "strand"}},
     };
 }
 
 struct Inputs {
-    std::string guides, head, sguides, sphere;
+    std::string guides, head, sguides, sphere, puff;
 };
 
 std::vector<std::string> expand(const std::vector<std::string>& args, const Inputs& in, const std::string& out)
@@ -91,7 +98,7 @@ std::vector<std::string> expand(const std::vector<std::string>& args, const Inpu
     std::vector<std::string> r;
     for (const std::string& a : args) {
         r.push_back(a == "{guides}" ? in.guides : a == "{head}" ? in.head : a == "{sguides}" ? in.sguides
-                    : a == "{sphere}" ? in.sphere : a == "{out}" ? out : a);
+                    : a == "{sphere}" ? in.sphere : a == "{puff}" ? in.puff : a == "{out}" ? out : a);
     }
     return r;
 }
@@ -101,7 +108,7 @@ std::vector<std::string> expand(const std::vector<std::string>& args, const Inpu
 TEST(Determinism, EveryOpCommandWritesTheSameBytesWithOneAndTwoThreads)
 {
     test::TempDir dir;
-    Inputs in{write_guides(dir), dir.file("head.obj"), write_sphere_guides(dir), dir.file("sphere.vdb")};
+    Inputs in{write_guides(dir), dir.file("head.obj"), write_sphere_guides(dir), dir.file("sphere.vdb"), dir.file("puff_1.usda")};
     const auto h = run_groom({"head", "-o", in.head, "--resolution", "24"});
     ASSERT_EQ(h.exit_code, 0) << h.err;
     write_mesh(icosphere(float3(0, 0, 0), 10.0f, 4), dir.file("sphere.obj"));

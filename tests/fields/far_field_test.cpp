@@ -36,7 +36,7 @@ bool in_band(const ScalpField& field, const float3& p)
 {
     float d;
     float3 g;
-    return field.impl().sample(p, d, g);
+    return field.impl().sample(p, d, g) && length_squared(g) > 0.25f;
 }
 
 TEST(FarField, SignAndBoundAgainstTheSphereOutsideAndFarInside)

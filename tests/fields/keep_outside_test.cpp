@@ -2,6 +2,8 @@
 // sphere ends at radius + clearance (+ margin) along its own radial line, a clear point is not
 // touched, curves keep their roots, and a group lifts by exactly the missing distance off a plane.
 #include "fields/keep_outside.h"
+#include "fields/scalp_field.h"
+#include "support/sphere_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -185,6 +187,41 @@ TEST(KeepOutside, GroupLiftsByTheMissingDistanceAndRestsWhenAsked)
     // keeps the clearance, short of the margin by less than the margin.
     EXPECT_GE(lowest, 0.1f);
     EXPECT_LE(lowest, 0.101f + 1e-6f);
+}
+
+// A field whose sign jumps away from the surface is not 1-Lipschitz, and the curve form's bound
+// (a point whose predecessor's distance less the segment is positive is clear) fails across the
+// jump: hair that went into Sintel's eye sockets was skipped and left up to 1.5 units inside. Here
+// a unit sphere open at its +Y pole (a hole of 15 degrees, an eye socket): a hair from the scalp
+// reaches over the hole, 0.27 from its rim and outside, then 0.25 down through it to 0.31 inside.
+// The bound said 0.27 - 0.25 > 0, clear; the point must be moved out.
+TEST(KeepOutside, CurvesAreCheckedPointByPointWhereTheFieldJumps)
+{
+    const PolygonSoup sphere = uv_sphere({0, 0, 0}, 1.0f, 24, 48);
+    PolygonSoup open;
+    open.points = sphere.points;
+    for (size_t f = 0; f < sphere.num_faces(); ++f) {
+        float3 c;
+        for (const int32_t v : sphere.face(f)) c += sphere.points[v];
+        if (c.y / float(sphere.face(f).size()) < std::cos(15.0f * float(M_PI) / 180.0f)) open.add_face(sphere.face(f));
+    }
+    const ScalpField field = build_scalp(open, {0.02f, 3.0f});
+    const ScalpField closed = build_scalp(sphere, {0.02f, 3.0f});
+    EXPECT_FALSE(field.lipschitz());
+    EXPECT_TRUE(closed.lipschitz());
+
+    const int64_t counts[] = {3};
+    CurveSet cs = CurveSet::from_counts(counts);
+    auto P = cs.positions_for_write();
+    P[0] = float3(0.5f, std::sqrt(0.75f), 0.0f);  // the root, on the scalp 30 degrees from the pole
+    P[1] = float3(0.0f, 1.05f, 0.0f);
+    P[2] = float3(0.0f, 0.8f, 0.0f);
+    ASSERT_GT(field.distance(P[1]), 0.25f);
+    ASSERT_LT(field.distance(P[2]), -0.3f);
+    const KeepOutsideCount moved = keep_outside(cs, field, KeepOutside{0.0f, 1e-5f, 4});
+    EXPECT_EQ(moved.points, 1);
+    EXPECT_GE(field.distance(cs.positions()[2]), 0.0f);
+    EXPECT_GT(distance(cs.positions()[2], float3(0.0f, 0.8f, 0.0f)), 0.3f);
 }
 
 }  // namespace

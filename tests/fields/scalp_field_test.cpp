@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 namespace groom {
 namespace {
@@ -50,67 +51,13 @@ TEST(ScalpCap, SignCorrectOnBothSidesOfAnOpenCap)
     EXPECT_GT(checked, 700);  // about 21% of directions lie within 55 degrees of the axis
 }
 
-/// The clean uv sphere, then the same surface as a user might bring it.
-PolygonSoup messy(const PolygonSoup& clean, int rings, int segments, const float3& center, float R)
-{
-    PolygonSoup m;
-    m.points = clean.points;
-    auto ring = [&](int i, int j) { return int32_t(1 + (i - 1) * segments + (j % segments)); };
-    std::vector<char> skip(clean.num_faces(), 0);
-    // Face numbering of uv_sphere: `segments` pole triangles, then 2 per quad per band.
-    auto band_face = [&](int i, int j, int k) { return size_t(segments + ((i - 1) * segments + j) * 2 + k); };
-    // Quads: band 3 as quads; n-gon: two quads of band 5 as one hexagon.
-    for (int j = 0; j < segments; ++j) {
-        skip[band_face(3, j, 0)] = skip[band_face(3, j, 1)] = 1;
-        const int32_t q[4] = {ring(3, j), ring(4, j), ring(4, j + 1), ring(3, j + 1)};
-        m.add_face(q);
-    }
-    for (int k = 0; k < 4; ++k) skip[band_face(5, 0 + k / 2, k % 2)] = 1;
-    const int32_t hex[6] = {ring(5, 0), ring(6, 0), ring(6, 1), ring(6, 2), ring(5, 2), ring(5, 1)};
-    m.add_face(hex);
-    // A hole: two faces of band 8 at j = 0 are simply missing.
-    skip[band_face(8, 0, 0)] = skip[band_face(8, 0, 1)] = 1;
-    for (size_t f = 0; f < clean.num_faces(); ++f) {
-        if (skip[f]) continue;
-        std::vector<int32_t> idx(clean.face(f).begin(), clean.face(f).end());
-        if (f % 3 == 0) {  // split seams: this face gets its own copies of its vertices
-            for (int32_t& v : idx) {
-                m.points.push_back(m.points[v]);
-                v = int32_t(m.points.size() - 1);
-            }
-        }
-        if (f % 7 == 0) std::reverse(idx.begin(), idx.end());  // flipped
-        m.add_face(idx);
-    }
-    // Degenerate triangles: a repeated vertex, and three collinear points.
-    const int32_t a = ring(10, 3), b = ring(10, 4);
-    m.points.push_back(lerp(m.points[a], m.points[b], 0.5f));
-    const int32_t deg1[3] = {a, a, b}, deg2[3] = {a, int32_t(m.points.size() - 1), b};
-    m.add_face(deg1);
-    m.add_face(deg2);
-    // A non-manifold fin: a third face on edge (a, b) reaching a little inside.
-    m.points.push_back(lerp(m.points[a], m.points[b], 0.5f) + (center - m.points[a]) * 0.02f);
-    const int32_t fin[3] = {a, b, int32_t(m.points.size() - 1)};
-    m.add_face(fin);
-    // A stray shell: a small closed sphere inside (an eye in a head).
-    const PolygonSoup eye = icosphere(center + float3(0.1f, 0.2f, 0.0f) * R, R * 0.2f, 2);
-    const int32_t base = int32_t(m.points.size());
-    m.points.insert(m.points.end(), eye.points.begin(), eye.points.end());
-    for (size_t f = 0; f < eye.num_faces(); ++f) {
-        std::vector<int32_t> idx(eye.face(f).begin(), eye.face(f).end());
-        for (int32_t& v : idx) v += base;
-        m.add_face(idx);
-    }
-    return m;
-}
-
 TEST(ScalpMessy, MessySphereGivesTheCleanAnswers)
 {
     const float3 c(-1, 0.5f, 2);
     const float R = 1.5f;
     const int rings = 24, segments = 48;
     const PolygonSoup clean = uv_sphere(c, R, rings, segments);
-    const PolygonSoup dirty = messy(clean, rings, segments, c, R);
+    const PolygonSoup dirty = messy_uv_sphere(clean, rings, segments, c, R);
     const ScalpBuildParams params{R / 60, 3.0f};
     RepairReport report;
     const ScalpField a = build_scalp(clean, params);
@@ -138,6 +85,30 @@ TEST(ScalpMessy, MessySphereGivesTheCleanAnswers)
         ++compared;
     }
     EXPECT_GT(compared, 2000);
+}
+
+// distance() and query() give one answer: keep_outside decides by the one and moves by the other.
+// A sheet thinner than a voxel (an ear, a lip) has a short band gradient, where query() answers
+// from the mesh; distance() used to read the band there, up to 0.09 units (0.4 voxel) inside on
+// Sintel's ears at points query() had put on the surface, so they were never found clear.
+TEST(ScalpField, DistanceAgreesWithQueryOnAThinSheet)
+{
+    // A closed slab 2 x 2 and 0.03 thick, against a voxel of 0.1.
+    PolygonSoup slab;
+    for (int i = 0; i < 8; ++i) slab.points.emplace_back(i & 1 ? 1.0f : -1.0f, i & 2 ? 0.015f : -0.015f, i & 4 ? 1.0f : -1.0f);
+    const int32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& q : quads) slab.add_face(q);
+    const ScalpField field = build_scalp(slab, {0.1f, 3.0f});
+    int thin = 0;
+    for (int i = 0; i < 2000; ++i) {
+        Rng rng(21, uint64_t(i));
+        const float3 p(rng.uniform(-0.8f, 0.8f), rng.uniform(-0.25f, 0.25f), rng.uniform(-0.8f, 0.8f));
+        float3 n, c;
+        const float d = field.query(p, n, c);
+        ASSERT_EQ(field.distance(p), d) << p.x << " " << p.y << " " << p.z;
+        thin += std::fabs(d - (std::fabs(p.y) - 0.015f)) < 1e-5f;  // the mesh's exact answer
+    }
+    EXPECT_GT(thin, 200);
 }
 
 TEST(ScalpField, FarQueriesAreExactFromTheMesh)
@@ -271,6 +242,39 @@ TEST(ScalpField, RejectsBadInput)
     catch (const LimitExceeded& e) {
         EXPECT_NE(std::string(e.what()).find("use `voxel`"), std::string::npos) << e.what();
     }
+}
+
+TEST(ScalpField, NonFiniteQueryPointIsAnErrorNotASignal)
+{
+    // Exact queries outside the band convert the point to GMP rationals, which raise SIGFPE on inf
+    // and NaN: an op whose arithmetic overflowed (braid --width 3e38) died of it.
+    const ScalpField field = build_scalp(icosphere({0, 0, 0}, 10, 2), {1.0f, 3.0f});
+    for (const float bad : {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+        EXPECT_THROW(field.distance(float3(bad, 0, 0)), InvalidGeometry);
+        float3 n, c;
+        EXPECT_THROW(field.query(float3(0, -bad, 1), n, c), InvalidGeometry);
+    }
+    // Far but finite points are answered.
+    EXPECT_NEAR(field.distance(float3(1e15f, 0, 0)), 1e15f, 1e9f);
+}
+
+TEST(ScalpField, MeshWhoseSizeOverflowsFloatIsRefused)
+{
+    PolygonSoup huge = icosphere({0, 0, 0}, 1e30f, 2);
+    ScalpBuildParams p;
+    p.source = "huge.obj";
+    try {
+        build_scalp(huge, p);
+        FAIL() << "no error";
+    }
+    catch (const InvalidGeometry& e) {
+        EXPECT_NE(std::string(e.what()).find("huge.obj: the mesh is"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("scale it down"), std::string::npos) << e.what();
+    }
+    PolygonSoup far = icosphere({1e12f, 0, 0}, 10, 2);
+    EXPECT_THROW(build_scalp(far, p), InvalidGeometry);
+    // The same sphere near the origin, and far with a voxel float can still resolve there, convert.
+    EXPECT_NO_THROW(build_scalp(icosphere({1e5f, 0, 0}, 10, 2), p));
 }
 
 TEST(ScalpReal, SintelColliderMatchesIndependentSdf)

@@ -138,3 +138,35 @@ TEST(CurveIoPly, RefusesInt64BeyondDoublePrecisionWithoutLeavingAFile)
     }
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
+
+TEST(CurveIoPly, AsciiIntegersOutsideTheirTypeAreRefusedNotWrapped)
+{
+    // `int` holds 32 bits: 3000000000 was read and then wrapped to -1294967296 in the int32 column.
+    TempDir dir;
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                             "property int tag\nelement edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+    expect_parse_error(dir.file("int.ply"), head + "0 0 0 3000000000\n1 1 1 0\n0 1\n",
+                       "int.ply:12: value 3000000000 for vertex 0 property 'tag' is out of range for its type int (-2147483648 to 2147483647)");
+    expect_parse_error(dir.file("edge.ply"), head + "0 0 0 1\n1 1 1 0\n0 4294967297\n",
+                       "edge.ply:14: value 4294967297 for edge 0 property 'vertex2' is out of range for its type int");
+    const std::string uchar_list = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                                   "element edge 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 1 1\n";
+    expect_parse_error(dir.file("list.ply"), uchar_list + "258 0 1\n", "list.ply:12: value 258 for edge 0 property 'vertex_indices' is out of range for its type uchar (0 to 255)");
+    // The extremes of the type are read exactly.
+    write_text(dir.file("edge_ok.ply"), head + "0 0 0 -2147483648\n1 1 1 2147483647\n0 1\n");
+    const CurveSet ok = read_curves(dir.file("edge_ok.ply"));
+    const auto tag = ok.find<int32_t>(Domain::Point, "tag");
+    ASSERT_EQ(tag.size(), 2u);
+    EXPECT_EQ(tag[0], -2147483647 - 1);
+    EXPECT_EQ(tag[1], 2147483647);
+}
+
+TEST(CurveIoPly, NonFiniteOrNegativeWidthsAreRefusedNamingThePoint)
+{
+    TempDir dir;
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                             "property float width\nelement edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+    for (const std::string w : {"nan", "inf", "-1"}) {
+        expect_parse_error(dir.file("w.ply"), head + "0 0 0 0.1\n1 1 1 " + w + "\n0 1\n", "w.ply: point 1 (curve 0) has width");
+    }
+}

@@ -80,8 +80,9 @@ const std::vector<FileCase> kFileCases = {
     // noticing the points could not add up.
     {"hair", "oom_184m_strands_no_segment_array.hair", Kind::Limit, "184549379 strands but only 0 points"},
     // ASCII face index 8.9e65 (declared int): refused as out of range, but the message cast the
-    // double to int64 first (UBSan: value outside the range of 'long').
-    {"ply_mesh", "ub_face_index_9e65.ply", Kind::Parse, "out of range (4 vertices)"},
+    // double to int64 first (UBSan: value outside the range of 'long'). Since issue 20 an ASCII
+    // integer outside its declared type is refused where it is read, before any index check.
+    {"ply_mesh", "ub_face_index_9e65.ply", Kind::Parse, "property 'vertex_indices' is out of range for its type int"},
 };
 
 fs::path regressions_dir() { return fs::path(GROOM_SOURCE_DIR) / "tests" / "data" / "regressions"; }

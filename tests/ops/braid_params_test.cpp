@@ -66,10 +66,10 @@ TEST(Braid, RejectsInvalidOptions)
         EXPECT_EQ(msg(p), "braid: `flatten` must be in [0, 0.9] (got 0.95)");
         p = BraidParams{};
         p.loose_length = -1.0f;
-        EXPECT_EQ(msg(p), "braid: `loose_length` must be a finite number >= 0 (got -1)");
+        EXPECT_EQ(msg(p), "braid: `loose_length` must be a finite number >= 0 and <= 1e+15 (got -1)");
         p = BraidParams{};
         p.flare = std::numeric_limits<float>::infinity();
-        EXPECT_EQ(msg(p), "braid: `flare` must be a finite number >= 0 (got inf)");
+        EXPECT_EQ(msg(p), "braid: `flare` must be a finite number >= 0 and <= 100 (got inf)");
     }
     const CurveSet guides = make_curves({{{0, 0, 0}, {0, 1, 0}}});
     const auto rejects = [&](BraidParams p, const std::string& expected) {
@@ -81,13 +81,13 @@ TEST(Braid, RejectsInvalidOptions)
     rejects(p, "braid: `strands` must be >= 2 (got 1)");
     p = {};
     p.frequency = -1.0f;
-    rejects(p, "braid: `frequency` must be a finite number >= 0 (got -1)");
+    rejects(p, "braid: `frequency` must be a finite number >= 0 and <= 1e+15 (got -1)");
     p = {};
     p.width = -0.5f;
-    rejects(p, "braid: `width` must be a finite number >= 0 (got -0.5)");
+    rejects(p, "braid: `width` must be a finite number >= 0 and <= 1e+15 (got -0.5)");
     p = {};
     p.height = -2.0f;
-    rejects(p, "braid: `height` must be a finite number >= 0 (got -2)");
+    rejects(p, "braid: `height` must be a finite number >= 0 and <= 1e+15 (got -2)");
     p = {};
     p.frequency = 3.0f;
     p.knot_length = 1.0f;
@@ -106,7 +106,7 @@ TEST(Braid, RejectsInvalidOptions)
     rejects(p, "braid: `tip_amplitude` must be a finite number >= 0");
     p = {};
     p.taper = {1.0f, -0.5f};
-    rejects(p, "braid: `taper` values must be finite and >= 0 (value 2 is -0.5)");
+    rejects(p, "braid: `taper` values must be finite, >= 0 and <= 1000 (value 2 is -0.5)");
     p = {};
     p.knot_bias = 1.0f;
     rejects(p, "braid: `knot_bias` must be in (-1, 1) (got 1)");
@@ -115,7 +115,7 @@ TEST(Braid, RejectsInvalidOptions)
     rejects(p, "braid: `knot_density` values must be finite and > 0 (value 2 is 0)");
     p = {};
     p.clearance = -0.1f;
-    rejects(p, "braid: `clearance` must be a finite number >= 0 (got -0.1)");
+    rejects(p, "braid: `clearance` must be a finite number >= 0 and <= 1e+15 (got -0.1)");
     p = {};
     p.fibers = -3;
     rejects(p, "braid: `fibers` must be in [0, 1000000] (got -3)");

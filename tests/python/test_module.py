@@ -188,3 +188,61 @@ def test_the_gil_is_released_while_an_op_runs():
     # With the GIL held for the whole op the other thread could not tick at all meanwhile.
     assert end - start > 0.05, "the op was too quick to tell"
     assert len(during) >= 5
+
+
+def test_gather_takes_puffs_hairline_and_parting_as_curves(sphere):
+    """The whole-scalp chain from Python: hairline, parting and puffs go in as CurveSets."""
+    hairline = groom.hairline(scalp=sphere)
+    assert hairline.num_curves == 1
+    parting = groom.parting(scalp=sphere, through="0,0,2/0,2,0/0,0,-2", step=0.05)
+    np.testing.assert_allclose(parting.points[:, 0], 0.0, atol=0.01)  # the x = 0 great circle
+    puffs = [
+        groom.puff(scalp=sphere, center=(s * 0.6, 0.8, 0), radius=0.25, sphere_center=(s * 1.0, 1.3, 0),
+                   sphere_radius=0.4, rows=4, cols=4, hairs=50, amplitude=(0.01, 0.02), seed=1)
+        for s in (-1, 1)
+    ]
+    out = groom.gather(puffs, scalp=sphere, hairline=hairline, parting=parting, hairs=300, lift=0.01, step=0.03,
+                       band_width=0.08, band_thickness=0.01, amplitude=(0.01, 0.02), parting_gap=0.03, seed=2)
+    kind = out.curve_attributes["kind"]
+    assert (kind == 1).sum() == 300 and (kind == 2).sum() == 24
+    roots = out.points[out.offsets[:-1]]
+    hairs = kind == 1
+    # Each hair stays on its side of the parting, and nothing is inside the sphere.
+    for c in np.nonzero(hairs)[0]:
+        xs = out.points[out.offsets[c]:out.offsets[c + 1], 0]
+        assert (np.sign(xs) == np.sign(roots[c, 0])).all()
+    assert (np.linalg.norm(out.points, axis=1) >= 1.0 - 0.01).all()
+    with pytest.raises(groom.ParamError, match="lift"):
+        groom.gather(puffs, scalp=sphere, lift=-1)
+
+
+def test_edges_lie_flat_along_a_hairline_given_as_curves(sphere):
+    """Edges from Python on the unit sphere: the hairline goes in as a CurveSet; every point stays
+    within the hairs' height of the sphere (plus the mesh's chordal error) and none inside."""
+    hairline = groom.hairline(scalp=sphere)
+    out = groom.edges(scalp=sphere, hairline=hairline, count=60, length=0.2, radius=0.015, swoop=0.1, depth=0.02,
+                      height=0.005, width=0.001, seed=3)
+    assert out.num_curves == 60
+    assert (out.curve_attributes["kind"] == 3).all()
+    r = np.linalg.norm(out.points, axis=1)
+    assert (r >= 1.0 - 0.01).all() and (r <= 1.0 + 0.005 + 0.01).all()
+    with pytest.raises(groom.ParamError, match="bends"):
+        groom.edges(scalp=sphere, bends=0)
+
+
+def test_sections_part_the_scalp_inside_the_hairline(sphere, tmp_path):
+    """Grid sections on the unit sphere: one hanging guide per section, rooted on the sphere inside
+    the hairline, the partings to a file; a count that does not fit the layout names the keyword."""
+    hairline = groom.hairline(scalp=sphere)
+    partings = tmp_path / "partings.usda"
+    kw = dict(hairline=hairline, length=1.5, points=12, bend=0.1, clearance=0.02, layer=0.01, parting_gap=0.03, step=0.03)
+    guides = groom.sections(scalp=sphere, cols=4, partings_out=str(partings), **kw)
+    section = guides.curve_attributes["section"]
+    np.testing.assert_array_equal(section, np.arange(guides.num_curves))
+    assert guides.num_curves >= 8
+    roots = guides.points[guides.offsets[:-1]]
+    np.testing.assert_allclose(np.linalg.norm(roots, axis=1), 1.0, atol=0.01)
+    assert (np.linalg.norm(guides.points, axis=1) >= 1.0 - 0.01).all()
+    assert groom.read(str(partings)).num_curves >= 3
+    with pytest.raises(groom.ParamError, match="cols"):
+        groom.sections(scalp=sphere, layout="rows", cols=4, **kw)

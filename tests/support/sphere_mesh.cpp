@@ -172,4 +172,57 @@ float sphere_chordal_error(const PolygonSoup& soup, const float3& center, float 
     return float(worst);
 }
 
+PolygonSoup messy_uv_sphere(const PolygonSoup& clean, int rings, int segments, const float3& center, float R)
+{
+    PolygonSoup m;
+    m.points = clean.points;
+    auto ring = [&](int i, int j) { return int32_t(1 + (i - 1) * segments + (j % segments)); };
+    std::vector<char> skip(clean.num_faces(), 0);
+    // Face numbering of uv_sphere: `segments` pole triangles, then 2 per quad per band.
+    auto band_face = [&](int i, int j, int k) { return size_t(segments + ((i - 1) * segments + j) * 2 + k); };
+    // Quads: band 3 as quads; n-gon: two quads of band 5 as one hexagon.
+    for (int j = 0; j < segments; ++j) {
+        skip[band_face(3, j, 0)] = skip[band_face(3, j, 1)] = 1;
+        const int32_t q[4] = {ring(3, j), ring(4, j), ring(4, j + 1), ring(3, j + 1)};
+        m.add_face(q);
+    }
+    for (int k = 0; k < 4; ++k) skip[band_face(5, 0 + k / 2, k % 2)] = 1;
+    const int32_t hex[6] = {ring(5, 0), ring(6, 0), ring(6, 1), ring(6, 2), ring(5, 2), ring(5, 1)};
+    m.add_face(hex);
+    // A hole: two faces of band 8 at j = 0 are simply missing.
+    skip[band_face(8, 0, 0)] = skip[band_face(8, 0, 1)] = 1;
+    for (size_t f = 0; f < clean.num_faces(); ++f) {
+        if (skip[f]) continue;
+        std::vector<int32_t> idx(clean.face(f).begin(), clean.face(f).end());
+        if (f % 3 == 0) {  // split seams: this face gets its own copies of its vertices
+            for (int32_t& v : idx) {
+                m.points.push_back(m.points[v]);
+                v = int32_t(m.points.size() - 1);
+            }
+        }
+        if (f % 7 == 0) std::reverse(idx.begin(), idx.end());  // flipped
+        m.add_face(idx);
+    }
+    // Degenerate triangles: a repeated vertex, and three collinear points.
+    const int32_t a = ring(10, 3), b = ring(10, 4);
+    m.points.push_back(lerp(m.points[a], m.points[b], 0.5f));
+    const int32_t deg1[3] = {a, a, b}, deg2[3] = {a, int32_t(m.points.size() - 1), b};
+    m.add_face(deg1);
+    m.add_face(deg2);
+    // A non-manifold fin: a third face on edge (a, b) reaching a little inside.
+    m.points.push_back(lerp(m.points[a], m.points[b], 0.5f) + (center - m.points[a]) * 0.02f);
+    const int32_t fin[3] = {a, b, int32_t(m.points.size() - 1)};
+    m.add_face(fin);
+    // A stray shell: a small closed sphere inside (an eye in a head).
+    const PolygonSoup eye = icosphere(center + float3(0.1f, 0.2f, 0.0f) * R, R * 0.2f, 2);
+    const int32_t base = int32_t(m.points.size());
+    m.points.insert(m.points.end(), eye.points.begin(), eye.points.end());
+    for (size_t f = 0; f < eye.num_faces(); ++f) {
+        std::vector<int32_t> idx(eye.face(f).begin(), eye.face(f).end());
+        for (int32_t& v : idx) v += base;
+        m.add_face(idx);
+    }
+    return m;
+}
+
 }  // namespace groom

@@ -27,4 +27,10 @@ PolygonSoup sphere_cap(const float3& center, float radius, const float3& axis, f
 /// plane-clipped disc. Tests subtract it from what a scalp field built from the mesh can achieve.
 float sphere_chordal_error(const PolygonSoup& soup, const float3& center, float radius);
 
+/// `clean` (uv_sphere(center, R, rings, segments), rings >= 11) as a user might bring it: band 3 as
+/// quads, a hexagon in band 5, a hole of two faces in band 8, every third face with its own copies
+/// of its vertices (split seams), every seventh flipped, two degenerate triangles, a non-manifold
+/// fin reaching inside, and a small closed sphere inside (an eye in a head).
+PolygonSoup messy_uv_sphere(const PolygonSoup& clean, int rings, int segments, const float3& center, float R);
+
 }  // namespace groom

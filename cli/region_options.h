@@ -1,0 +1,30 @@
+// The options every command that places roots shares for where hair grows (ops/hair_region.h):
+// --hairline, --parting, --parting-gap, --up, spelled and read the same way by each.
+#pragma once
+
+#include "fields/surface.h"
+#include "ops/hair_region.h"
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace groom::cli {
+
+struct RegionOptions {
+    std::string hairline, parting, up = "0,1,0";
+    HairRegionParams params;
+    bool given() const { return !hairline.empty() || !parting.empty(); }
+    /// The files the region reads (for output-onto-input checks).
+    std::vector<std::string> inputs() const { return {hairline, parting}; }
+};
+
+void add_region_options(CLI::App* app, RegionOptions& o);
+
+/// The region the options describe, or null when neither --hairline nor --parting is given.
+/// Throws InvalidParam / InvalidGeometry naming the option or file.
+std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp);
+
+}  // namespace groom::cli

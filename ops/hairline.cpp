@@ -1,0 +1,110 @@
+#include "ops/hairline.h"
+
+#include "kernel/error.h"
+
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace groom {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Height below the top (fraction of the head length) at azimuth `deg` in [0, 180], mirrored for the
+/// other side: a cubic Hermite through key heights with Catmull-Rom slopes, flattened at every key
+/// that is a local extreme so the curve never overshoots (a hairline dipping past the sideburn).
+double drop_at(const HairlineParams& p, double deg)
+{
+    deg = std::fabs(deg);
+    const double f = p.forehead, t = p.temple, s = p.sideburn, e = p.ear, n = p.nape;
+    // Keys from the forehead round to the nape; the mirror images at -30 and 210 give end slopes 0.
+    const std::array<double, 11> x{-30, 0, 30, 55, 80, 92, 105, 130, 155, 180, 210};
+    const std::array<double, 11> y{f + 0.2 * (t - f), f, f + 0.2 * (t - f), t, s, e + 0.04, e, e + 0.55 * (n - e), n - 0.02, n, n - 0.02};
+    size_t i = 1;
+    while (i + 2 < x.size() && deg > x[i + 1]) ++i;
+    auto slope = [&](size_t k) {
+        if ((y[k] - y[k - 1]) * (y[k + 1] - y[k]) <= 0.0) return 0.0;
+        return (y[k + 1] - y[k - 1]) / (x[k + 1] - x[k - 1]);
+    };
+    const double h = x[i + 1] - x[i], u = (deg - x[i]) / h;
+    const double m0 = slope(i) * h, m1 = slope(i + 1) * h;
+    const double u2 = u * u, u3 = u2 * u;
+    return (2 * u3 - 3 * u2 + 1) * y[i] + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * y[i + 1] + (u3 - u2) * m1;
+}
+
+/// Where the ray from `outside` toward `axis` first enters the scalp (the outermost surface).
+bool outermost_hit(const Surface& scalp, const float3& outside, const float3& axis, float3& hit)
+{
+    return scalp.first_intersection(outside, axis, hit);
+}
+
+}  // namespace
+
+void HairlineParams::validate() const
+{
+    if (!isfinite(up) || length(up) == 0.0f) throw InvalidParam("hairline: `up` must be a finite non-zero direction");
+    if (!isfinite(forward) || length(cross(up, forward)) < 1e-3f * length(up) * length(forward)) {
+        throw InvalidParam("hairline: `forward` must be a finite direction not parallel to `up`");
+    }
+    if (has_center && !isfinite(center)) throw InvalidParam("hairline: `center` must be finite");
+    if (!(head_length >= 0.0f) || !std::isfinite(head_length)) {
+        throw InvalidParam("hairline: `head_length` must be a finite number >= 0 (got " + format_number(head_length) + ")");
+    }
+    const std::pair<const char*, float> fractions[] = {
+        {"forehead", forehead}, {"temple", temple}, {"sideburn", sideburn}, {"ear", ear}, {"nape", nape}};
+    for (auto [name, v] : fractions) {
+        if (!(v > 0.0f && v < 2.0f)) {
+            throw InvalidParam("hairline: `" + std::string(name) + "` must be in (0, 2) head lengths below the top (got " + format_number(v) + ")");
+        }
+    }
+    if (points < 16 || points > 100000) throw InvalidParam("hairline: `points` must be in [16, 100000] (got " + std::to_string(points) + ")");
+}
+
+CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const HairlineParams& params)
+{
+    params.validate();
+    if (bounds.empty()) throw InvalidGeometry("hairline: the scalp is empty");
+    const float3 up = normalize(params.up);
+    const float3 fwd = normalize(params.forward - up * dot(params.forward, up));
+    const float3 side = cross(up, fwd);
+    const float reach = length(bounds.size()) + 1.0f;
+
+    // The head's axis: a vertical line through the centre; its top is the highest scalp point on it.
+    float3 c = params.has_center ? params.center : bounds.center();
+    float3 top;
+    if (!outermost_hit(scalp, c + up * reach, c, top)) {
+        throw InvalidGeometry("hairline: no scalp above the centre " + format_number(c.x) + "," + format_number(c.y) + "," + format_number(c.z) +
+                              " (give --center inside the head)");
+    }
+    const float top_height = dot(top - c, up);
+    float length_fb = params.head_length;
+    if (length_fb == 0.0f) {
+        const float3 a = top - up * (0.4f * top_height);
+        float3 front, back;
+        if (!outermost_hit(scalp, a + fwd * reach, a, front) || !outermost_hit(scalp, a - fwd * reach, a, back)) {
+            throw InvalidGeometry("hairline: could not measure the head's length (no scalp in front of or behind the axis); give --head-length");
+        }
+        length_fb = dot(front - back, fwd);
+        if (!(length_fb > 0.0f)) throw InvalidGeometry("hairline: measured a head length <= 0; give --head-length");
+    }
+
+    CurveSet out = CurveSet::from_counts(std::vector<int64_t>{params.points});
+    auto P = out.positions_for_write();
+    for (int i = 0; i < params.points; ++i) {
+        // Start at the nape (azimuth -180) so the seam of the closed curve sits at the back.
+        const double deg = -180.0 + 360.0 * i / params.points;
+        const double rad = deg * kPi / 180.0;
+        const float3 d = fwd * float(std::cos(rad)) + side * float(std::sin(rad));
+        const float3 a = top - up * float(drop_at(params, deg) * length_fb);
+        if (!outermost_hit(scalp, a + d * reach, a, P[i])) {
+            throw InvalidGeometry("hairline: no scalp at azimuth " + format_number(deg) + " degrees, " + format_number(drop_at(params, deg) * length_fb) +
+                                  " below the top (is --up right, and the head closed there?)");
+        }
+    }
+    out.add<int64_t>(Domain::Curve, attr::id)[0] = 0;
+    return out;
+}
+
+}  // namespace groom

@@ -1,0 +1,48 @@
+// hairline: a default hairline for a head, as a closed curve on its scalp: the edge of the haired
+// part, high over the forehead, a small recession at the temples, down in front of the ears to the
+// sideburns, up and over the ears, and down behind them to the nape. Written by `groom hairline`,
+// read by every op that takes --hairline (ops/hair_region.h). Artists draw their own; this one makes
+// `groom head` (and any head with +Y up and a known face direction) groomable with no other input.
+#pragma once
+
+#include "fields/surface.h"
+#include "kernel/curve_set.h"
+#include "kernel/math/vec.h"
+
+namespace groom {
+
+struct HairlineParams {
+    float3 up{0.0f, 1.0f, 0.0f};       ///< (--up) the head's up direction
+    float3 forward{0.0f, 0.0f, 1.0f};  ///< (--forward) the direction the face looks
+    /// Where the head is: the top of the cranium is found from here by walking up (--center; default:
+    /// the middle of the scalp's bounds in the two horizontal directions, used when `has_center` is false).
+    float3 center{};
+    bool has_center = false;
+    /// The head's length front to back, scene units (--head-length); 0 = measured on the scalp at
+    /// 40% of the way from the top of the head to its centre.
+    float head_length = 0.0f;
+    /// Heights of the hairline below the top of the head, as fractions of head_length, at the
+    /// forehead (azimuth 0), the temples (55 deg), the sideburns (80 deg), over the ears (100 deg)
+    /// and at the nape (180 deg); in (0, 2) (--forehead, --temple, --sideburn, --ear, --nape).
+    float forehead = 0.26f;
+    float temple = 0.31f;
+    float sideburn = 0.62f;
+    float ear = 0.47f;
+    float nape = 0.86f;
+    int points = 180;  ///< points on the closed curve, [16, 100000] (--points)
+    void validate() const;  ///< throws InvalidParam naming the option
+};
+
+/// @brief The hairline on `scalp`, a closed curve of params.points points (the last does not repeat
+/// the first), in order of increasing azimuth around `up` (from the face to the left, seen from above).
+///
+/// For each azimuth phi the height y(phi) below the top is a smooth periodic interpolation of the
+/// five key heights (mirrored left/right); the point is where the horizontal ray from the head's axis
+/// at that height, in direction phi, last leaves the scalp (the outermost surface: ears are a bump,
+/// not a hole). The top of the head is the highest surface point above `center`.
+/// @param bounds  the scalp's bounding box (for the default centre and how far out rays start).
+/// Writes point P and curve int64 `id` = 0.
+/// Throws InvalidParam (params), InvalidGeometry (no scalp above the centre, or a ray that finds none).
+CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const HairlineParams& params);
+
+}  // namespace groom

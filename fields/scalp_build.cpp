@@ -154,7 +154,10 @@ struct VoxelChoice {
 /// when the band would need more memory than the budget, and refused outright for a mesh whose size
 /// overflows float (the voxel would be inf and every distance NaN) or that lies so far from the
 /// origin that float positions there cannot tell neighbouring voxels apart.
-VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::array<int32_t, 3>> tris, const ScalpBuildParams& params)
+/// The size and placement checks of choose_voxel (below) on any set of points, returning the
+/// diagonal. Run on the raw soup before the repair too: far from the origin, float rounding makes
+/// every small triangle degenerate, and "no face left" would hide the real cause.
+double check_extent(std::span<const float3> points, const ScalpBuildParams& params)
 {
     Bounds3 box;
     for (const float3& p : points) box.extend(p);
@@ -183,6 +186,13 @@ VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::ar
                               " voxels of " + format_number(h) + "; float positions cannot resolve a voxel beyond " +
                               format_number(kMaxVoxelsFromOrigin) + " voxels: move the mesh near the origin or use a larger `voxel`");
     }
+    return diag;
+}
+
+VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::array<int32_t, 3>> tris, const ScalpBuildParams& params)
+{
+    const double diag = check_extent(points, params);
+    const double h = params.voxel_size > 0.0f ? params.voxel_size : diag / 256.0;
 
     // Memory estimate before allocating anything: the band holds about area / h^2 * 2 * band voxels,
     // each costing the distance, its polygon index, meshToVolume's temporaries and, once queried, the
@@ -237,6 +247,7 @@ openvdb::FloatGrid::Ptr unsigned_band(std::span<const float3> points, std::span<
 ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, RepairReport* report_out, Progress* progress)
 {
     params.validate();
+    if (!soup.points.empty()) check_extent(soup.points, params);
     detail::init_openvdb();
     const double band = params.band_voxels;
     detail::RepairOptions options;

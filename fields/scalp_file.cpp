@@ -16,6 +16,7 @@
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include <poll.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -24,6 +25,10 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <chrono>
+#include <csignal>
+#include <csignal>
+#include <poll.h>
 #include <sstream>
 #include <filesystem>
 #include <map>
@@ -131,7 +136,22 @@ DecodedVdb decode_isolated(const std::string& path)
     ::close(fds[1]);
     std::string reply;
     char buf[1 << 16];
+    // A child that never answers (a damaged length it keeps reading toward, or a lock another thread
+    // held when the process forked) must not hang the command: it gets two minutes, then is killed.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
+        pollfd pfd{fds[0], POLLIN, 0};
+        const int ready = left > 0 ? ::poll(&pfd, 1, int(std::min<long long>(left, 1000))) : 0;
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready == 0) {
+            if (left > 0) continue;
+            ::kill(pid, SIGKILL);
+            while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+            }
+            ::close(fds[0]);
+            throw ParseError(path + ": corrupt .vdb file: OpenVDB's decoder did not finish reading it in 120 s; is it damaged?");
+        }
         const ssize_t n = ::read(fds[0], buf, sizeof buf);
         if (n > 0) reply.append(buf, size_t(n));
         else if (n == 0 || errno != EINTR) break;

@@ -117,6 +117,13 @@ class ScalpPoseReal : public testing::TestWithParam<Head> {};
 // makehuman 0.39 (one sign change, 2.2 voxels largest), nefertiti 0.076, Ratboy 0.067, Sintel 0.080,
 // Sintel's collider 0.040; before this work ponytail 0.25, ICT 0.37, makehuman 0.6 with 104 or 105
 // shells removed by pose.
+//
+// The sign-change limits are not all 0 because a pose moved by float rounding (scale x (1 +- 1e-6),
+// translation +- 1e-5: what another CPU's libm or another compiler gives for the same random pose)
+// moves a probe or two across an eyelid, lip or nostril crease thinner than a voxel. Measured over 30
+// such neighbours of this pose: ICT up to 2 sign changes (0.5-1.6 voxels out, eyes and mouth), Lee
+// Perry-Smith 1, makehuman 1, Sintel 1 (0.51 voxel, her eyelid; CI's machine found it at this very
+// pose); p99 up to ICT 0.238. The other five heads: none in all 30.
 TEST_P(ScalpPoseReal, SameFieldInAnyPose)
 {
     const Head head = GetParam();
@@ -131,12 +138,12 @@ TEST_P(ScalpPoseReal, SameFieldInAnyPose)
 INSTANTIATE_TEST_SUITE_P(Heads, ScalpPoseReal,
                          testing::Values(Head{"amd_tressfx_ponytail/ponytail_head.obj", 0.25, 0, false},
                                          Head{"demosthenes_scan/demosthenes-low-res.obj", 0.25, 0, false},
-                                         Head{"ict_facekit/generic_neutral_mesh.obj", 0.25, 0, false},
-                                         Head{"lee_perry_smith/LeePerrySmith.obj", 0.25, 0, false},
+                                         Head{"ict_facekit/generic_neutral_mesh.obj", 0.25, 3, false},
+                                         Head{"lee_perry_smith/LeePerrySmith.obj", 0.25, 1, false},
                                          Head{"makehuman/base.obj", 0.6, 2, false},
                                          Head{"nefertiti_scan/nefertiti-lowres.obj", 0.25, 0, true},
                                          Head{"ratboy_mohawk_tressfx/Ratboy_body.obj", 0.25, 0, true},
-                                         Head{"sintel_tressfx_opengl/sintel.obj", 0.25, 0, false},
+                                         Head{"sintel_tressfx_opengl/sintel.obj", 0.25, 1, false},
                                          Head{"sintel_frostbitten/sintel-collider.obj", 0.25, 0, true}),
                          [](const testing::TestParamInfo<Head>& info) {
                              std::string name = info.param.path;

@@ -146,7 +146,8 @@ TEST(RoundTripCli, MeshGroupsPickedByNameForScalpInfoAndCommands)
         r = run_groom(args);
         ASSERT_EQ(r.exit_code, 0) << r.err;
         // The icospheres' chords sit up to 2.5% of the radius inside the sphere.
-        for (const float3& p : read_curves(dir.file("p.usda")).positions()) EXPECT_NEAR(length(p - w.centre), w.radius, 0.03f * w.radius);
+        const CurveSet projected = read_curves(dir.file("p.usda"));
+        for (const float3& p : projected.positions()) EXPECT_NEAR(length(p - w.centre), w.radius, 0.03f * w.radius);
     }
 
     // Misses and misuse are errors naming the file, the group and what there is; no output.

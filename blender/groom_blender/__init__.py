@@ -1,4 +1,5 @@
-"""groom inside Blender: braid, partition, curl, puff and generate as operators (bpy.ops.groom.*)
+"""groom inside Blender: braid, partition, curl, puff, generate, hairline, edges, sections and gather
+as operators (bpy.ops.groom.*)
 on the selected guide curves and a scalp mesh, each result a new hair Curves object.
 
 The add-on is a thin layer over the `groom` Python module (build/python, or installed with

@@ -193,7 +193,7 @@ void setup(CommandContext& ctx)
         params.widths = hair_widths_from(args->widths, "partition");
         if (args->width_given()) {
             if (!(std::isfinite(args->width) && args->width > 0.0f)) {
-                throw InvalidParam("partition: --width must be a finite number > 0 (got " + format_number(args->width) + ")");
+                throw InvalidParam("partition: --width must be > 0 scene units (got " + format_number(args->width) + ")");
             }
             params.widths.root = params.widths.tip = args->width;
         }

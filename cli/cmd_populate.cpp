@@ -27,7 +27,7 @@ void setup(CommandContext& ctx)
         ->capture_default_str();
     app->add_option("--radius-scale", args->params.radius_scale,
                     "Point float attribute of the input that scales the radius per point (e.g. a taper)");
-    add_width_options(app, args->widths, "--width");
+    add_width_options(app, args->widths, "--width (one fiber width, automatic by default)");
     app->add_option("--seed", args->params.seed, "Random seed for the fiber offsets")->capture_default_str();
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {

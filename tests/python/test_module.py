@@ -267,5 +267,5 @@ def test_ops_that_make_hairs_take_root_and_tip_widths(sphere):
     hairline = groom.hairline(scalp=sphere)
     check(groom.edges(scalp=sphere, hairline=hairline, count=20, root_width=0.003, tip_width=0.001), 0.003, 0.001)
     check(groom.edges(scalp=sphere, hairline=hairline, count=20, width=0.002), 0.002, 0.002)
-    with pytest.raises(groom.ParamError, match="--root-width"):
+    with pytest.raises(groom.ParamError, match="root_width must be a finite number > 0"):
         groom.curl(guides, root_width=-1)

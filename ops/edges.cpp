@@ -1,4 +1,5 @@
 #include "ops/edges.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
@@ -393,6 +394,7 @@ CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams
     rule.margin = 1e-4f * params.length;
     rule.max_steps = 4;
     keep_outside(out, scalp, rule);
+    add_root_uvs(out, scalp);
     return out;
 }
 

@@ -1,4 +1,5 @@
 #include "ops/partition.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "fields/surface.h"
@@ -256,6 +257,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
         }
     });
     carry_curve_attributes(guides, dst, src_curve);
+    add_root_uvs(dst, scalp);
     return dst;
 }
 

@@ -1,4 +1,5 @@
 #include "ops/puff.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
@@ -202,6 +203,7 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     dst.add<float>(Domain::Detail, "puff_radius")[0] = params.radius;
     dst.add<float3>(Domain::Detail, "puff_sphere_center")[0] = params.sphere_center;
     dst.add<float>(Domain::Detail, "puff_sphere_radius")[0] = params.sphere_radius;
+    add_root_uvs(dst, scalp);
     return dst;
 }
 

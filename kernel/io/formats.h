@@ -20,7 +20,8 @@ struct ObjData {
     std::vector<int32_t> line_indices;      ///< 0-based, resolved (negative indices made absolute)
     PolygonSoup faces;                      ///< `f` records (shares `points` only after finish)
 };
-/// Parses v/l/f records (vt, vn, o, g, s, usemtl, mtllib and comments are ignored).
+/// Parses v/vt/l/f records (face texture coordinates into faces.uvs; vn, o, g, s, usemtl, mtllib and
+/// comments are ignored).
 ObjData parse_obj(const FileBytes& file);
 
 CurveSet read_obj_curves(const FileBytes& file);

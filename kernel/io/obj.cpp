@@ -14,6 +14,7 @@ namespace {
 int64_t resolve_index(const FileBytes& file, size_t line, std::string_view token, size_t num_points)
 {
     const std::string_view head = token.substr(0, token.find('/'));
+    if (head.empty()) fail_at_line(file.name, line, "expected a vertex index, found " + describe_found(token));
     int64_t i = 0;
     if (!parse_int(head, i)) fail_at_line(file.name, line, "expected a vertex index, found " + describe_found(token));
     if (i == 0) fail_at_line(file.name, line, "vertex index 0 is invalid (OBJ indices start at 1)");
@@ -33,6 +34,30 @@ struct Pending {
     int64_t index;
 };
 
+/// The texture-coordinate index of a face corner token ("7/3" or "7/3/1" -> 2; "7", "7//1" -> -1),
+/// resolved like vertex indices against the `vt` records so far (forward ones checked at the end).
+int64_t resolve_uv_index(const FileBytes& file, size_t line, std::string_view token, size_t num_uvs)
+{
+    const size_t slash = token.find('/');
+    if (slash == std::string_view::npos) return -1;
+    std::string_view t = token.substr(slash + 1);
+    t = t.substr(0, t.find('/'));
+    if (t.empty()) return -1;
+    int64_t i = 0;
+    if (!parse_int(t, i)) fail_at_line(file.name, line, "expected a texture coordinate index after '/', found " + describe_found(token));
+    if (i == 0) fail_at_line(file.name, line, "texture coordinate index 0 is invalid (OBJ indices start at 1)");
+    if (i < 0) {
+        const int64_t abs = static_cast<int64_t>(num_uvs) + i;
+        if (abs < 0) {
+            fail_at_line(file.name, line, "relative texture coordinate index " + std::to_string(i) + " reaches before the first 'vt' (" +
+                                              std::to_string(num_uvs) + " defined so far)");
+        }
+        return abs;
+    }
+    if (i - 1 >= std::numeric_limits<int32_t>::max()) fail_at_line(file.name, line, "texture coordinate index " + std::to_string(i) + " exceeds 2^31");
+    return i - 1;
+}
+
 }  // namespace
 
 ObjData parse_obj(const FileBytes& file)
@@ -40,10 +65,17 @@ ObjData parse_obj(const FileBytes& file)
     ObjData obj;
     TextCursor cur(file.data);
     std::vector<Pending> forward;  // indices past the vertices defined so far, checked at the end
-    std::vector<int32_t> record;
+    std::vector<int32_t> record, uv_record;
+    std::vector<Pending> forward_uv;
+    bool any_uv = false;
     auto take_indices = [&](const char* what) {
         record.clear();
+        uv_record.clear();
         for (std::string_view t = cur.token(); !t.empty() && t.front() != '#'; t = cur.token()) {
+            const int64_t uv = resolve_uv_index(file, cur.line(), t, obj.faces.uvs.size() / 2);
+            if (uv >= static_cast<int64_t>(obj.faces.uvs.size() / 2)) forward_uv.push_back({cur.line(), uv});
+            any_uv = any_uv || uv >= 0;
+            uv_record.push_back(static_cast<int32_t>(uv));
             const int64_t i = resolve_index(file, cur.line(), t, obj.points.size());
             if (i >= std::numeric_limits<int32_t>::max()) {
                 fail_at_line(file.name, cur.line(), std::string(what) + " index " + std::to_string(i + 1) + " exceeds 2^31");
@@ -76,9 +108,23 @@ ObjData parse_obj(const FileBytes& file)
             else if (key == "f") {
                 take_indices("face");
                 if (record.empty()) fail_at_line(file.name, cur.line(), "expected vertex indices after 'f', found end of line");
-                obj.faces.add_face(record);
+                if (any_uv) obj.faces.add_face(record, uv_record);
+                else obj.faces.add_face(record);
             }
-            else if (key == "vt" || key == "vn" || key == "vp" || key == "o" || key == "g" || key == "s" || key == "usemtl" ||
+            else if (key == "vt") {
+                // u [v [w]]: v defaults to 0 (the OBJ spec); w is dropped.
+                float uv[2] = {0.0f, 0.0f};
+                for (int k = 0; k < 2; ++k) {
+                    const std::string_view t = cur.token();
+                    if (k == 1 && (t.empty() || t.front() == '#')) break;
+                    if (!parse_float(t, uv[k]) || !std::isfinite(uv[k])) {
+                        fail_at_line(file.name, cur.line(), "expected a finite texture coordinate u [v], found " + describe_found(t));
+                    }
+                }
+                obj.faces.uvs.push_back(uv[0]);
+                obj.faces.uvs.push_back(uv[1]);
+            }
+            else if (key == "vn" || key == "vp" || key == "o" || key == "g" || key == "s" || key == "usemtl" ||
                      key == "mtllib" || key == "p" || key == "curv" || key == "cstype" || key == "deg" || key == "mg") {
                 // Not geometry we keep.
             }
@@ -87,6 +133,12 @@ ObjData parse_obj(const FileBytes& file)
                              "expected an OBJ record (v, l, f, vt, vn, o, g, s, usemtl, mtllib, #), found " + describe_found(key));
             }
         } while (cur.next_line());
+    }
+    for (const Pending& p : forward_uv) {
+        if (p.index >= static_cast<int64_t>(obj.faces.uvs.size() / 2)) {
+            fail_at_line(file.name, p.line, "texture coordinate index " + std::to_string(p.index + 1) + " out of range (" +
+                                                std::to_string(obj.faces.uvs.size() / 2) + " 'vt' records)");
+        }
     }
     for (const Pending& p : forward) {
         if (p.index >= static_cast<int64_t>(obj.points.size())) {

@@ -1,9 +1,12 @@
 // `groom select` and `groom transform` end to end: the kept ids, the moved points, errors that name
-// the option and what was expected, and no output file after an error.
+// the option and what was expected, and no output file after an error. And root UVs end to end:
+// `generate` on a scalp mesh with UVs and on the .vdb `groom scalp` made from it.
 #include "test_support.h"
 
 #include "kernel/io/curve_io.h"
+#include "support/sphere_mesh.h"
 
+#include <cmath>
 #include <filesystem>
 
 using namespace groom;
@@ -16,7 +19,6 @@ namespace {
 /// Six two-point curves at x = c with ids 10 c and kind c % 2, widths 0.01 (c + 1) at the root.
 std::string six_curves(const TempDir& dir)
 {
-    std::vector<std::vector<float3>> pts;
     CurveSet cs = CurveSet::from_counts(std::vector<int64_t>(6, 2));
     auto P = cs.positions_for_write();
     auto id = cs.add<int64_t>(Domain::Curve, attr::id);
@@ -120,4 +122,59 @@ TEST(TransformCli, BadValuesNameTheOption)
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--up-axis"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(RootUvCli, GenerateFromMeshOrVdbWritesTheSameRootUvsAndUsdSt)
+{
+    TempDir dir;
+    // The lat-long sphere with its UVs as an OBJ (v, vt, f v/vt).
+    const PolygonSoup soup = latlong_uv_sphere(10.0f, 24, 48);
+    std::string obj;
+    for (const float3& p : soup.points) obj += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    for (size_t i = 0; i < soup.uvs.size(); i += 2) obj += "vt " + std::to_string(soup.uvs[i]) + " " + std::to_string(soup.uvs[i + 1]) + "\n";
+    for (size_t f = 0; f < soup.num_faces(); ++f) {
+        obj += "f";
+        for (int64_t k = soup.face_offsets[f]; k < soup.face_offsets[f + 1]; ++k) {
+            obj += " " + std::to_string(soup.face_indices[size_t(k)] + 1) + "/" + std::to_string(soup.face_uv_indices[size_t(k)] + 1);
+        }
+        obj += "\n";
+    }
+    write_text(dir.file("sphere.obj"), obj);
+    // Three guides at latitude 60 degrees, longitudes 40, 70, 100.
+    CurveSet guides = CurveSet::from_counts(std::vector<int64_t>(3, 4));
+    for (int g = 0; g < 3; ++g) {
+        const float th = 3.14159265f / 3, ph = (40.0f + 30.0f * float(g)) * 3.14159265f / 180;
+        const float3 n(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
+        for (int i = 0; i < 4; ++i) guides.positions_for_write()[size_t(4 * g + i)] = n * (10.0f + float(i));
+    }
+    write_curves(guides, dir.file("guides.usda"));
+    auto r = run_groom({"scalp", dir.file("sphere.obj"), "-o", dir.file("sphere.vdb"), "--voxel", "0.25"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_groom({"generate", dir.file("guides.usda"), "--scalp", dir.file("sphere.obj"), "--scalp-voxel", "0.25", "--count", "200", "-o",
+                   dir.file("from_mesh.usda")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_groom({"generate", dir.file("guides.usda"), "--scalp", dir.file("sphere.vdb"), "--count", "200", "-o", dir.file("from_vdb.usda")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const CurveSet a = read_curves(dir.file("from_mesh.usda")), b = read_curves(dir.file("from_vdb.usda"));
+    const auto ua = a.find<float3>(Domain::Curve, "root_uv"), ub = b.find<float3>(Domain::Curve, "root_uv");
+    ASSERT_EQ(ua.size(), 200u);
+    ASSERT_EQ(ub.size(), 200u);
+    // Roots differ (a loaded .vdb samples roots on its zero crossing's mesh), but each root's UV is
+    // its latitude and longitude within the closed form's bound (tests/fields/scalp_uv_test.cpp).
+    const double pi = 3.14159265358979, dtheta = pi / 24;
+    for (const CurveSet* cs : {&a, &b}) {
+        const auto uv = cs->find<float3>(Domain::Curve, "root_uv");
+        for (size_t c = 0; c < cs->num_curves(); ++c) {
+            const float3 d = normalize(cs->positions()[size_t(cs->points_of(c).begin)]);
+            double phi = std::atan2(double(d.z), double(d.x));
+            if (phi < 0) phi += 2 * pi;
+            const double theta = std::acos(double(d.y)), band = std::floor(theta / dtheta) * dtheta;
+            const double e = std::max(std::fabs(1 / std::tan(band)), std::fabs(1 / std::tan(band + dtheta))) * dtheta;
+            EXPECT_NEAR(uv[c].x, phi / (2 * pi), (1.1 * e / 4 + 0.01) / 48) << c;
+            EXPECT_NEAR(uv[c].y, 1 - theta / pi, 0.03 / 24) << c;
+        }
+    }
+    const std::string text = groom::test::read_bytes(dir.file("from_vdb.usda"));
+    EXPECT_NE(text.find("texCoord2f[] primvars:st = [("), std::string::npos);
+    EXPECT_NE(text.find("interpolation = \"uniform\""), std::string::npos);
 }

@@ -68,14 +68,17 @@ ObjData parse_obj(const FileBytes& file)
     std::vector<int32_t> record, uv_record;
     std::vector<Pending> forward_uv;
     bool any_uv = false;
-    auto take_indices = [&](const char* what) {
+    // Texture coordinates are read for faces only: a curve's `l i/vt` keeps ignoring them.
+    auto take_indices = [&](const char* what, bool face) {
         record.clear();
         uv_record.clear();
         for (std::string_view t = cur.token(); !t.empty() && t.front() != '#'; t = cur.token()) {
-            const int64_t uv = resolve_uv_index(file, cur.line(), t, obj.faces.uvs.size() / 2);
-            if (uv >= static_cast<int64_t>(obj.faces.uvs.size() / 2)) forward_uv.push_back({cur.line(), uv});
-            any_uv = any_uv || uv >= 0;
-            uv_record.push_back(static_cast<int32_t>(uv));
+            if (face) {
+                const int64_t uv = resolve_uv_index(file, cur.line(), t, obj.faces.uvs.size() / 2);
+                if (uv >= static_cast<int64_t>(obj.faces.uvs.size() / 2)) forward_uv.push_back({cur.line(), uv});
+                any_uv = any_uv || uv >= 0;
+                uv_record.push_back(static_cast<int32_t>(uv));
+            }
             const int64_t i = resolve_index(file, cur.line(), t, obj.points.size());
             if (i >= std::numeric_limits<int32_t>::max()) {
                 fail_at_line(file.name, cur.line(), std::string(what) + " index " + std::to_string(i + 1) + " exceeds 2^31");
@@ -100,13 +103,13 @@ ObjData parse_obj(const FileBytes& file)
                 obj.points.push_back(p);
             }
             else if (key == "l") {
-                take_indices("line");
+                take_indices("line", false);
                 if (record.empty()) fail_at_line(file.name, cur.line(), "expected vertex indices after 'l', found end of line");
                 obj.line_indices.insert(obj.line_indices.end(), record.begin(), record.end());
                 obj.line_offsets.push_back(static_cast<int64_t>(obj.line_indices.size()));
             }
             else if (key == "f") {
-                take_indices("face");
+                take_indices("face", true);
                 if (record.empty()) fail_at_line(file.name, cur.line(), "expected vertex indices after 'f', found end of line");
                 if (any_uv) obj.faces.add_face(record, uv_record);
                 else obj.faces.add_face(record);

@@ -417,6 +417,8 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     // the file made from it. (Exact gradients from the closest points measured 0.057 against 0.067
     // voxels mean projection error on nefertiti, not worth two answers for one scalp.)
     im.mesh_exact = true;
+    // Texture coordinates on the user's own triangles (fields/uv_map.h), for roots' UVs.
+    im.uv = detail::UvMap::from_soup(soup);
     step.advance(1);
     return field;
 }

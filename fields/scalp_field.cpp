@@ -92,6 +92,8 @@ bool ScalpField::lipschitz() const { return impl_->seam_voxels() == 0; }
 float ScalpField::voxel_size() const { return impl_->voxel; }
 float ScalpField::band_voxels() const { return impl_->band_voxels; }
 bool ScalpField::has_source_mesh() const { return impl_->mesh_exact; }
+bool ScalpField::has_uvs() const { return impl_->uv != nullptr; }
+bool ScalpField::surface_uv(const float3& p, float& u, float& v) const { return impl_->uv && impl_->uv->lookup(p, u, v); }
 int64_t ScalpField::num_faces() const { return static_cast<int64_t>(impl_->geometry.tris.size()); }
 
 Bounds3 ScalpField::bounds() const

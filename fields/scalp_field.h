@@ -77,6 +77,12 @@ public:
     /// an open mesh's rims, overlapping shells that disagree on inside.
     bool lipschitz() const override;
 
+    /// True when the mesh had texture coordinates (OBJ `vt`, PLY u/v, s/t or texcoord), kept in
+    /// the .vdb `groom scalp` writes. surface_uv: the UV at the closest point of the user's mesh
+    /// (fields/uv_map.h; seams answered by the lowest-numbered triangle).
+    bool has_uvs() const override;
+    bool surface_uv(const float3& p, float& u, float& v) const override;
+
     float voxel_size() const;
     float band_voxels() const;
     Bounds3 bounds() const;

@@ -36,6 +36,12 @@
 
 namespace groom {
 
+namespace {
+/// Grid metadata holding the source mesh's texture coordinates (UvMap::encode); files without it
+/// (older ones, meshes without UVs, other programs' level sets) simply have no UVs.
+constexpr const char* kUvMeta = "groom_uv_mesh";
+}  // namespace
+
 void write_scalp(const ScalpField& scalp, const std::string& path)
 {
     OutputBatch batch;
@@ -52,8 +58,16 @@ void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& 
     // io::File, which writes by name through an ofstream whose errors it never checks: a full disk
     // left a truncated file and no exception, and reading the file back to find out cost as much as
     // writing it. io::Stream writes the same file format to a stream whose state we check.
+    // The source mesh's texture coordinates ride along as grid metadata (fields/uv_map.h), on a
+    // shallow copy: the field's own grid stays as it is.
+    openvdb::FloatGrid::ConstPtr grid = im.sdf;
+    if (im.uv) {
+        openvdb::FloatGrid::Ptr copy = im.sdf->copy();
+        copy->insertMeta(kUvMeta, openvdb::StringMetadata(im.uv->encode()));
+        grid = copy;
+    }
     try {
-        openvdb::io::Stream(batch.open(path)).write(openvdb::GridCPtrVec{im.sdf});
+        openvdb::io::Stream(batch.open(path)).write(openvdb::GridCPtrVec{grid});
     }
     catch (const openvdb::Exception& e) {
         throw IoError(path + ": cannot write the level set (" + e.what() + ")");
@@ -252,6 +266,12 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     openvdb::FloatGrid::Ptr sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
     if (!sdf) throw ParseError(path + ": grid 'scalp' holds " + base->valueType() + " values; expected a float level set");
     check_scalp_grid(*sdf, path);
+    std::shared_ptr<const detail::UvMap> uv;
+    if (const openvdb::Metadata::ConstPtr meta = (*sdf)[kUvMeta]) {
+        const auto* text = dynamic_cast<const openvdb::StringMetadata*>(meta.get());
+        if (!text) throw ParseError(path + ": grid metadata '" + kUvMeta + "' holds " + meta->typeName() + "; expected a string (is the file corrupt?)");
+        uv = detail::UvMap::decode(text->value(), path);
+    }
 
     ProgressStep step(progress, "load scalp", 2);
     ScalpField field;
@@ -298,6 +318,7 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     const TriMesh mesh = detail::repair_soup(soup, options, report, nullptr);
     im.geometry.compute(mesh);
     im.mesh_exact = false;
+    im.uv = std::move(uv);
     im.query = std::make_unique<detail::MeshQuery>(im.geometry);
     step.advance(1);
     return field;

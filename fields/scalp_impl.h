@@ -6,6 +6,7 @@
 #include "fields/far_field.h"
 #include "fields/mesh_repair.h"
 #include "fields/scalp_field.h"
+#include "fields/uv_map.h"
 #include "fields/winding_number.h"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -133,6 +134,9 @@ struct ScalpField::Impl {
     detail::MeshGeometry geometry;
     std::unique_ptr<detail::MeshQuery> query;
     bool mesh_exact = true;              ///< false when the mesh was extracted from a loaded .vdb
+    /// The source mesh's texture coordinates (null when it had none), from the mesh or the .vdb's
+    /// grid metadata "groom_uv_mesh" (fields/scalp_file.cpp).
+    std::shared_ptr<const detail::UvMap> uv;
 
     /// Trilinear distance and gradient at p when all 8 surrounding voxels are in the band.
     bool sample(const float3& p, float& d, float3& grad) const

@@ -41,6 +41,13 @@ public:
     /// accurate to `tolerance` (scene units; 0 = a default relative to the segment). Returns false
     /// when the segment never crosses into the inside. The default marches by the distance bound.
     virtual bool first_intersection(const float3& a, const float3& b, float3& hit, float tolerance = 0.0f) const;
+
+    /// True when the surface has texture coordinates (a scalp mesh with UVs): then surface_uv answers.
+    virtual bool has_uvs() const { return false; }
+    /// The texture coordinate at the surface point closest to p, interpolated barycentrically on
+    /// the mesh triangle holding it (face-varying, so seams keep both sides' values). Returns false
+    /// where the surface has none; u, v untouched then.
+    virtual bool surface_uv(const float3& /*p*/, float& /*u*/, float& /*v*/) const { return false; }
 };
 
 /// The exact sphere |p - center| = radius, outside = away from the center.

@@ -15,6 +15,13 @@ struct PolygonSoup {
     std::vector<float3> points;           ///< #vertices
     std::vector<int64_t> face_offsets{0}; ///< #faces+1; face f uses indices [face_offsets[f], face_offsets[f+1])
     std::vector<int32_t> face_indices;    ///< vertex indices, each < points.size()
+    /// Texture coordinates, face-varying (a vertex on a UV seam has one per side): `uvs` holds
+    /// (u, v) pairs, `face_uv_indices` parallels face_indices with each corner's pair, -1 for a
+    /// corner without one. Both empty when the mesh has no texture coordinates.
+    std::vector<float> uvs;               ///< #texture coordinates * 2
+    std::vector<int32_t> face_uv_indices; ///< empty, or face_indices.size() entries in [-1, uvs.size()/2)
+
+    bool has_uvs() const { return !face_uv_indices.empty(); }
 
     size_t num_faces() const { return face_offsets.size() - 1; }
     std::span<const int32_t> face(size_t f) const
@@ -25,6 +32,14 @@ struct PolygonSoup {
     {
         face_indices.insert(face_indices.end(), idx.begin(), idx.end());
         face_offsets.push_back(static_cast<int64_t>(face_indices.size()));
+        if (has_uvs()) face_uv_indices.resize(face_indices.size(), -1);
+    }
+    /// A face with each corner's texture coordinate (`uv_idx` as long as `idx`, -1 = none).
+    void add_face(std::span<const int32_t> idx, std::span<const int32_t> uv_idx)
+    {
+        face_uv_indices.resize(face_indices.size(), -1);
+        face_uv_indices.insert(face_uv_indices.end(), uv_idx.begin(), uv_idx.end());
+        add_face(idx);
     }
 };
 

@@ -3,6 +3,7 @@
 // (braid_plan), one guide's strand centrelines (braid_strands), their fibers (braid_fibers), the tie
 // (braid_tie); the scalp rule is fields/keep_outside.h.
 #include "ops/braid.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
@@ -350,6 +351,7 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
     }
     report.curves = int64_t(out.num_curves());
     report.points = int64_t(out.num_points());
+    if (scalp) add_root_uvs(out, *scalp);
     return {std::move(out), report};
 }
 

@@ -1,4 +1,5 @@
 #include "ops/cornrow_guides.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
@@ -194,6 +195,7 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
         tid[size_t(i)] = i;
         tguide[size_t(i)] = i;
     }
+    add_root_uvs(out.guides, scalp);
     return out;
 }
 

@@ -1,4 +1,5 @@
 #include "ops/edges.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
@@ -392,6 +393,7 @@ CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams
     rule.max_steps = 4;
     keep_outside(out, scalp, rule);
     apply_hair_widths(out, params.widths);
+    add_root_uvs(out, scalp);
     return out;
 }
 

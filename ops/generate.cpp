@@ -1,4 +1,5 @@
 #include "ops/generate.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "fields/point_index.h"
@@ -328,6 +329,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     const float margin = 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
     keep_outside(dst, scalp, KeepOutside{params.clearance, margin, 8});
     apply_hair_widths(dst, params.widths);
+    add_root_uvs(dst, scalp);
     return dst;
 }
 

@@ -1,4 +1,5 @@
 #include "ops/partition.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "fields/surface.h"
@@ -256,6 +257,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     carry_curve_attributes(guides, dst, src_curve);
     // New hairs: always the taper asked for, never a guide's (braid-sized) curve width.
     apply_hair_widths(dst, params.widths.resolved());
+    add_root_uvs(dst, scalp);
     return dst;
 }
 

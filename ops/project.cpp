@@ -1,4 +1,5 @@
 #include "ops/project.h"
+#include "ops/root_uv.h"
 
 #include "kernel/error.h"
 #include "kernel/parallel.h"
@@ -51,6 +52,7 @@ CurveSet project(const CurveSet& src, const Surface& scalp, const ProjectParams&
             stats->max_move = std::max(stats->max_move, double(moved[c]));
         }
     }
+    add_root_uvs(dst, scalp);
     return dst;
 }
 

@@ -1,4 +1,5 @@
 #include "ops/puff.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
@@ -203,6 +204,7 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     dst.add<float3>(Domain::Detail, "puff_sphere_center")[0] = params.sphere_center;
     dst.add<float>(Domain::Detail, "puff_sphere_radius")[0] = params.sphere_radius;
     apply_hair_widths(dst, params.curl.widths, params.curl.units_per_cm);
+    add_root_uvs(dst, scalp);
     return dst;
 }
 

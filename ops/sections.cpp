@@ -1,4 +1,5 @@
 #include "ops/sections.h"
+#include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
 #include "fields/point_index.h"
@@ -391,6 +392,7 @@ SectionsResult sections(const Surface& scalp, const CurveSet& hairline, const Ro
         }
         step.advance(e - b);
     });
+    add_root_uvs(result.guides, scalp);
     return result;
 }
 

@@ -468,6 +468,10 @@ PYBIND11_MODULE(groom, m)
     def_op(m, "project", "project", true, true, "Projects curves onto the scalp (scalp= required)");
     def_op(m, "resample", "resample", true, false, "Resamples curves by count or segment length");
     def_op(m, "populate", "populate", true, false, "More hairs around each curve");
+    def_op(m, "select", "select", true, false,
+           "Keeps curves by ids='0-9,20', guide='3', where='width>0.01' (a list or commas for several), prim='/Root/Hair'; invert=True keeps the rest");
+    def_op(m, "transform", "transform", true, false,
+           "Moves curves: translate='x,y,z', rotate='x,y,z' (degrees, X then Y then Z), scale='s' or 'x,y,z', up_axis='z', units='m', from_units='cm'");
     def_op(m, "puff", "puff", false, true, "An afro puff on the scalp (scalp= required)");
     def_op(m, "cornrow_guides", "cornrow-guides", false, true, "Cornrow guide rows over the scalp (scalp= required)");
     def_op(m, "hairline", "hairline", false, true, "A default hairline around the head (scalp= required)");

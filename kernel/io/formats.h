@@ -24,7 +24,8 @@ struct ObjData {
     std::vector<int32_t> face_names;
     std::vector<std::vector<std::string>> names;  ///< distinct name sets, [0] = none given
 };
-/// Parses v/l/f/o/g records (vt, vn, s, usemtl, mtllib and comments are ignored).
+/// Parses v/vt/l/f/o/g records (face texture coordinates into faces.uvs; vn, s, usemtl, mtllib and
+/// comments are ignored).
 ObjData parse_obj(const FileBytes& file);
 
 /// Curves: an `l` record with 3 or more points is one curve; two-point records (what Blender's OBJ

@@ -18,6 +18,7 @@ namespace {
 int64_t resolve_index(const FileBytes& file, size_t line, std::string_view token, size_t num_points)
 {
     const std::string_view head = token.substr(0, token.find('/'));
+    if (head.empty()) fail_at_line(file.name, line, "expected a vertex index, found " + describe_found(token));
     int64_t i = 0;
     if (!parse_int(head, i)) fail_at_line(file.name, line, "expected a vertex index, found " + describe_found(token));
     if (i == 0) fail_at_line(file.name, line, "vertex index 0 is invalid (OBJ indices start at 1)");
@@ -37,6 +38,30 @@ struct Pending {
     int64_t index;
 };
 
+/// The texture-coordinate index of a face corner token ("7/3" or "7/3/1" -> 2; "7", "7//1" -> -1),
+/// resolved like vertex indices against the `vt` records so far (forward ones checked at the end).
+int64_t resolve_uv_index(const FileBytes& file, size_t line, std::string_view token, size_t num_uvs)
+{
+    const size_t slash = token.find('/');
+    if (slash == std::string_view::npos) return -1;
+    std::string_view t = token.substr(slash + 1);
+    t = t.substr(0, t.find('/'));
+    if (t.empty()) return -1;
+    int64_t i = 0;
+    if (!parse_int(t, i)) fail_at_line(file.name, line, "expected a texture coordinate index after '/', found " + describe_found(token));
+    if (i == 0) fail_at_line(file.name, line, "texture coordinate index 0 is invalid (OBJ indices start at 1)");
+    if (i < 0) {
+        const int64_t abs = static_cast<int64_t>(num_uvs) + i;
+        if (abs < 0) {
+            fail_at_line(file.name, line, "relative texture coordinate index " + std::to_string(i) + " reaches before the first 'vt' (" +
+                                              std::to_string(num_uvs) + " defined so far)");
+        }
+        return abs;
+    }
+    if (i - 1 >= std::numeric_limits<int32_t>::max()) fail_at_line(file.name, line, "texture coordinate index " + std::to_string(i) + " exceeds 2^31");
+    return i - 1;
+}
+
 }  // namespace
 
 ObjData parse_obj(const FileBytes& file)
@@ -44,7 +69,9 @@ ObjData parse_obj(const FileBytes& file)
     ObjData obj;
     TextCursor cur(file.data);
     std::vector<Pending> forward;  // indices past the vertices defined so far, checked at the end
-    std::vector<int32_t> record;
+    std::vector<int32_t> record, uv_record;
+    std::vector<Pending> forward_uv;
+    bool any_uv = false;
     // Names in force: the object's (`o`) then the groups' (`g`, several allowed); a new `o` clears the groups.
     std::string object;
     std::vector<std::string> groups;
@@ -65,9 +92,17 @@ ObjData parse_obj(const FileBytes& file)
         for (std::string_view t = cur.token(); !t.empty() && t.front() != '#'; t = cur.token()) v.emplace_back(t);
         return v;
     };
-    auto take_indices = [&](const char* what) {
+    // Texture coordinates are read for faces only: a curve's `l i/vt` keeps ignoring them.
+    auto take_indices = [&](const char* what, bool face) {
         record.clear();
+        uv_record.clear();
         for (std::string_view t = cur.token(); !t.empty() && t.front() != '#'; t = cur.token()) {
+            if (face) {
+                const int64_t uv = resolve_uv_index(file, cur.line(), t, obj.faces.uvs.size() / 2);
+                if (uv >= static_cast<int64_t>(obj.faces.uvs.size() / 2)) forward_uv.push_back({cur.line(), uv});
+                any_uv = any_uv || uv >= 0;
+                uv_record.push_back(static_cast<int32_t>(uv));
+            }
             const int64_t i = resolve_index(file, cur.line(), t, obj.points.size());
             if (i >= std::numeric_limits<int32_t>::max()) {
                 fail_at_line(file.name, cur.line(), std::string(what) + " index " + std::to_string(i + 1) + " exceeds 2^31");
@@ -92,16 +127,17 @@ ObjData parse_obj(const FileBytes& file)
                 obj.points.push_back(p);
             }
             else if (key == "l") {
-                take_indices("line");
+                take_indices("line", false);
                 if (record.empty()) fail_at_line(file.name, cur.line(), "expected vertex indices after 'l', found end of line");
                 obj.line_indices.insert(obj.line_indices.end(), record.begin(), record.end());
                 obj.line_offsets.push_back(static_cast<int64_t>(obj.line_indices.size()));
                 obj.line_lines.push_back(cur.line());
             }
             else if (key == "f") {
-                take_indices("face");
+                take_indices("face", true);
                 if (record.empty()) fail_at_line(file.name, cur.line(), "expected vertex indices after 'f', found end of line");
-                obj.faces.add_face(record);
+                if (any_uv) obj.faces.add_face(record, uv_record);
+                else obj.faces.add_face(record);
                 obj.face_names.push_back(current_names);
             }
             else if (key == "o") {
@@ -115,7 +151,20 @@ ObjData parse_obj(const FileBytes& file)
                 groups = rest_names();
                 update_names();
             }
-            else if (key == "vt" || key == "vn" || key == "vp" || key == "s" || key == "usemtl" ||
+            else if (key == "vt") {
+                // u [v [w]]: v defaults to 0 (the OBJ spec); w is dropped.
+                float uv[2] = {0.0f, 0.0f};
+                for (int k = 0; k < 2; ++k) {
+                    const std::string_view t = cur.token();
+                    if (k == 1 && (t.empty() || t.front() == '#')) break;
+                    if (!parse_float(t, uv[k]) || !std::isfinite(uv[k])) {
+                        fail_at_line(file.name, cur.line(), "expected a finite texture coordinate u [v], found " + describe_found(t));
+                    }
+                }
+                obj.faces.uvs.push_back(uv[0]);
+                obj.faces.uvs.push_back(uv[1]);
+            }
+            else if (key == "vn" || key == "vp" || key == "s" || key == "usemtl" ||
                      key == "mtllib" || key == "p" || key == "curv" || key == "cstype" || key == "deg" || key == "mg") {
                 // Not geometry we keep.
             }
@@ -124,6 +173,12 @@ ObjData parse_obj(const FileBytes& file)
                              "expected an OBJ record (v, l, f, vt, vn, o, g, s, usemtl, mtllib, #), found " + describe_found(key));
             }
         } while (cur.next_line());
+    }
+    for (const Pending& p : forward_uv) {
+        if (p.index >= static_cast<int64_t>(obj.faces.uvs.size() / 2)) {
+            fail_at_line(file.name, p.line, "texture coordinate index " + std::to_string(p.index + 1) + " out of range (" +
+                                                std::to_string(obj.faces.uvs.size() / 2) + " 'vt' records)");
+        }
     }
     for (const Pending& p : forward) {
         if (p.index >= static_cast<int64_t>(obj.points.size())) {
@@ -226,6 +281,8 @@ PolygonSoup read_obj_mesh(const FileBytes& file, const std::string& group)
     PolygonSoup soup;
     std::vector<int32_t> new_index(obj.points.size(), -1);
     std::vector<int32_t> face;
+    // The texture coordinates stay as they are (the chosen faces' corners index into them).
+    if (obj.faces.has_uvs()) soup.uvs = obj.faces.uvs;
     for (size_t f = 0; f < obj.faces.num_faces(); ++f) {
         if (!wanted[size_t(obj.face_names[f])]) continue;
         face.clear();
@@ -236,7 +293,13 @@ PolygonSoup read_obj_mesh(const FileBytes& file, const std::string& group)
             }
             face.push_back(new_index[size_t(v)]);
         }
-        soup.add_face(face);
+        if (obj.faces.has_uvs()) {
+            const int64_t b = obj.faces.face_offsets[f];
+            soup.add_face(face, std::span<const int32_t>(obj.faces.face_uv_indices.data() + b, face.size()));
+        }
+        else {
+            soup.add_face(face);
+        }
     }
     if (soup.num_faces() == 0) {
         std::vector<std::string> all;

@@ -8,6 +8,52 @@
 
 namespace groom::io {
 
+namespace {
+
+/// Texture coordinates: per vertex as u/v, s/t or texture_u/texture_v (the names exporters use:
+/// Blender, MeshLab, Open3D), or per face corner as a float list `texcoord` (u0 v0 u1 v1 ...,
+/// MeshLab's face-varying form), which wins when both are present.
+void read_uvs(const FileBytes& file, const ply::PlyElement& v, const ply::PlyElement& f, PolygonSoup& soup)
+{
+    const ply::PlyProperty* corner = f.find("texcoord");
+    if (corner && corner->is_list) {
+        for (size_t r = 0; r < f.count; ++r) {
+            const int64_t n = corner->list_offsets[r + 1] - corner->list_offsets[r];
+            const int64_t corners = soup.face_offsets[r + 1] - soup.face_offsets[r];
+            if (n != 2 * corners) {
+                throw ParseError(file.name + ": face " + std::to_string(r) + " has " + std::to_string(n) + " texcoord values; expected 2 per corner (" +
+                                 std::to_string(2 * corners) + ")");
+            }
+        }
+        soup.uvs.reserve(corner->values.size());
+        for (double x : corner->values) {
+            if (!std::isfinite(x)) throw ParseError(file.name + ": a face's texcoord is not finite (NaN or inf)");
+            soup.uvs.push_back(float(x));
+        }
+        soup.face_uv_indices.resize(soup.face_indices.size());
+        for (size_t i = 0; i < soup.face_uv_indices.size(); ++i) soup.face_uv_indices[i] = int32_t(i);
+        return;
+    }
+    const char* names[][2] = {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
+    for (const auto& [un, vn] : names) {
+        const ply::PlyProperty* pu = v.find(un);
+        const ply::PlyProperty* pv = v.find(vn);
+        if (!pu || !pv || pu->is_list || pv->is_list) continue;
+        soup.uvs.resize(2 * v.count);
+        for (size_t i = 0; i < v.count; ++i) {
+            if (!std::isfinite(pu->values[i]) || !std::isfinite(pv->values[i])) {
+                throw ParseError(file.name + ": vertex " + std::to_string(i) + " has a non-finite texture coordinate (" + un + ", " + vn + ")");
+            }
+            soup.uvs[2 * i] = float(pu->values[i]);
+            soup.uvs[2 * i + 1] = float(pv->values[i]);
+        }
+        soup.face_uv_indices = soup.face_indices;  // per vertex: each corner's pair is its vertex's
+        return;
+    }
+}
+
+}  // namespace
+
 PolygonSoup read_ply_mesh(const FileBytes& file)
 {
     using namespace ply;
@@ -34,6 +80,7 @@ PolygonSoup read_ply_mesh(const FileBytes& file)
         }
         soup.add_face(face);
     }
+    read_uvs(file, *v, *f, soup);
     return soup;
 }
 

@@ -123,7 +123,17 @@ std::string write_usda(const CurveSet& curves)
 
     std::string out;
     out.reserve(curves.num_points() * 40 + curves.num_curves() * 6 + 1024);
-    out += "#usda 1.0\n(\n    defaultPrim = \"groom\"\n    doc = \"Written by groom " GROOM_VERSION "\"\n    upAxis = \"Y\"\n)\n\n";
+    // Layer metadata from the detail strings `groom transform` sets: the up axis (Y unless the curves
+    // say Z) and the unit, which USD gives as metres per unit.
+    const std::string up = curves.detail_string("up_axis") == "Z" ? "Z" : "Y";
+    out += "#usda 1.0\n(\n    defaultPrim = \"groom\"\n    doc = \"Written by groom " GROOM_VERSION "\"\n";
+    const std::string units = curves.detail_string("units");
+    if (const double mpu = units == "mm" ? 0.001 : units == "cm" ? 0.01 : units == "m" ? 1.0 : units == "in" ? 0.0254 : 0.0; mpu > 0) {
+        out += "    metersPerUnit = ";
+        append_number(out, float(mpu));
+        out += "\n";
+    }
+    out += "    upAxis = \"" + up + "\"\n)\n\n";
     out += "def BasisCurves \"groom\"\n{\n";
     out += "    uniform token type = \"linear\"\n";
     out += "    uniform token wrap = \"nonperiodic\"\n";
@@ -177,6 +187,22 @@ std::string write_usda(const CurveSet& curves)
             out += interp;
             out += "\"\n    )\n";
         }
+    }
+    // Each root's scalp UV (ops/root_uv.h) also as USD's texture coordinates, where renderers and
+    // engine importers look for them; root_uv itself stays above so groom reads it back.
+    if (const auto uv = curves.find<float3>(Domain::Curve, "root_uv"); !uv.empty() && !curves.attributes(Domain::Point).find("st") &&
+                                                                       !curves.attributes(Domain::Curve).find("st") &&
+                                                                       !curves.attributes(Domain::Detail).find("st")) {
+        out += "    texCoord2f[] primvars:st = [";
+        for (size_t c = 0; c < uv.size(); ++c) {
+            if (c > 0) out += c % 8 == 0 ? ",\n        " : ", ";
+            out += '(';
+            append_number(out, uv[c].x);
+            out += ", ";
+            append_number(out, uv[c].y);
+            out += ')';
+        }
+        out += "] (\n        interpolation = \"uniform\"\n    )\n";
     }
     out += "}\n";
     return out;

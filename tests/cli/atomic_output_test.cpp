@@ -56,6 +56,8 @@ std::vector<Case> cases()
     return {
         {"convert", "hair", {"convert", "{in}", "-o", "{out}"}, true},
         {"resample", "usda", {"resample", "{in}", "-o", "{out}", "--count", "20"}, true},
+        {"select", "usda", {"select", "{in}", "-o", "{out}", "--ids", "0-1"}, true},
+        {"transform", "usda", {"transform", "{in}", "-o", "{out}", "--scale", "2"}, true},
         {"curl", "usda", {"curl", "{in}", "-o", "{out}", "--seed", "3"}, true},
         {"head", "obj", {"head", "-o", "{out}", "--resolution", "48"}, false},
         {"render", "png", {"render", "{in}", "-o", "{out}", "--size", "256x256"}, true},

@@ -80,6 +80,8 @@ std::vector<Case> cases()
         {"gather", "usda", {"gather", "{puff}", "--scalp", "{sphere}", "-o", "{out}", "--hairs", "300", "--seed", "6"}},
         {"convert", "ply", {"convert", "{guides}", "-o", "{out}"}},
         {"resample", "usda", {"resample", "{guides}", "-o", "{out}", "--segment-length", "0.37"}},
+        {"select", "usda", {"select", "{guides}", "-o", "{out}", "--ids", "0-2,5", "--invert"}},
+        {"transform", "usda", {"transform", "{guides}", "-o", "{out}", "--rotate", "10,20,30", "--scale", "1.5,1,0.5", "--translate", "1,2,3"}},
         {"braid", "usda", {"braid", "{guides}", "-o", "{out}", "--strands", "3", "--frequency", "3", "--width", "0.5", "--fibers", "4"}},
         {"populate", "usda", {"populate", "{guides}", "-o", "{out}", "--count", "8", "--radius", "0.3", "--seed", "2"}},
         {"curl", "usda", {"curl", "{guides}", "-o", "{out}", "--type", "3b", "--uniformity", "0.4", "--seed", "7"}},

@@ -57,6 +57,56 @@ TEST(MeshIoObj, ReadsNgonsNegativeIndicesAndSlashForms)
     EXPECT_EQ(s.face(1)[2], 2);
 }
 
+TEST(MeshIoObj, ReadsFaceVaryingTextureCoordinates)
+{
+    TempDir dir;
+    // Two triangles sharing the edge 2-3, with different UVs on either side of it (a seam), one
+    // relative vt index, and a face without UVs (its corners -1).
+    write_text(dir.file("uv.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0.25\nvt 0.75\n"
+                                   "f 1/1 2/2 3/3\nf 2/4/1 4/-1/1 3/4/1\nf 1 2 4\n");
+    const PolygonSoup s = read_mesh(dir.file("uv.obj"));
+    ASSERT_TRUE(s.has_uvs());
+    ASSERT_EQ(s.uvs.size(), 10u);
+    EXPECT_EQ(s.uvs[8], 0.75f);  // `vt u` alone: v = 0
+    EXPECT_EQ(s.uvs[9], 0.0f);
+    EXPECT_EQ(s.face_uv_indices, (std::vector<int32_t>{0, 1, 2, 3, 4, 3, -1, -1, -1}));
+    // No vt at all: no UVs.
+    write_text(dir.file("plain.obj"), cube_obj());
+    EXPECT_FALSE(read_mesh(dir.file("plain.obj")).has_uvs());
+}
+
+TEST(MeshIoObj, RejectsBadTextureCoordinates)
+{
+    TempDir dir;
+    expect_mesh_error(dir.file("vtrange.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n",
+                      "vtrange.obj:5: texture coordinate index 2 out of range (1 'vt' records)");
+    expect_mesh_error(dir.file("vtnan.obj"), "v 0 0 0\nvt 0 nan\n", "vtnan.obj:2: expected a finite texture coordinate");
+    expect_mesh_error(dir.file("vtzero.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/0 2/1 3/1\n", "vtzero.obj:5: texture coordinate index 0 is invalid");
+    expect_mesh_error(dir.file("vtrel.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/-2 2/1 3/1\n", "reaches before the first 'vt'");
+}
+
+TEST(MeshIoPly, ReadsVertexAndCornerTextureCoordinates)
+{
+    TempDir dir;
+    write_text(dir.file("st.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                   "property float s\nproperty float t\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                   "0 0 0 0.1 0.2\n1 0 0 0.3 0.4\n0 1 0 0.5 0.6\n3 0 1 2\n");
+    const PolygonSoup s = read_mesh(dir.file("st.ply"));
+    ASSERT_TRUE(s.has_uvs());
+    EXPECT_EQ(s.face_uv_indices, (std::vector<int32_t>{0, 1, 2}));
+    EXPECT_FLOAT_EQ(s.uvs[3], 0.4f);
+    write_text(dir.file("tc.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                   "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\nend_header\n"
+                                   "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 6 0 0 1 0 0 1\n");
+    const PolygonSoup c = read_mesh(dir.file("tc.ply"));
+    ASSERT_TRUE(c.has_uvs());
+    EXPECT_EQ(c.uvs, (std::vector<float>{0, 0, 1, 0, 0, 1}));
+    expect_mesh_error(dir.file("tc4.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                           "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\nend_header\n"
+                                           "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 4 0 0 1 0\n",
+                      "face 0 has 4 texcoord values; expected 2 per corner (6)");
+}
+
 TEST(MeshStats, ClosedCubeHasNoBoundaryAndOneShell)
 {
     TempDir dir;

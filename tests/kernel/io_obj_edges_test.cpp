@@ -102,6 +102,30 @@ TEST(CurveIoObjEdges, BranchesLoopsAndSelfEdgesAreRefusedNamingTheVertex)
     expect_parse_error(dir.file("self.obj"), v + "l 1 2\nl 3 3\n", "self.obj:6: 'l' record joins vertex 3 to itself");
 }
 
+TEST(MeshIoGroups, APickedGroupKeepsItsFacesTextureCoordinates)
+{
+    // Root UVs on a head picked out of a file with eyes and teeth: the chosen faces' corners keep
+    // their own (u, v), a seam vertex (5 here, two `vt`) included.
+    TempDir dir;
+    const std::string path = dir.file("uv.obj");
+    write_text(path,
+               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nv 6 5 5\n"
+               "vt 0.1 0.2\nvt 0.3 0.4\nvt 0.5 0.6\nvt 0.7 0.8\nvt 0.9 0.95\n"
+               "o Eyes\nf 5/1 6/2 4/3\n"
+               "o Head\nf 1/1 2/2 3/3 4/4\nf 3/4 5/5 4/3\n");
+    const PolygonSoup head = read_mesh(path, "Head");
+    ASSERT_EQ(head.num_faces(), 2u);
+    ASSERT_TRUE(head.has_uvs());
+    ASSERT_EQ(head.face_uv_indices.size(), head.face_indices.size());
+    const float want[7][2] = {{0.1f, 0.2f}, {0.3f, 0.4f}, {0.5f, 0.6f}, {0.7f, 0.8f}, {0.7f, 0.8f}, {0.9f, 0.95f}, {0.5f, 0.6f}};
+    for (size_t k = 0; k < 7; ++k) {
+        const int32_t t = head.face_uv_indices[k];
+        ASSERT_GE(t, 0);
+        EXPECT_EQ(head.uvs[size_t(2 * t)], want[k][0]) << "corner " << k;
+        EXPECT_EQ(head.uvs[size_t(2 * t + 1)], want[k][1]) << "corner " << k;
+    }
+}
+
 TEST(MeshIoGroups, PicksTheFacesOfOneObjectOrGroupWithTheirVerticesOnly)
 {
     TempDir dir;

@@ -103,6 +103,8 @@ def test_bad_arrays_name_what_is_wrong():
     ("braid", dict(pattern="fishtail", fibers=6, seed=4), ["--pattern", "fishtail", "--fibers", "6", "--seed", "4"]),
     ("curl", dict(type="4a", seed=2), ["--type", "4a", "--seed", "2"]),
     ("resample", dict(count=12), ["--count", "12"]),
+    ("select", dict(ids="0-1", invert=True), ["--ids", "0-1", "--invert"]),
+    ("transform", dict(rotate=(0, 0, 90), scale=2, up_axis="z"), ["--rotate", "0,0,90", "--scale", "2", "--up-axis", "z"]),
 ])
 def test_an_op_gives_the_clis_bytes(tmp_path, op, kwargs, options):
     guides = tmp_path / "guides.usda"
@@ -111,6 +113,18 @@ def test_an_op_gives_the_clis_bytes(tmp_path, op, kwargs, options):
     subprocess.run([GROOM, op, str(guides), "-o", str(cli_out), "--quiet"] + options, check=True)
     groom.write(getattr(groom, op)(groom.read(str(guides)), **kwargs), str(py_out))
     assert py_out.read_bytes() == cli_out.read_bytes()
+
+
+def test_select_and_transform_cut_and_place_curves():
+    cs = straight_guides(n=4)
+    # A list of comparisons: all must hold (curve ids are the indices here).
+    kept = groom.select(cs, where=["id>=1", "id<=2"])
+    assert kept.num_curves == 2
+    np.testing.assert_array_equal(kept.points[:, 0], np.repeat([1.5, 3.0], 8).astype(np.float32))
+    moved = groom.transform(cs, translate=(1, 2, 3), scale=0.5)
+    np.testing.assert_allclose(moved.points, cs.points * 0.5 + np.array([1, 2, 3], np.float32), atol=1e-6)
+    with pytest.raises(groom.ParamError, match="where"):
+        groom.select(cs, where="id=>1")
 
 
 def test_scalp_ops_take_a_scalp_object_or_a_path(tmp_path, sphere):

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <map>
 #include <string>
 #include <utility>
@@ -224,5 +225,51 @@ PolygonSoup messy_uv_sphere(const PolygonSoup& clean, int rings, int segments, c
     }
     return m;
 }
+
+PolygonSoup latlong_uv_sphere(float R, int rings, int segments)
+{
+    PolygonSoup soup;
+    soup.points.emplace_back(0.0f, R, 0.0f);
+    for (int r = 1; r < rings; ++r) {
+        const double t = std::numbers::pi * r / rings;
+        for (int s = 0; s < segments; ++s) {
+            const double p = 2 * std::numbers::pi * s / segments;
+            soup.points.emplace_back(float(R * std::sin(t) * std::cos(p)), float(R * std::cos(t)), float(R * std::sin(t) * std::sin(p)));
+        }
+    }
+    soup.points.emplace_back(0.0f, -R, 0.0f);
+    const int32_t south = int32_t(soup.points.size() - 1);
+    auto vid = [&](int r, int s) { return r == 0 ? 0 : r == rings ? south : int32_t(1 + (r - 1) * segments + s % segments); };
+    auto uv = [&](double u, double v) {
+        soup.uvs.push_back(float(u));
+        soup.uvs.push_back(float(v));
+        return int32_t(soup.uvs.size() / 2 - 1);
+    };
+    for (int r = 0; r < rings; ++r) {
+        for (int s = 0; s < segments; ++s) {
+            // Counter-clockwise seen from outside: (r, s) -> (r+1, s) -> (r+1, s+1) -> (r, s+1).
+            const double u0 = double(s) / segments, u1 = double(s + 1) / segments;
+            const double v0 = 1.0 - double(r) / rings, v1 = 1.0 - double(r + 1) / rings;
+            const double um = 0.5 * (u0 + u1);
+            if (r == 0) {
+                const int32_t f[3] = {vid(0, s), vid(1, s + 1), vid(1, s)};
+                const int32_t t[3] = {uv(um, v0), uv(u1, v1), uv(u0, v1)};
+                soup.add_face(f, t);
+            }
+            else if (r == rings - 1) {
+                const int32_t f[3] = {vid(r, s), vid(r, s + 1), vid(rings, s)};
+                const int32_t t[3] = {uv(u0, v0), uv(u1, v0), uv(um, v1)};
+                soup.add_face(f, t);
+            }
+            else {
+                const int32_t f[4] = {vid(r, s), vid(r, s + 1), vid(r + 1, s + 1), vid(r + 1, s)};
+                const int32_t t[4] = {uv(u0, v0), uv(u1, v0), uv(u1, v1), uv(u0, v1)};
+                soup.add_face(f, t);
+            }
+        }
+    }
+    return soup;
+}
+
 
 }  // namespace groom

@@ -33,4 +33,10 @@ float sphere_chordal_error(const PolygonSoup& soup, const float3& center, float 
 /// fin reaching inside, and a small closed sphere inside (an eye in a head).
 PolygonSoup messy_uv_sphere(const PolygonSoup& clean, int rings, int segments, const float3& center, float R);
 
+/// Lat-long sphere of radius R about the origin, Y up: ring r at theta = pi r / rings from +Y,
+/// slice s at phi = 2 pi s / segments in the XZ plane (x = sin theta cos phi, z = sin theta sin phi).
+/// Face-varying UVs u = s / segments, v = 1 - r / rings: the seam at phi = 0 has u = 0 on the faces
+/// after it and u = 1 on the faces before it; a pole's corner takes the middle of its slice.
+PolygonSoup latlong_uv_sphere(float R, int rings, int segments);
+
 }  // namespace groom

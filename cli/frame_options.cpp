@@ -14,6 +14,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -297,10 +300,22 @@ int run_frames(const std::vector<std::string>& args, const std::function<int(std
     // One field for every frame of a rigid head; a frame pattern of meshes rebuilds only on change.
     const ScalpCacheScope cache;
     if (!plan.frames) return run_frame(plan, std::nullopt, nullptr, run_one);
+    const auto start = std::chrono::steady_clock::now();
     for (long f = plan.frames->first; f <= plan.frames->second; ++f) {
         const auto it = poses.find(f);
         const int rc = run_frame(plan, f, it == poses.end() ? nullptr : &it->second, run_one);
         if (rc != 0) return rc;
+    }
+    const bool quiet = std::any_of(plan.words.begin(), plan.words.end(), [](const std::string& w) { return w == "-q" || w == "--quiet"; });
+    if (!quiet) {
+        const long n = plan.frames->second - plan.frames->first + 1;
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        char line[200];
+        std::snprintf(line, sizeof line, "frames %ld-%ld: %ld frames in %.2f s (%.1f per minute)", plan.frames->first, plan.frames->second, n,
+                      secs, secs > 0 ? 60.0 * double(n) / secs : 0.0);
+        const long builds = ScalpCacheScope::builds();
+        std::cerr << line << (builds == 0 ? "" : builds == 1 ? ", scalp field built once" : ", scalp field built " + std::to_string(builds) + " times")
+                  << "\n";
     }
     return 0;
 }

@@ -73,9 +73,13 @@ CONF
 }
 
 stop() {
+  local pid
   for d in slurmd slurmctld munged; do
     if [[ -s "$state/$d.pid" ]]; then
-      kill "$(cat "$state/$d.pid")" 2>/dev/null || true
+      pid=$(cat "$state/$d.pid")
+      kill "$pid" 2>/dev/null || true
+      # Wait (up to 10 s) so that a start right after finds it gone.
+      for _ in $(seq 1 20); do kill -0 "$pid" 2>/dev/null || break; sleep 0.5; done
       rm -f "$state/$d.pid"
     fi
   done

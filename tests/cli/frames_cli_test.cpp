@@ -263,3 +263,24 @@ TEST(Frames, HairFollowsABendingGuideWithoutJumps)
     std::printf("guides' largest frame-to-frame jump %.4f, generate's %.4f (%.2fx), curl's %.4f (%.2fx)\n", guide_jump, hair_jump,
                 hair_jump / guide_jump, curl_jump, curl_jump / guide_jump);
 }
+
+// A frame pattern of head meshes: the field is rebuilt only on the frames whose mesh differs from the
+// frame before's (a head that holds still costs nothing), and a rigid head named once is built once.
+TEST(Frames, ADeformingHeadIsRebuiltOnlyWhenItsMeshChanges)
+{
+    test::TempDir dir;
+    write_mesh(icosphere(float3(0, 0, 0), kRadius, 3), frame_file(dir, "head", 0, "obj"));
+    std::filesystem::copy_file(frame_file(dir, "head", 0, "obj"), frame_file(dir, "head", 1, "obj"));
+    write_mesh(icosphere(float3(0, 0, 0), kRadius * 1.05f, 3), frame_file(dir, "head", 2, "obj"));
+    std::filesystem::copy_file(frame_file(dir, "head", 2, "obj"), frame_file(dir, "head", 3, "obj"));
+    write_curves(sphere_guides(0.0f), dir.file("g.usda"));
+    const auto r = run_groom({"generate", dir.file("g.usda"), "--scalp", dir.file("head.####.obj"), "--count", "20", "--frames", "0:3", "-o",
+                              dir.file("h.####.usda")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("4 frames"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("scalp field built 2 times"), std::string::npos) << r.err;
+    const auto once = run_groom({"generate", dir.file("g.usda"), "--scalp", frame_file(dir, "head", 0, "obj"), "--count", "20", "--frames",
+                                 "0:3", "-o", dir.file("k.####.usda")});
+    ASSERT_EQ(once.exit_code, 0) << once.err;
+    EXPECT_NE(once.err.find("scalp field built once"), std::string::npos) << once.err;
+}

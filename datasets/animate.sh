@@ -46,7 +46,7 @@ step "hairline" groom hairline --scalp "$out/head.vdb" -o "$out/hairline.usda" -
 echo "2. Alisha's guides, rest pose (once)"
 knot=2.2
 step "cornrow guides" groom cornrow-guides --scalp "$out/head.vdb" -o "$out/guides.usda" --count 12 \
-    --tails-out "$out/tails_rest.usda" --tail-length 14 --threads "$threads"
+    --tails-out "$out/tails_rest.usda" --tail-length 14 --hairline "$out/hairline.usda" --threads "$threads"
 step "tails to obj" groom convert "$out/tails_rest.usda" -o "$out/tails_rest.obj"
 
 echo "3. the shot: $frames frames of a head turn and the ends' sway"

@@ -190,6 +190,14 @@ int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform
                 throw InvalidParam(s.option + " " + path + ": --shard and --scalp-xform move and split curve outputs (" +
                                    curve_formats() + "); this one is not a curve file");
             }
+            // The command checks its -o only as the memory path it is given: the real file is checked
+            // here, as the command would (an input, or read-only, needs --force).
+            CommonOptions checks;
+            checks.force = std::find(words.begin(), words.end(), "--force") != words.end();
+            check_outputs({{s.option, path}}, {}, checks);
+            for (size_t i = 1; i < words.size(); ++i) {
+                if (i != s.index) check_outputs({{s.option, path}}, {words[i]}, checks);
+            }
             const std::string memory = "mem:" + path;
             outs.push_back({s.option, path, memory});
             words[s.index] = words[s.index].substr(0, s.offset) + memory;

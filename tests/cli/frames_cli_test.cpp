@@ -144,6 +144,12 @@ TEST(Frames, PatternsAreFilledPerFrameAndAnOutputWithoutOneIsRefused)
     EXPECT_NE(missing.exit_code, 0);
     EXPECT_NE(missing.err.find("guides.0006.usda"), std::string::npos) << missing.err;
 
+    // With --scalp-xform or --shard the command writes through memory; the real file is still
+    // refused when it is an input.
+    const auto onto_input = run_groom({"curl", frame_file(dir, "guides", 3, "usda"), "--shard", "0/2", "-o", frame_file(dir, "guides", 3, "usda")});
+    EXPECT_EQ(onto_input.exit_code, 2);
+    EXPECT_NE(onto_input.err.find("also an input"), std::string::npos) << onto_input.err;
+
     for (const char* spec : {"5:3", "a:b", "-1:2"}) {
         const auto r2 = run_groom({"generate", dir.file("guides.####.usda"), "--scalp", scalp, "--count", "5", "--frames", spec, "-o",
                                    dir.file("x.####.usda")});

@@ -122,7 +122,7 @@ float largest_jump(const CurveSet& a, const CurveSet& b)
 
 }  // namespace
 
-TEST(Frames, PatternsAreFilledPerFrameAndAnOutputWithoutOneIsRefused)
+TEST(FramesCli, PatternsAreFilledPerFrameAndAnOutputWithoutOneIsRefused)
 {
     test::TempDir dir;
     const std::string scalp = sphere_mesh(dir);
@@ -158,7 +158,7 @@ TEST(Frames, PatternsAreFilledPerFrameAndAnOutputWithoutOneIsRefused)
     }
 }
 
-TEST(Frames, ScalpXformFileErrorsNameTheLine)
+TEST(FramesCli, ScalpXformFileErrorsNameTheLine)
 {
     test::TempDir dir;
     const std::string scalp = sphere_mesh(dir);
@@ -182,7 +182,7 @@ TEST(Frames, ScalpXformFileErrorsNameTheLine)
 // roots, ids and random draws are the same on every frame; what differs is float rounding of the
 // guides' round trip (a few ulps of the scene's size, about 20: 2e-6) carried through the blend and
 // of the final transform. Tolerance: 2e-5 scene units, 1e-6 of the scene's size.
-TEST(Frames, RigidlyMovingHeadAndGuidesGiveFrameZerosGroomMoved)
+TEST(FramesCli, RigidlyMovingHeadAndGuidesGiveFrameZerosGroomMoved)
 {
     test::TempDir dir;
     const std::string scalp = sphere_mesh(dir);
@@ -229,7 +229,7 @@ TEST(Frames, RigidlyMovingHeadAndGuidesGiveFrameZerosGroomMoved)
 // that frame. Here the frame turns by at most 0.2 rad a frame (the tip's bend grows by 0.04 x 45/9)
 // and curl type 3a's radius is well under the 0.24 the guides' points jump, so: curl's largest jump
 // <= 1.5 x the guides' (measured 1.01 x; generate's 1.00 x).
-TEST(Frames, HairFollowsABendingGuideWithoutJumps)
+TEST(FramesCli, HairFollowsABendingGuideWithoutJumps)
 {
     test::TempDir dir;
     const std::string scalp = sphere_mesh(dir);
@@ -272,7 +272,7 @@ TEST(Frames, HairFollowsABendingGuideWithoutJumps)
 
 // A frame pattern of head meshes: the field is rebuilt only on the frames whose mesh differs from the
 // frame before's (a head that holds still costs nothing), and a rigid head named once is built once.
-TEST(Frames, ADeformingHeadIsRebuiltOnlyWhenItsMeshChanges)
+TEST(FramesCli, ADeformingHeadIsRebuiltOnlyWhenItsMeshChanges)
 {
     test::TempDir dir;
     write_mesh(icosphere(float3(0, 0, 0), kRadius, 3), frame_file(dir, "head", 0, "obj"));

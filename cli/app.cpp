@@ -1,5 +1,6 @@
 // The one place where errors become messages and exit codes.
 #include "cli/command.h"
+#include "cli/frame_options.h"
 
 #include "kernel/error.h"
 #include "kernel/memory_budget.h"
@@ -154,7 +155,10 @@ Registrar::Registrar(CommandInfo info)
     registry().push_back(info);
 }
 
-int run(int argc, char** argv)
+namespace {
+
+/// One pose: the command line as it was before --frames (cli/frame_options.h).
+int run_one(int argc, char** argv)
 {
     std::vector<CommandInfo> commands = registry();
     std::sort(commands.begin(), commands.end(), [](const CommandInfo& a, const CommandInfo& b) { return a.order < b.order; });
@@ -182,6 +186,7 @@ int run(int argc, char** argv)
         contexts[i].app = sub;
         contexts[i].common = &common;
         commands[i].setup(contexts[i]);
+        add_frame_options(sub, commands[i].name);
         for (CLI::Option* opt : sub->get_options()) decimal_integers_only(opt);
         names.emplace_back(commands[i].name);
     }
@@ -281,6 +286,34 @@ int run(int argc, char** argv)
     }
     catch (const std::bad_alloc&) {  // outside a command's run (parsing)
         error(out_of_memory_message());
+        return 1;
+    }
+    catch (const std::exception& e) {
+        error(std::string("unexpected failure: ") + e.what());
+        return 1;
+    }
+}
+
+}  // namespace
+
+int run(int argc, char** argv)
+{
+    const std::vector<std::string> args(argv + 1, argv + argc);
+    if (!wants_frames(args)) return run_one(argc, argv);
+    try {
+        return run_frames(args, [](std::vector<std::string>& words) {
+            std::vector<char*> frame_argv;
+            for (std::string& w : words) frame_argv.push_back(w.data());
+            frame_argv.push_back(nullptr);
+            return run_one(static_cast<int>(words.size()), frame_argv.data());
+        });
+    }
+    catch (const InvalidParam& e) {
+        error(e.what());
+        return 2;
+    }
+    catch (const Error& e) {
+        error(e.what());
         return 1;
     }
     catch (const std::exception& e) {

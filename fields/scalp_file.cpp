@@ -2,6 +2,7 @@
 // load_scalp, which takes either that or any mesh the kernel reads. The only file in fields/ that
 // touches files: the .vdb needs OpenVDB, which kernel/ does not link, so this format lives here.
 #include "fields/scalp_impl.h"
+#include "fields/scalp_cache.h"
 
 #include "kernel/error.h"
 #include "kernel/io/atomic_file.h"
@@ -362,18 +363,19 @@ std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const Scal
         if (it == m.fields.end()) throw IoError(path + ": no scalp stored under this name");
         return it->second;
     }
-    if (io::extension_of(path) == "vdb") {
-        if (!params.group.empty()) {
-            throw InvalidParam("--scalp-group " + params.group + ": " + path + " is a level set, not a mesh; choose the group when making it (groom scalp --group)");
-        }
-        return std::make_shared<ScalpField>(read_scalp_vdb(path, progress));
+    if (io::extension_of(path) == "vdb" && !params.group.empty()) {
+        throw InvalidParam("--scalp-group " + params.group + ": " + path + " is a level set, not a mesh; choose the group when making it (groom scalp --group)");
     }
-    if (!is_mesh_path(path)) {
+    if (io::extension_of(path) != "vdb" && !is_mesh_path(path)) {
         throw InvalidParam("`scalp` " + path + ": expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
     }
-    ScalpBuildParams named = params;
-    named.source = path;
-    return std::make_shared<ScalpField>(build_scalp(read_mesh(path, params.group), named, nullptr, progress));
+    // Frames of an animation load one unchanged file many times (fields/scalp_cache.h).
+    return cached_scalp(path, params, [&]() -> std::shared_ptr<const ScalpField> {
+        if (io::extension_of(path) == "vdb") return std::make_shared<ScalpField>(read_scalp_vdb(path, progress));
+        ScalpBuildParams named = params;
+        named.source = path;
+        return std::make_shared<ScalpField>(build_scalp(read_mesh(path, params.group), named, nullptr, progress));
+    });
 }
 
 }  // namespace groom

@@ -12,9 +12,15 @@ packages=(
 )
 # Extra tools only some scripts use (sanitizers need clang's runtime; the add-on test needs Blender,
 # its screenshot Xvfb). Pass --with-tools to add them.
-if [[ "${1:-}" == "--with-tools" ]]; then
-  packages+=(clang libclang-rt-14-dev python3-openvdb blender xvfb xauth xdotool)
-fi
+# --with-slurm adds a one-machine Slurm (slurmctld + slurmd + munge) for scripts/slurm-frames.sh and
+# its test; scripts/slurm-local.sh configures and starts it.
+for arg in "$@"; do
+  case "$arg" in
+    --with-tools) packages+=(clang libclang-rt-14-dev python3-openvdb blender xvfb xauth xdotool) ;;
+    --with-slurm) packages+=(slurm-wlm munge) ;;
+    *) echo "install-deps: unknown option $arg (expected --with-tools, --with-slurm)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

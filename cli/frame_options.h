@@ -1,0 +1,35 @@
+// Animated grooms on the command line: --frames A:B, --shard i/n and --scalp-xform FILE, shared by
+// every command. They are taken out of the argument list before CLI11 sees it and the command runs
+// once per frame, with every `#` run in its arguments replaced by the frame number (`####` -> 0007),
+// so each command stays a one-pose program and a farm can run any frame (or shard) on its own.
+//
+// Rest frame: with --scalp-xform, the scalp is used as it is (its rest pose, one field for all
+// frames, never rebuilt), curve inputs named by a frame pattern are per-frame world space and are
+// brought into the rest frame by the frame's inverse transform, inputs without a pattern are taken
+// to be in the rest frame already, the command runs there, and its curve outputs are moved to the
+// frame's pose. So a hair keeps its root on the scalp, its id and its randomness on every frame.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace groom::cli {
+
+/// Adds --frames (every command) and --shard, --scalp-xform (commands that make hair) to a
+/// subcommand's help. They are parsed by run_frames(), never by CLI11: the values bound here stay unused.
+void add_frame_options(CLI::App* sub, const std::string& command);
+
+/// Whether `args` (argv without the program name: command first) asks for frames, shards or a scalp
+/// transform.
+bool wants_frames(const std::vector<std::string>& args);
+
+/// Runs `run_one` (the normal one-pose command line, program name included) once per frame, with
+/// the frame options taken out, frame patterns filled and inputs/outputs moved as described above.
+/// Stops at the first frame that fails and returns its exit code. Bad frame options are an
+/// InvalidParam thrown before any frame runs.
+int run_frames(const std::vector<std::string>& args, const std::function<int(std::vector<std::string>&)>& run_one);
+
+}  // namespace groom::cli

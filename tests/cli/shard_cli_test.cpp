@@ -1,0 +1,120 @@
+// --shard I/N and `groom merge` (cli/frame_options.h): the shards of a run, merged in order, are the
+// whole run's output byte for byte, for every command that makes hair, with 1 and 2 threads.
+#include "test_support.h"
+
+#include "kernel/io/curve_io.h"
+#include "kernel/io/mesh_io.h"
+#include "support/sphere_mesh.h"
+
+#include <cmath>
+#include <filesystem>
+
+using namespace groom;
+using groom::test::run_groom;
+
+namespace {
+
+/// 40 gently bent guides of 12 points over the y = 0 plane, growing up +Y.
+std::string write_guides(const test::TempDir& dir)
+{
+    const int n = 40, k = 12;
+    CurveSet cs = CurveSet::from_counts(std::vector<int64_t>(n, k));
+    auto P = cs.positions_for_write();
+    for (int c = 0; c < n; ++c) {
+        const float x = float(c % 8) * 0.66f - 2.5f, z = float(c / 8) * 0.66f - 2.5f;
+        for (int i = 0; i < k; ++i) {
+            const float t = float(i) / float(k - 1);
+            P[c * k + i] = {x + 0.4f * t * t * std::sin(float(c)), 6.0f * t, z + 0.4f * t * t * std::cos(float(c))};
+        }
+    }
+    const std::string path = dir.file("guides.usda");
+    write_curves(cs, path);
+    return path;
+}
+
+/// 80 straight guides on the upper cap of the sphere of radius 10 at the origin.
+std::string write_sphere_guides(const test::TempDir& dir)
+{
+    const int n = 80, k = 10;
+    CurveSet cs = CurveSet::from_counts(std::vector<int64_t>(n, k));
+    auto P = cs.positions_for_write();
+    for (int c = 0; c < n; ++c) {
+        const float polar = 0.9f * std::sqrt((float(c) + 0.5f) / float(n)), az = 2.39996323f * float(c);
+        const float3 d{std::sin(polar) * std::cos(az), std::cos(polar), std::sin(polar) * std::sin(az)};
+        for (int i = 0; i < k; ++i) P[c * k + i] = d * (10.0f + 4.0f * float(i) / float(k - 1));
+    }
+    const std::string path = dir.file("sphere_guides.usda");
+    write_curves(cs, path);
+    return path;
+}
+
+}  // namespace
+
+TEST(Shard, MergedShardsAreTheWholeRunByteForByte)
+{
+    test::TempDir dir;
+    const std::string guides = write_guides(dir), sguides = write_sphere_guides(dir), head = dir.file("head.vdb"),
+                      sphere = dir.file("sphere.vdb"), puff = dir.file("puff.usda");
+    // The head as a level set once: edges and cornrow-guides would convert the mesh on each of their 6 runs.
+    ASSERT_EQ(run_groom({"head", "-o", dir.file("head.obj"), "--resolution", "24"}).exit_code, 0);
+    ASSERT_EQ(run_groom({"scalp", dir.file("head.obj"), "-o", head}).exit_code, 0);
+    write_mesh(icosphere(float3(0, 0, 0), 10.0f, 4), dir.file("sphere.obj"));
+    ASSERT_EQ(run_groom({"scalp", dir.file("sphere.obj"), "-o", sphere}).exit_code, 0);
+    const std::vector<std::vector<std::string>> cases{
+        {"generate", sguides, "--scalp", sphere, "--count", "300", "--seed", "3"},
+        {"puff", "--scalp", sphere, "--center", "0,12,0", "--radius", "3", "--sphere-center", "0,15,0", "--sphere-radius", "6", "--rows",
+         "5", "--cols", "4", "--hairs", "200", "--seed", "5"},
+        {"gather", puff, "--scalp", sphere, "--hairs", "200", "--seed", "6"},
+        {"braid", guides, "--strands", "3", "--frequency", "3", "--width", "0.5", "--fibers", "4"},
+        {"populate", guides, "--count", "8", "--radius", "0.3", "--seed", "2"},
+        {"curl", guides, "--type", "3b", "--uniformity", "0.4", "--seed", "7"},
+        {"edges", "--scalp", head, "--direction", "random", "--from", "-180", "--to", "180", "--seed", "4"},
+        {"cornrow-guides", "--scalp", head, "--count", "6"},
+    };
+    for (const auto& c : cases) {
+        const std::string name = c[0];
+        const std::string whole = name == "puff" ? puff : dir.file(name + "_whole.usda");
+        std::vector<std::string> args = c;
+        args.insert(args.end(), {"-o", whole, "--threads", "1", "--quiet"});
+        const auto r = run_groom(args);
+        ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+        const std::string expect = test::read_bytes(whole);
+        ASSERT_GT(read_curves(whole).num_curves(), 3u) << name;
+        // Halves for every command; thirds too for two of them (each run reads the scalp again: the
+        // test's time goes there).
+        const std::vector<int> splits = name == "generate" || name == "curl" ? std::vector<int>{2, 3} : std::vector<int>{2};
+        for (int n : splits) {
+            std::vector<std::string> merge{"merge"};
+            for (int i = 0; i < n; ++i) {
+                const std::string part = dir.file(name + "_" + std::to_string(i) + "of" + std::to_string(n) + ".usda");
+                std::vector<std::string> sargs = c;
+                // Two threads for the halves, one for the thirds: the split is thread-count free too.
+                sargs.insert(sargs.end(), {"-o", part, "--shard", std::to_string(i) + "/" + std::to_string(n), "--threads",
+                                           n == 2 ? "2" : "1", "--quiet"});
+                const auto s = run_groom(sargs);
+                ASSERT_EQ(s.exit_code, 0) << name << " shard " << i << "/" << n << ": " << s.err;
+                merge.push_back(part);
+            }
+            const std::string merged = dir.file(name + "_merged" + std::to_string(n) + ".usda");
+            merge.insert(merge.end(), {"-o", merged, "--quiet"});
+            const auto m = run_groom(merge);
+            ASSERT_EQ(m.exit_code, 0) << m.err;
+            EXPECT_TRUE(test::read_bytes(merged) == expect) << name << ": " << n << " merged shards differ from the whole run";
+        }
+    }
+}
+
+TEST(Shard, BadShardsAreRefused)
+{
+    test::TempDir dir;
+    const std::string guides = write_guides(dir);
+    for (const char* spec : {"2/2", "1", "-1/3", "0/0", "a/b"}) {
+        const auto r = run_groom({"curl", guides, "-o", dir.file("x.usda"), "--shard", spec});
+        EXPECT_EQ(r.exit_code, 2) << spec;
+        EXPECT_NE(r.err.find("--shard"), std::string::npos) << r.err;
+    }
+    const auto r = run_groom({"convert", guides, "-o", dir.file("x.ply"), "--shard", "0/2"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("make hair"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x.usda")));
+}

@@ -26,11 +26,12 @@ void setup(CommandContext& ctx)
     app->add_option("--radius-scale", args->params.radius_scale,
                     "Point float attribute of the input that scales the radius per point (e.g. a taper)");
     app->add_option("--seed", args->params.seed, "Random seed for the fiber offsets")->capture_default_str();
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input}, common);
         args->params.validate();
-        const CurveSet in = read_curves(args->input);
+        const CurveSet in = read_curve_input(args->input, common);
         const auto progress = make_progress(common);
         const CurveSet out = populate(in, args->params, progress.get());
         write_curves(out, args->output);

@@ -132,6 +132,9 @@ Evaluation evaluate_basis_curves(const std::vector<int32_t>& counts, const std::
 /// NurbsCurves: each curve's order, its n + order knots, its optional range and point weights; every
 /// knot span in the range sampled k times (once for order 2, whose spans are straight), then the
 /// range's end. Varying values sit on span ends. Basis functions: The NURBS Book, algorithm A2.2.
+/// Orders above this cost order^2 per sample for nothing: DCCs write degree 1 to 7.
+constexpr int kMaxOrder = 32;
+
 Evaluation evaluate_nurbs(const std::vector<int32_t>& counts, const PropertyView& props, int k, const std::string& file, const std::string& where)
 {
     auto prop = [&](const char* name) -> const Property* {
@@ -153,7 +156,7 @@ Evaluation evaluate_nurbs(const std::vector<int32_t>& counts, const PropertyView
     }
     int64_t total_points = 0, total_knots = 0;
     for (size_t c = 0; c < counts.size(); ++c) {
-        if (order[c] < 2 || counts[c] < order[c]) {
+        if (order[c] < 2 || order[c] > kMaxOrder || counts[c] < order[c]) {
             fail_at_line(file, order_p->line, "curve " + std::to_string(c) + " has order " + std::to_string(order[c]) + " and " + std::to_string(counts[c]) +
                                                   " points; expected order >= 2 and at least order points");
         }

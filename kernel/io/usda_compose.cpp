@@ -20,6 +20,10 @@ namespace {
 
 /// Arcs followed deeper than this are a cycle or a file built to hurt.
 constexpr int kMaxArcDepth = 64;
+/// Composed prims nest at most this deep (the parser's limit for written ones).
+constexpr int kMaxPrimDepth = 1000;
+/// Spec entries listed over the whole composition: a real file lists a few per prim.
+constexpr size_t kMaxWork = 50'000'000;
 
 class Composer {
 public:
@@ -112,8 +116,18 @@ private:
                 if (!found) say(where(spec(s).line) + ": variantSet \"" + vs.name + "\" of <" + path + "> has no variant \"" + *chosen + "\" (the one selected); none read");
             }
         }
-        std::vector<int32_t> out = local;
-        for (const std::vector<int32_t>* list : {&inherits, &variants, &references, &specializes}) out.insert(out.end(), list->begin(), list->end());
+        // A spec reached twice (two arcs to one prim, diamonds) speaks once, where it is strongest: without
+        // this, arcs nested n deep with two arcs each would list 2^n specs.
+        std::vector<int32_t> out;
+        std::unordered_set<int32_t> seen;
+        for (const std::vector<int32_t>* list : std::initializer_list<const std::vector<int32_t>*>{&local, &inherits, &variants, &references, &specializes})
+            for (int32_t s : *list)
+                if (seen.insert(s).second) out.push_back(s);
+        work_ += out.size();
+        if (work_ > kMaxWork) {
+            throw LimitExceeded(file_ + ": composing the file's arcs lists more than " + std::to_string(kMaxWork) +
+                                " prim specs; refusing (a file built to multiply its prims?)");
+        }
         return out;
     }
 
@@ -131,6 +145,11 @@ private:
                 return;
             }
             target = "/" + layer_.default_prim;
+        }
+        if (path == target || (path.size() > target.size() && path.compare(0, target.size(), target) == 0 && path[target.size()] == '/')) {
+            // An arc to the prim itself or an ancestor would nest the prim in itself without end.
+            say(where(arc.line) + ": <" + path + "> refers to <" + target + ">, which contains it (a cycle); arc left out");
+            return;
         }
         const std::vector<int32_t>* list = compose_path(target, depth + 1, arc.line, path);
         if (list) out.insert(out.end(), list->begin(), list->end());
@@ -188,6 +207,10 @@ private:
 
     void visit(const std::string& path, const std::vector<int32_t>& specs, const Matrix4& parent_world, bool selected_above, int depth)
     {
+        if (depth > kMaxPrimDepth) {
+            throw LimitExceeded(where(spec(specs.front()).line) + ": <" + path.substr(0, 200) + "...>: prims nested deeper than " + std::to_string(kMaxPrimDepth) +
+                                " levels once composed; refusing to read further");
+        }
         // Specifier, active and type: the strongest opinion. A prim only `over`ed is not defined, a
         // `class` is abstract: neither is geometry, nor are their descendants (UsdPrimDefaultPredicate).
         std::optional<bool> active;
@@ -239,6 +262,7 @@ private:
     std::vector<std::string>& skipped_;
     std::unordered_map<std::string, std::vector<int32_t>> cache_;
     std::unordered_set<std::string> in_progress_;
+    size_t work_ = 0;
     std::vector<ComposedCurves> out_;
 };
 

@@ -184,8 +184,7 @@ private:
             const Token t = lex_.next();
             a.line = t.line;
             if (t.kind == Tok::Asset) {
-                a.asset = std::string(t.text);
-                if (a.asset.empty()) a.asset = "(empty)";
+                a.asset = std::string(t.text);  // `@@</X>`: an empty asset path is this file
                 if (lex_.peek().kind == Tok::Path) a.path = std::string(lex_.next().text);
             }
             else if (t.kind == Tok::Path) {

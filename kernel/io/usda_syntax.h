@@ -28,7 +28,7 @@ struct Property {
     size_t line = 0;
 };
 
-/// An arc to another prim: `</Path>` (in this file) or `@asset@</Path>` (another file: not read).
+/// An arc to another prim: `</Path>` or `@@</Path>` (in this file) or `@asset@</Path>` (another file: not read).
 struct Arc {
     std::string asset;  ///< empty for an in-file arc
     std::string path;   ///< empty: the target layer's default prim

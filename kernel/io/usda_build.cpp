@@ -407,7 +407,13 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
         const int64_t num_points = total;
         if (interp.empty()) {
             // Not authored: infer from the count (USD's default is constant for primvars, vertex for widths).
-            interp = n == num_points * es ? "vertex" : n == num_curves * es ? "uniform" : n == es ? "constant" : is_widths ? "vertex" : "constant";
+            // A count that fits only `varying` (segment ends) is read so too: some writers leave it out.
+            interp = n == num_points * es    ? "vertex"
+                     : n == ev.num_varying * es ? "varying"
+                     : n == num_curves * es     ? "uniform"
+                     : n == es                  ? "constant"
+                     : is_widths                ? "vertex"
+                                                : "constant";
         }
         if (interp == "faceVarying") interp = "varying";
         int64_t expected = 0;

@@ -80,3 +80,22 @@ TEST(UsdaNurbs, BadKnotsAndOrdersAreNamedWithTheirLine)
     EXPECT_NE(usda_error(head + " int[] order = [4]\n double[] knots = [0,0,0,1,0,1,1,1]\n}\n").find("bad.usda:6: knots of curve 0 decrease"), std::string::npos);
     EXPECT_NE(usda_error(head + " double[] knots = [0,0,0,0,1,1,1,1]\n}\n").find("has no 'int[] order'"), std::string::npos);
 }
+
+TEST(UsdaNurbs, WidthsPerSpanEndAreVaryingEvenUnauthored)
+{
+    // One span (clamped cubic): 2 widths, no interpolation written: only `varying` (span ends) fits.
+    CurveReadOptions opt;
+    opt.cubic_samples_per_segment = 4;
+    const auto r = read_usda_text(R"(#usda 1.0
+def NurbsCurves "n" {
+    point3f[] points = [(0,0,0), (1,1,0), (2,0,0), (3,1,0)]
+    int[] curveVertexCounts = [4]
+    int[] order = [4]
+    double[] knots = [0, 0, 0, 0, 1, 1, 1, 1]
+    float[] widths = [0.1, 0.3]
+}
+)", opt);
+    auto w = r.curves.find<float>(Domain::Point, attr::width);
+    ASSERT_EQ(w.size(), 5u);
+    for (int j = 0; j <= 4; ++j) EXPECT_NEAR(w[j], 0.1f + 0.05f * j, 1e-6f);
+}

@@ -460,8 +460,12 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
                 }
                 per_point = std::move(v);
             }
-            if (width_scale != 1.0)
-                for (float& w : std::get<std::vector<float>>(per_point)) w = static_cast<float>(w * width_scale);
+            // Catmull-Rom and NURBS with negative weights overshoot: a width below zero is that
+            // overshoot, not data, and a diameter cannot be negative.
+            for (float& w : std::get<std::vector<float>>(per_point)) {
+                if (width_scale != 1.0) w = static_cast<float>(w * width_scale);
+                if (w < 0) w = 0;
+            }
             if (out.attributes(Domain::Point).find(name)) out.attributes(Domain::Point).remove(name);
             out.attributes(Domain::Point).add(name, Domain::Point, AttrType::Float, 0).data = std::move(per_point);
             continue;
@@ -531,7 +535,9 @@ CurveSet read_usda(const FileBytes& file, const CurveReadOptions& options)
             CurveSet cs = build_prim(file.name, cp, options, warn);
             if (cs.num_curves() > 0) parts.push_back(std::move(cs));
         }
-        catch (const ParseError& e) {
+        catch (const Error& e) {
+            // ParseError (the prim's data), InvalidGeometry (a transform that overflows the points,
+            // non-finite widths): this prim only.
             skipped.push_back(e.what());
             if (warn) warn(std::string(e.what()) + "; prim <" + cp.path + "> skipped");
         }

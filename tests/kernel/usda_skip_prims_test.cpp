@@ -61,3 +61,13 @@ TEST(UsdaSkipPrims, PrimOptionPicksPrimsAndTheirDescendants)
     opt.prims = {"/right/bad"};
     EXPECT_NE(usda_error(text, opt).find("no curves prim could be read (1 skipped)"), std::string::npos);
 }
+
+TEST(UsdaSkipPrims, APrimWhoseTransformOverflowsIsSkippedNotTheFile)
+{
+    const auto r = read_usda_text("#usda 1.0\ndef Xform \"huge\" {\n float3 xformOp:scale = (1e30, 1e30, 1e30)\n uniform token[] xformOpOrder = [\"xformOp:scale\"]\n"
+                                  "def BasisCurves \"c\" {\n uniform token type = \"linear\"\n int[] curveVertexCounts = [2]\n point3f[] points = [(0,0,0), (1e10,1,0)]\n}\n}\n" +
+                                  good("ok", 1));
+    EXPECT_EQ(r.curves.num_curves(), 1u);
+    EXPECT_TRUE(r.warned("non-finite position"));
+    EXPECT_TRUE(r.warned("prim </huge/c> skipped"));
+}

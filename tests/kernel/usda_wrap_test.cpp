@@ -93,3 +93,27 @@ TEST(UsdaWrap, PinnedVaryingCountIsSegmentsPlusOne)
                   .find("widths has 5 values but interpolation 'varying' needs 4"),
               std::string::npos);
 }
+
+TEST(UsdaWrap, CatmullRomWidthOvershootIsClampedAtZero)
+{
+    // Widths 0,0,1,0,0,0 through Catmull-Rom: on the third segment (control values 1,0,0,0) the basis
+    // gives -t(1-t)^2/2 < 0, which is overshoot, not a width: read as 0. Elsewhere the closed form.
+    CurveReadOptions opt;
+    opt.cubic_samples_per_segment = 4;
+    const auto r = read_usda_text(R"(#usda 1.0
+def BasisCurves "c" {
+    uniform token type = "cubic"
+    uniform token basis = "catmullRom"
+    int[] curveVertexCounts = [6]
+    point3f[] points = [(0,0,0), (1,0,0), (2,0,0), (3,0,0), (4,0,0), (5,0,0)]
+    float[] widths = [0, 0, 1, 0, 0, 0] (interpolation = "vertex")
+}
+)", opt);
+    auto w = r.curves.find<float>(Domain::Point, attr::width);
+    ASSERT_EQ(w.size(), 13u);
+    for (int j = 0; j <= 4; ++j) {
+        const double t = j / 4.0;
+        EXPECT_NEAR(w[j], 0.5 * (t + 4 * t * t - 3 * t * t * t), 1e-6) << j;  // control values 0,0,1,0
+    }
+    for (int j = 9; j < 12; ++j) EXPECT_EQ(w[j], 0.0f) << j;
+}

@@ -484,6 +484,9 @@ private:
             }
             else {
                 skip_value();
+                // A primvar of a type no column holds (texCoord2f, matrices): kept without a value so
+                // that the builder can name it in a warning.
+                has_value = keep && pname.rfind("primvars:", 0) == 0;
             }
         }
         if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') property_metadata(&prop);

@@ -1,5 +1,6 @@
 // Primvars with elementSize > 1: N values per element. Three floats per element become a float3
-// column; other shapes have no column type and are left out with a warning naming the primvar.
+// column; other shapes, and types no column holds (texCoord2f), are left out with a warning naming
+// the primvar.
 #include "tests/kernel/usda_test_util.h"
 
 using namespace groom;
@@ -16,6 +17,8 @@ def BasisCurves "c" {
     float[] primvars:rgb = [0.1, 0.2, 0.3,  0.4, 0.5, 0.6] (interpolation = "uniform"; elementSize = 3)
     float[] primvars:pair = [1, 2, 3, 4, 5, 6, 7, 8] (interpolation = "vertex"; elementSize = 2)
     float[] primvars:k = [1, 2, 3, 4] (elementSize = 4)
+    texCoord2f[] primvars:st = [(0, 0), (1, 1)] (interpolation = "uniform")
+    int[] primvars:st:indices = [0, 1]
 }
 )");
     const CurveSet& cs = r.curves;
@@ -26,6 +29,8 @@ def BasisCurves "c" {
     EXPECT_EQ(cs.attributes(Domain::Point).find("pair"), nullptr);
     EXPECT_TRUE(r.warned("t.usda:7: primvars:pair of </c> has elementSize 2 (float), which no attribute type holds; left out"));
     EXPECT_TRUE(r.warned("t.usda:8: primvars:k of </c> has elementSize 4"));  // constant, inferred from the count
+    EXPECT_TRUE(r.warned("t.usda:9: primvars:st of </c> (texCoord2f[]) left out: no attribute type holds it"));
+    EXPECT_EQ(r.warnings.size(), 3u);
 }
 
 TEST(UsdaElementSize, CountsMustBeElementsTimesSize)

@@ -460,11 +460,14 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
                 }
                 per_point = std::move(v);
             }
-            // Catmull-Rom and NURBS with negative weights overshoot: a width below zero is that
-            // overshoot, not data, and a diameter cannot be negative.
+            // Catmull-Rom (and NURBS) overshoot: from authored widths all >= 0, a width below zero is
+            // that overshoot, not data, and a diameter cannot be negative. Authored negative or
+            // non-finite widths are left as they are, for validate() to refuse naming the point.
+            const auto& authored = std::get<std::vector<float>>(data);
+            const bool clean = std::all_of(authored.begin(), authored.end(), [](float w) { return std::isfinite(w) && w >= 0; });
             for (float& w : std::get<std::vector<float>>(per_point)) {
                 if (width_scale != 1.0) w = static_cast<float>(w * width_scale);
-                if (w < 0) w = 0;
+                if (clean && w < 0) w = 0;
             }
             if (out.attributes(Domain::Point).find(name)) out.attributes(Domain::Point).remove(name);
             out.attributes(Domain::Point).add(name, Domain::Point, AttrType::Float, 0).data = std::move(per_point);

@@ -1,11 +1,14 @@
 // Curve file throughput: read and write 10,000 curves x 32 points (320,000 points with a width,
 // a float3 colour and a curve id) as .usda, binary .ply, ASCII .ply, .obj and .hair. Reported as
-// points per second (items_per_second) and bytes per second.
+// points per second (items_per_second) and bytes per second. `usda_prims/N`: a .usda of N BasisCurves
+// prims under one Xform (one 4-point curve each, with widths), the shape of files that cost the reader
+// time quadratic in the prims before it concatenated them in one pass; reported as prims per second.
 #include "kernel/io/curve_io.h"
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <unistd.h>
@@ -74,8 +77,34 @@ void read_bench(benchmark::State& state, const char* ext, PlyEncoding enc)
     std::filesystem::remove(path);
 }
 
+void usda_prims_bench(benchmark::State& state)
+{
+    const auto n = static_cast<size_t>(state.range(0));
+    const std::string path = path_for("usda");
+    {
+        std::string text = "#usda 1.0\ndef Xform \"groom\" {\n";
+        for (size_t i = 0; i < n; ++i) {
+            const std::string x = std::to_string(0.001 * static_cast<double>(i));
+            text += "    def BasisCurves \"c" + std::to_string(i) + "\" {\n        uniform token type = \"linear\"\n        int[] curveVertexCounts = [4]\n"
+                    "        point3f[] points = [(" + x + ", 0, 0), (" + x + ", 1, 0), (" + x + ", 2, 0), (" + x + ", 3, 0)]\n"
+                    "        float[] widths = [0.01, 0.01, 0.01, 0.01] (interpolation = \"vertex\")\n    }\n";
+        }
+        text += "}\n";
+        std::FILE* f = std::fopen(path.c_str(), "wb");
+        std::fwrite(text.data(), 1, text.size(), f);
+        std::fclose(f);
+    }
+    for (auto _ : state) {
+        CurveSet back = read_curves(path);
+        benchmark::DoNotOptimize(back.positions().data());
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(n));
+    std::filesystem::remove(path);
+}
+
 }  // namespace
 
+BENCHMARK(usda_prims_bench)->Name("read_usda_prims")->Arg(20000)->Arg(200000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(write_bench, usda, "usda", PlyEncoding::Binary)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(read_bench, usda, "usda", PlyEncoding::Binary)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(write_bench, ply_binary, "ply", PlyEncoding::Binary)->Unit(benchmark::kMillisecond);

@@ -144,13 +144,14 @@ void setup(CommandContext& ctx)
     app->add_option("--feed-length", a.params.feed_length, "Length over which fibers feed in, scene units (0 = three knots)")
         ->capture_default_str();
     app->add_option("--seed", a.params.seed, "Random seed for the fibers, flyaways and feed-in")->capture_default_str();
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         const Args& a = *args;
         check_output(a.output, {a.input, a.scalp}, common);
         const BraidParams params = params_from(a);
         a.scalp_params.validate();
-        const CurveSet guides = read_curves(a.input);
+        const CurveSet guides = read_curve_input(a.input, common);
         const auto progress = make_progress(common);
         std::shared_ptr<const ScalpField> scalp;
         if (!a.scalp.empty()) scalp = load_scalp(a.scalp, a.scalp_params, progress.get());

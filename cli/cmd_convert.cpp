@@ -20,14 +20,13 @@ void setup(CommandContext& ctx)
     app->add_option("CURVES", args->input, "Input curves (" + curve_formats() + ", - = .usda on stdin)")->required();
     app->add_option("-o,--output", args->output, "Output curves (" + io::format_list(io::kWriteCurves) + ", - = .usda on stdout)")->required();
     app->add_flag("--ascii", args->ascii, "Write .ply as ASCII (default binary little-endian)");
-    app->add_option("--samples-per-segment", args->samples, "Points per segment when reading cubic .usda curves (>= 1)");
+    app->add_option("--samples-per-segment", args->samples, "Points per segment when reading cubic and NURBS .usda curves (>= 1)");
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input}, common);
         if (args->samples < 1) throw InvalidParam("convert: --samples-per-segment must be >= 1 (got " + std::to_string(args->samples) + ")");
-        CurveReadOptions ro;
-        ro.cubic_samples_per_segment = args->samples;
-        const CurveSet cs = read_curves(args->input, ro);
+        const CurveSet cs = read_curve_input(args->input, common, true, args->samples);
         CurveWriteOptions wo;
         wo.ply_encoding = args->ascii ? PlyEncoding::Ascii : PlyEncoding::Binary;
         write_curves(cs, args->output, wo);

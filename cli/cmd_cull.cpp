@@ -26,13 +26,14 @@ void setup(CommandContext& ctx)
         ->check(CLI::IsMember({"push", "trim", "delete"}))
         ->capture_default_str();
     app->add_option("--clearance", args->params.clearance, "Minimum distance outside the surface, scene units (>= 0)")->capture_default_str();
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         Args& a = *args;
         check_output(a.output, {a.input, a.scalp}, common);
         a.params.mode = a.mode == "trim" ? CullMode::Trim : (a.mode == "delete" ? CullMode::Delete : CullMode::Push);
         a.params.validate();
-        const CurveSet curves = read_curves(a.input);
+        const CurveSet curves = read_curve_input(a.input, common);
         auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         CullStats stats;

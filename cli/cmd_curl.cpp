@@ -24,11 +24,12 @@ void setup(CommandContext& ctx)
     app->add_option("--scalp", args->scalp, "Scalp (.vdb from `groom scalp`, or a mesh): no curled point ends inside it");
     add_scalp_build_options(app, args->scalp_params);
     add_curl_options(app, args->curl);
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input}, common);
         const CurlParams params = curl_params_from(args->curl);
-        const CurveSet in = read_curves(args->input);
+        const CurveSet in = read_curve_input(args->input, common);
         const auto progress = make_progress(common);
         std::shared_ptr<const ScalpField> scalp;
         if (!args->scalp.empty()) scalp = load_scalp(args->scalp, args->scalp_params, progress.get());

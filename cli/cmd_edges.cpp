@@ -103,8 +103,8 @@ void setup(CommandContext& ctx)
         region_params.validate();
 
         const auto start = std::chrono::steady_clock::now();
-        CurveSet hairline = args->hairline.empty() ? CurveSet() : read_curves(args->hairline);
-        const CurveSet partings = args->parting.empty() ? CurveSet() : read_curves(args->parting);
+        CurveSet hairline = args->hairline.empty() ? CurveSet() : read_curve_input(args->hairline, common, false);
+        const CurveSet partings = args->parting.empty() ? CurveSet() : read_curve_input(args->parting, common, false);
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         if (args->hairline.empty()) {

@@ -50,6 +50,7 @@ void setup(CommandContext& ctx)
     add_scalp_build_options(app, args->scalp_params);
     add_region_options(app, args->hair_region);
     add_width_options(app, args->widths, "the guides' widths, else the defaults");
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input, args->scalp, args->hair_region.hairline, args->hair_region.parting}, common);
@@ -62,7 +63,7 @@ void setup(CommandContext& ctx)
         args->params.widths = hair_widths_from(args->widths, "generate");
         args->params.validate();
         const auto start = std::chrono::steady_clock::now();
-        const CurveSet guides = read_curves(args->input);
+        const CurveSet guides = read_curve_input(args->input, common);
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const std::unique_ptr<HairRegion> region = make_region(args->hair_region, *scalp);

@@ -60,9 +60,9 @@ std::string triple(const float3& p, const char* open = "(", const char* close = 
     return open + num(p.x) + ", " + num(p.y) + ", " + num(p.z) + close;
 }
 
-void info_curves(const Args& a)
+void info_curves(const Args& a, const CommonOptions& common)
 {
-    const CurveSet cs = read_curves(a.input);
+    const CurveSet cs = read_curve_input(a.input, common);
     std::vector<double> counts(cs.num_curves()), lengths(cs.num_curves());
     const auto P = cs.positions();
     for (size_t c = 0; c < cs.num_curves(); ++c) {
@@ -183,7 +183,9 @@ void setup(CommandContext& ctx)
     auto* m = app->add_flag("--mesh", args->mesh, "Read FILE as a mesh (default: decided by extension and content)");
     app->add_flag("--curves", args->curves, "Read FILE as curves")->excludes(m);
     app->add_option("--group", args->group, "OBJ mesh: describe only the faces of this object ('o') or group ('g')");
-    ctx.run = [args] {
+    add_prim_option(app, *ctx.common);
+    const CommonOptions& common = *ctx.common;
+    ctx.run = [args, &common] {
         bool curves = args->curves;
         if (!args->curves && !args->mesh) {
             if (args->input != "-" && !is_curve_path(args->input) && !is_mesh_path(args->input)) {
@@ -195,7 +197,7 @@ void setup(CommandContext& ctx)
             curves = holds_curves(args->input);
         }
         if (curves && !args->group.empty()) throw InvalidParam("info: --group applies to meshes; " + args->input + " holds curves");
-        if (curves) info_curves(*args);
+        if (curves) info_curves(*args, common);
         else info_mesh(*args);
     };
 }

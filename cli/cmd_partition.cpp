@@ -160,6 +160,7 @@ void setup(CommandContext& ctx)
     auto* knot_bias = app->add_option("--knot-bias", args->knot_bias, "With --centroids knots: knot distribution bias (-1, 1), as in groom braid");
     auto* knot_density = app->add_option("--knot-density", args->knot_density,
                                          "With --centroids knots: relative knot density spline v0,v1,... (> 0, root to tip), as in groom braid");
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, count, spacing, frequency, knot_length, knot_bias, knot_density, &common] {
         PartitionParams& params = args->params;
@@ -199,7 +200,7 @@ void setup(CommandContext& ctx)
         }
         params.validate();  // options first: no need to read anything to reject them
 
-        const CurveSet guides = read_curves(args->input);
+        const CurveSet guides = read_curve_input(args->input, common);
         if (!args->adjacent_file.empty()) params.adjacent = read_adjacent(args->adjacent_file, guides.num_curves());
         if (params.centroids == CentroidMode::Points) params.centroid_points = read_centroids(spec, guides.num_curves());
         const auto progress = make_progress(common);

@@ -29,12 +29,13 @@ void setup(CommandContext& ctx)
                     "Point float attribute of the input that scales the radius per point (e.g. a taper)");
     add_width_options(app, args->widths, "--width (one fiber width, automatic by default)");
     app->add_option("--seed", args->params.seed, "Random seed for the fiber offsets")->capture_default_str();
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input}, common);
         args->params.widths = hair_widths_from(args->widths, "populate");
         args->params.validate();
-        const CurveSet in = read_curves(args->input);
+        const CurveSet in = read_curve_input(args->input, common);
         const auto progress = make_progress(common);
         const CurveSet out = populate(in, args->params, progress.get());
         write_curves(out, args->output);

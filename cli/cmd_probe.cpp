@@ -50,13 +50,14 @@ void setup(CommandContext& ctx)
     add_scalp_build_options(app, args->scalp_params);
     app->add_option("POINTS", args->input, "Points: text file of 'x y z' lines, or any curve file (all its points)")->required();
     app->add_option("-o,--output", args->output, "Output CSV: x,y,z,distance,nx,ny,nz,cx,cy,cz")->required();
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         const Args& a = *args;
         check_output(a.output, {a.input, a.scalp}, common);
         std::vector<float3> points;
         if (is_curve_path(a.input)) {
-            const CurveSet curves = read_curves(a.input);
+            const CurveSet curves = read_curve_input(a.input, common);
             const auto P = curves.positions();
             points.assign(P.begin(), P.end());
         }

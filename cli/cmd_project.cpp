@@ -28,13 +28,14 @@ void setup(CommandContext& ctx)
         ->check(CLI::IsMember({"root", "all"}))
         ->capture_default_str();
     app->add_option("--offset", args->params.offset, "Distance above the surface along its normal, scene units")->capture_default_str();
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         Args& a = *args;
         check_output(a.output, {a.input, a.scalp}, common);
         a.params.mode = a.mode == "all" ? ProjectMode::All : ProjectMode::Root;
         a.params.validate();
-        const CurveSet curves = read_curves(a.input);
+        const CurveSet curves = read_curve_input(a.input, common);
         auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         ProjectStats stats;

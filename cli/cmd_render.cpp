@@ -96,6 +96,7 @@ void setup(CommandContext& ctx)
         ->capture_default_str();
     app->add_option("--margin", args->params.margin, "Border when framing to fit, fraction of the picture, [0, 0.45]")
         ->capture_default_str();
+    add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, camera, &common] {
         Args& a = *args;
@@ -131,7 +132,7 @@ void setup(CommandContext& ctx)
         layers.reserve(a.inputs.size());
         size_t curves = 0, points = 0;
         for (const std::string& in : a.inputs) {
-            layers.push_back(read_curves(in));
+            layers.push_back(read_curve_input(in, common));
             curves += layers.back().num_curves();
             points += layers.back().num_points();
             if (!has_color_attribute(layers.back(), a.params.color_by)) {

@@ -88,7 +88,7 @@ void setup(CommandContext& ctx)
             hairline = make_hairline(*scalp, scalp->bounds(), hp);
         }
         else {
-            hairline = read_curves(args->hairline);
+            hairline = read_curve_input(args->hairline, common, false);
         }
         const RootSampler sampler = scalp_root_sampler(*scalp);
         const SectionsResult r = sections(*scalp, hairline, &sampler, params, progress.get());

@@ -14,6 +14,10 @@
 #include <string>
 #include <vector>
 
+namespace groom {
+class CurveSet;
+}
+
 namespace groom::cli {
 
 /// Options every command takes.
@@ -23,6 +27,7 @@ struct CommonOptions {
     bool verbose = false;  ///< extra detail on stderr
     bool force = false;    ///< allow -o onto an input file or a read-only file
     double memory_gib = 0; ///< --memory: the command's memory budget, GiB; 0 = GROOM_MEMORY, else half the machine's
+    std::vector<std::string> prims; ///< --prim: USD prims to read from the main curve input (add_prim_option)
 };
 
 /// What a command's setup function gets: its CLI11 subcommand and the common options (already added).
@@ -93,6 +98,15 @@ std::string with_option_names(const std::string& message, const std::vector<std:
 /// taken from the format table (kernel/io/format_table.h), so a new format shows up everywhere.
 std::string curve_formats();
 std::string mesh_formats();
+
+/// Adds `--prim PATH` (repeatable) to a command whose main input is curves: read only these USD prims
+/// and their descendants.
+void add_prim_option(CLI::App* app, CommonOptions& common);
+
+/// Reads a curve input of a command: the reader's warnings (USD prims skipped...) go to stderr
+/// through note(); --prim applies when `main_input` (a hairline or parting file is read whole).
+/// `samples_per_segment`: points per cubic or NURBS segment.
+CurveSet read_curve_input(const std::string& path, const CommonOptions& common, bool main_input = true, int samples_per_segment = 8);
 
 /// Parses "x,y,z" (or "a,b" etc.) into floats, naming the option in errors.
 std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max);

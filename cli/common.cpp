@@ -1,7 +1,9 @@
 #include "cli/command.h"
 
 #include "kernel/error.h"
+#include "kernel/io/curve_io.h"
 #include "kernel/io/format_table.h"
+#include "kernel/io/io_util.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -26,6 +28,33 @@ void note(const CommonOptions& o, const std::string& message)
 void detail(const CommonOptions& o, const std::string& message)
 {
     if (o.verbose && !o.quiet) std::cerr << message << "\n";
+}
+
+void add_prim_option(CLI::App* app, CommonOptions& common)
+{
+    app->add_option("--prim", common.prims,
+                    "USD input only: read this prim and the prims under it (an absolute path such as /groom/hair; repeatable)");
+}
+
+CurveSet read_curve_input(const std::string& path, const CommonOptions& common, bool main_input, int samples_per_segment)
+{
+    CurveReadOptions ro;
+    ro.cubic_samples_per_segment = samples_per_segment;
+    ro.warn = [&common, path](const std::string& w) { note(common, "warning: " + w); };
+    if (main_input && !common.prims.empty()) {
+        const std::string ext = io::extension_of(path);
+        if (path != "-" && ext != "usda" && ext != "usd") {
+            throw InvalidParam("--prim picks prims of a USD file (.usda, .usd); " + path + " is a ." + ext + " file");
+        }
+        for (std::string p : common.prims) {
+            while (p.size() > 1 && p.back() == '/') p.pop_back();
+            if (p.empty() || p[0] != '/' || p.find("//") != std::string::npos) {
+                throw InvalidParam("--prim " + p + ": expected an absolute prim path such as /groom/hair");
+            }
+            if (p != "/") ro.prims.push_back(p);
+        }
+    }
+    return read_curves(path, ro);
 }
 
 std::string with_option_names(const std::string& message, const std::vector<std::string>& options)

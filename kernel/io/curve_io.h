@@ -1,5 +1,6 @@
 // Reading and writing curve files, chosen by extension:
-//   .usda  USD BasisCurves (read: linear, cubic catmullRom/bspline evaluated to polylines; write: linear)
+//   .usda  USD BasisCurves and NurbsCurves (read: composed, transformed, cubic and NURBS curves evaluated
+//          to polylines; write: linear BasisCurves); .usd when it is text
 //   .obj   `l` polylines (+ `v`)
 //   .ply   ASCII or binary; vertex element with any properties plus an `edge` element
 //   .hair  Cem Yuksel's binary hair format
@@ -9,6 +10,7 @@
 #include "kernel/curve_set.h"
 #include "kernel/io/atomic_file.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,8 +20,12 @@ namespace groom {
 bool is_curve_path(const std::string& path);
 
 struct CurveReadOptions {
-    /// Points per segment when evaluating cubic USD curves into polylines.
+    /// Points per segment when evaluating cubic USD curves (and each NURBS knot span) into polylines.
     int cubic_samples_per_segment = 8;
+    /// USD only: read these prims and their descendants (absolute prim paths); empty = every prim.
+    std::vector<std::string> prims;
+    /// Receives each warning (a prim skipped, a primvar left out, an arc to another file); null = dropped.
+    std::function<void(const std::string&)> warn;
 };
 
 /// Reads a curve file. Throws ParseError (file, line or byte offset, expected vs found) or IoError.

@@ -1,6 +1,8 @@
-// The .usda grammar: layer metadata, prims of any type (Xform parents, Meshes, Scopes...), properties, metadata,
-// relationships, timeSamples and connections are understood and skipped where they do not matter; BasisCurves
-// properties are kept (usda_syntax.h). Apart from the lexer (characters) and the builder (geometry).
+// The .usda grammar: layer metadata, prims of any type, their composition metadata (references, inherits,
+// specializes, payloads, variant selections, active, instanceable) with every list op, variant sets, and the
+// properties the reader uses (curve data, primvars, xform ops, NURBS data) are kept (usda_syntax.h);
+// relationships, connections and everything else are understood and skipped. Apart from the lexer
+// (characters), composition (usda_compose.cpp) and the builder (geometry).
 #include "kernel/io/usda_lexer.h"
 #include "kernel/io/usda_syntax.h"
 
@@ -141,17 +143,118 @@ public:
 
     // --- Structure --------------------------------------------------------------------------------
 
-    std::vector<CurvesPrim> parse_layer()
+    Layer parse_layer()
     {
         lex_.header();
-        if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') metadata(nullptr);
-        while (lex_.peek().kind != Tok::End) prim("");
-        return std::move(found_);
+        if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') layer_metadata();
+        while (lex_.peek().kind != Tok::End) layer_.roots.push_back(prim(""));
+        return std::move(layer_);
     }
 
 private:
-    /// `( key = value ... )`: returns the interpolation when `interpolation` is given.
-    void metadata(std::string* interpolation)
+    static bool is_list_op(std::string_view s)
+    {
+        return s == "prepend" || s == "append" || s == "add" || s == "delete" || s == "reorder";
+    }
+
+    /// `( defaultPrim = "x" ... )` at the top of the file.
+    void layer_metadata()
+    {
+        lex_.expect_punct('(', "opening layer metadata");
+        for (;;) {
+            const Token t = lex_.next();
+            if (t.kind == Tok::Punct && t.text[0] == ')') return;
+            if (t.kind == Tok::Punct && t.text[0] == ';') continue;
+            if (t.kind == Tok::String) continue;  // the layer's doc string
+            if (t.kind != Tok::Ident) lex_.fail(t, "expected a layer metadata key or ')'");
+            Token key = t;
+            if (is_list_op(key.text)) key = lex_.next();
+            if (!lex_.accept_punct('=')) continue;
+            if (key.text == "defaultPrim" && lex_.peek().kind == Tok::String) layer_.default_prim = string_value();
+            else skip_value();
+        }
+    }
+
+    /// A list of arcs: `</A>`, `@a.usda@</A>`, `[</A>, @b.usda@]`, `None`; each item may carry `( offset = 1 )`.
+    std::vector<Arc> arcs()
+    {
+        std::vector<Arc> out;
+        auto item = [&] {
+            Arc a;
+            const Token t = lex_.next();
+            a.line = t.line;
+            if (t.kind == Tok::Asset) {
+                a.asset = std::string(t.text);  // `@@</X>`: an empty asset path is this file
+                if (lex_.peek().kind == Tok::Path) a.path = std::string(lex_.next().text);
+            }
+            else if (t.kind == Tok::Path) {
+                a.path = std::string(t.text);
+            }
+            else {
+                lex_.fail(t, "expected a prim path </...> or an asset path @...@");
+            }
+            if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') skip_value();  // layer offset
+            out.push_back(std::move(a));
+        };
+        if (lex_.peek().kind == Tok::Ident && lex_.peek().text == "None") {
+            lex_.next();
+            return out;
+        }
+        if (!lex_.accept_punct('[')) {
+            item();
+            return out;
+        }
+        while (!lex_.accept_punct(']')) {
+            item();
+            if (!lex_.accept_punct(',')) {
+                lex_.expect_punct(']', "closing a list of paths");
+                break;
+            }
+        }
+        return out;
+    }
+
+    /// A list op on a list of arcs: the explicit value replaces, prepend/append/add add, delete removes,
+    /// reorder changes nothing we read.
+    static void apply_list_op(std::vector<Arc>& list, std::string_view op, std::vector<Arc> value)
+    {
+        auto same = [](const Arc& a, const Arc& b) { return a.asset == b.asset && a.path == b.path; };
+        auto erase = [&](const Arc& v) { list.erase(std::remove_if(list.begin(), list.end(), [&](const Arc& a) { return same(a, v); }), list.end()); };
+        if (op.empty()) {
+            list = std::move(value);
+        }
+        else if (op == "delete") {
+            for (const Arc& v : value) erase(v);
+        }
+        else if (op == "prepend") {
+            for (const Arc& v : value) erase(v);
+            list.insert(list.begin(), value.begin(), value.end());
+        }
+        else if (op == "append" || op == "add") {
+            for (const Arc& v : value) erase(v);
+            list.insert(list.end(), value.begin(), value.end());
+        }
+    }
+
+    /// `variants = { string set = "name" ... }`.
+    void variant_selection(PrimSpec& spec)
+    {
+        lex_.expect_punct('{', "opening the variant selection");
+        while (!lex_.accept_punct('}')) {
+            const Token ty = lex_.next();
+            if (ty.kind == Tok::Punct && ty.text[0] == ';') continue;
+            if (ty.kind != Tok::Ident) lex_.fail(ty, "expected 'string' in a variant selection");
+            const Token name = lex_.next();
+            if (name.kind != Tok::Ident && name.kind != Tok::String) lex_.fail(name, "expected a variant set name");
+            const std::string set = name.kind == Tok::String ? decode_string(name) : std::string(name.text);
+            lex_.expect_punct('=', "after a variant set name");
+            const std::string chosen = string_value();
+            spec.variant_selection.emplace_back(set, chosen);
+        }
+    }
+
+    /// A prim's `( ... )` metadata: composition arcs, active, instanceable, variant selections; the rest skipped.
+    void prim_metadata(PrimSpec& spec)
     {
         lex_.expect_punct('(', "opening metadata");
         for (;;) {
@@ -161,14 +264,47 @@ private:
             if (t.kind == Tok::String) continue;  // a bare doc string
             if (t.kind != Tok::Ident) lex_.fail(t, "expected a metadata key or ')'");
             Token key = t;
-            if (key.text == "prepend" || key.text == "append" || key.text == "add" || key.text == "delete" ||
-                key.text == "reorder") {
+            std::string_view op;
+            if (is_list_op(t.text)) {
+                op = t.text;
                 key = lex_.next();
                 if (key.kind != Tok::Ident) lex_.fail(key, "expected a metadata key after '" + std::string(t.text) + "'");
             }
             if (!lex_.accept_punct('=')) continue;  // a key without value
-            if (interpolation && key.text == "interpolation") {
-                *interpolation = string_value();
+            if (key.text == "references" || key.text == "payload") apply_list_op(spec.references, op, arcs());
+            else if (key.text == "inherits") apply_list_op(spec.inherits, op, arcs());
+            else if (key.text == "specializes") apply_list_op(spec.specializes, op, arcs());
+            else if (key.text == "active") spec.active = number_int() != 0;
+            else if (key.text == "instanceable") spec.instanceable = number_int() != 0;
+            else if (key.text == "variants") variant_selection(spec);
+            else skip_value();
+        }
+    }
+
+    /// A property's `( ... )` metadata: interpolation and elementSize kept.
+    void property_metadata(Property* prop)
+    {
+        lex_.expect_punct('(', "opening metadata");
+        for (;;) {
+            const Token t = lex_.next();
+            if (t.kind == Tok::Punct && t.text[0] == ')') return;
+            if (t.kind == Tok::Punct && t.text[0] == ';') continue;
+            if (t.kind == Tok::String) continue;
+            if (t.kind != Tok::Ident) lex_.fail(t, "expected a metadata key or ')'");
+            Token key = t;
+            if (is_list_op(key.text)) {
+                key = lex_.next();
+                if (key.kind != Tok::Ident) lex_.fail(key, "expected a metadata key after '" + std::string(t.text) + "'");
+            }
+            if (!lex_.accept_punct('=')) continue;
+            if (prop && key.text == "interpolation") {
+                prop->interpolation = string_value();
+            }
+            else if (prop && key.text == "elementSize") {
+                const Token& at = lex_.peek();
+                const int64_t n = number_int();
+                if (n < 1 || n > 1'000'000) lex_.fail(at, "expected an elementSize >= 1");
+                prop->element_size = static_cast<int>(n);
             }
             else {
                 skip_value();
@@ -183,40 +319,49 @@ private:
     /// in the file size; real paths are well under this.
     static constexpr size_t kMaxPathLength = 4096;
 
-    void prim(const std::string& parent)
+    struct DepthGuard {
+        int& depth;
+        ~DepthGuard() { --depth; }
+    };
+    void check_depth(const Token& at)
     {
-        struct DepthGuard {
-            int& depth;
-            ~DepthGuard() { --depth; }
-        } guard{++depth_};
-        const Token spec = lex_.next();
         if (depth_ > kMaxPrimDepth) {
-            throw LimitExceeded(lex_.name() + ":" + std::to_string(spec.line) + ": prims nested deeper than " +
+            throw LimitExceeded(lex_.name() + ":" + std::to_string(at.line) + ": prims nested deeper than " +
                                 std::to_string(kMaxPrimDepth) + " levels; refusing to read further");
         }
+    }
+
+    /// One prim; returns its index in layer_.specs.
+    int32_t prim(const std::string& parent)
+    {
+        DepthGuard guard{++depth_};
+        const Token spec = lex_.next();
+        check_depth(spec);
         if (spec.kind != Tok::Ident || (spec.text != "def" && spec.text != "over" && spec.text != "class")) {
             lex_.fail(spec, "expected a prim ('def', 'over' or 'class')");
         }
-        std::string type_name;
-        if (lex_.peek().kind == Tok::Ident) type_name = std::string(lex_.next().text);
+        PrimSpec ps;
+        ps.specifier = std::string(spec.text);
+        ps.line = spec.line;
+        if (lex_.peek().kind == Tok::Ident) ps.type_name = std::string(lex_.next().text);
         const Token name = lex_.next();
         if (name.kind != Tok::String) lex_.fail(name, "expected the prim's name as a quoted string");
-        const std::string path = parent + "/" + decode_string(name);
+        ps.name = decode_string(name);
+        const std::string path = parent + "/" + ps.name;
         if (path.size() > kMaxPathLength) {
             throw LimitExceeded(lex_.name() + ":" + std::to_string(name.line) + ": prim path longer than " +
                                 std::to_string(kMaxPathLength) + " characters: " + describe_found(path));
         }
-        if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') metadata(nullptr);
+        if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') prim_metadata(ps);
         lex_.expect_punct('{', "opening the body of prim <" + path + ">");
-        const bool curves = spec.text == "def" && type_name == "BasisCurves";
-        CurvesPrim cp;
-        cp.path = path;
-        cp.line = spec.line;
-        body(path, curves ? &cp : nullptr);
-        if (curves) found_.push_back(std::move(cp));
+        const auto index = static_cast<int32_t>(layer_.specs.size());
+        layer_.specs.push_back(std::move(ps));
+        body(path, index);
+        return index;
     }
 
-    void body(const std::string& path, CurvesPrim* cp)
+    /// The body of a prim or of a variant, up to and including its closing '}'.
+    void body(const std::string& path, int32_t index)
     {
         for (;;) {
             const Token& t = lex_.peek();
@@ -231,40 +376,74 @@ private:
             }
             if (t.kind != Tok::Ident) lex_.fail(t, "expected a property, a child prim or '}' in prim <" + path + ">");
             if (t.text == "def" || t.text == "over" || t.text == "class") {
-                prim(path);
+                const int32_t child = prim(path);
+                layer_.specs[index].children.push_back(child);
             }
             else if (t.text == "variantSet") {
-                lex_.next();
-                lex_.next();  // its name
-                lex_.expect_punct('=', "after the variantSet name");
-                skip_value();
+                variant_set(path, index);
             }
             else if (t.text == "reorder") {
+                // `reorder nameChildren = [...]` reorders prims (not read); `reorder rel x = ...` is a list op.
                 lex_.next();
-                lex_.next();
-                lex_.expect_punct('=', "after 'reorder'");
-                skip_value();
+                const Token& what = lex_.peek();
+                if (what.kind == Tok::Ident && (what.text == "nameChildren" || what.text == "properties")) {
+                    lex_.next();
+                    lex_.expect_punct('=', "after 'reorder'");
+                    skip_value();
+                }
+                else {
+                    property(path, layer_.specs[index].props, true);
+                }
             }
             else {
-                property(path, cp);
+                property(path, layer_.specs[index].props);
             }
         }
     }
 
-    void property(const std::string& path, CurvesPrim* cp)
+    /// `variantSet "name" = { "a" (meta) { body } "b" { body } }`.
+    void variant_set(const std::string& path, int32_t owner)
+    {
+        lex_.next();
+        const Token name = lex_.next();
+        if (name.kind != Tok::String) lex_.fail(name, "expected the variantSet's name as a quoted string");
+        VariantSet vs;
+        vs.name = decode_string(name);
+        lex_.expect_punct('=', "after the variantSet name");
+        lex_.expect_punct('{', "opening the variantSet");
+        while (!lex_.accept_punct('}')) {
+            const Token vname = lex_.next();
+            if (vname.kind != Tok::String) lex_.fail(vname, "expected a variant name as a quoted string in variantSet \"" + vs.name + "\"");
+            DepthGuard guard{++depth_};
+            check_depth(vname);
+            PrimSpec body_spec;
+            body_spec.specifier = "variant";
+            body_spec.name = decode_string(vname);
+            body_spec.line = vname.line;
+            if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') prim_metadata(body_spec);
+            lex_.expect_punct('{', "opening variant \"" + body_spec.name + "\"");
+            const auto index = static_cast<int32_t>(layer_.specs.size());
+            vs.variants.emplace_back(body_spec.name, index);
+            layer_.specs.push_back(std::move(body_spec));
+            body(path + "{" + vs.name + "=" + layer_.specs[index].name + "}", index);
+        }
+        layer_.specs[owner].variant_sets.push_back(std::move(vs));
+    }
+
+    void property(const std::string& path, std::map<std::string, Property, std::less<>>& props, bool list_op = false)
     {
         Token t = lex_.next();
-        bool uniform = false;
-        while (t.kind == Tok::Ident && (t.text == "custom" || t.text == "uniform" || t.text == "varying" || t.text == "config")) {
-            uniform = uniform || t.text == "uniform";
+        while (t.kind == Tok::Ident && (t.text == "custom" || t.text == "uniform" || t.text == "varying" || t.text == "config" || is_list_op(t.text))) {
+            list_op = list_op || is_list_op(t.text);
             t = lex_.next();
         }
         if (t.kind != Tok::Ident) lex_.fail(t, "expected a property type in prim <" + path + ">");
         const Token type = t;
         if (type.text == "rel") {
-            lex_.next();  // relationship name
+            const Token rname = lex_.next();  // relationship name
+            if (rname.kind != Tok::Ident) lex_.fail(rname, "expected a relationship name after 'rel'");
             if (lex_.accept_punct('=')) skip_value();
-            if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') metadata(nullptr);
+            if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') property_metadata(nullptr);
             return;
         }
         bool array = false;
@@ -275,29 +454,97 @@ private:
         const Token name = lex_.next();
         if (name.kind != Tok::Ident) lex_.fail(name, "expected a property name after type '" + std::string(type.text) + "'");
         std::string_view pname = name.text;
-        std::optional<AttributeData> value;
-        bool has_value = false;
-        const std::optional<AttrType> ctype = column_type(type.text);
         bool time_samples = false;
         if (pname.size() > 12 && pname.substr(pname.size() - 12) == ".timeSamples") {
             pname.remove_suffix(12);
             time_samples = true;
         }
-        const bool connect = pname.find(".connect") != std::string_view::npos;
+        const bool other_field = pname.find('.') != std::string_view::npos;  // .connect, .spline...
+        const bool keep = !list_op && !other_field && wanted(pname);
+        const bool numbers = keep && wants_numbers(pname);
+        const std::optional<AttrType> ctype = numbers ? std::nullopt : column_type(type.text);
+        Property prop;
+        prop.type = std::string(type.text) + (array ? "[]" : "");
+        prop.line = name.line;
+        bool has_value = false;
         if (lex_.accept_punct('=')) {
-            has_value = true;
-            if (cp && ctype && !connect && wanted(pname)) {
-                value = time_samples ? first_time_sample(*ctype, array) : typed_value(*ctype, array);
+            if (keep && (numbers || ctype)) {
+                has_value = true;
+                if (lex_.peek().kind == Tok::Ident && lex_.peek().text == "None") {
+                    lex_.next();
+                    prop.blocked = true;
+                }
+                else if (numbers) {
+                    prop.numbers = time_samples ? first_time_sample_numbers() : number_list();
+                }
+                else {
+                    prop.column = time_samples ? first_time_sample(*ctype, array) : typed_value(*ctype, array);
+                    if (!prop.column) prop.blocked = true;
+                }
             }
             else {
                 skip_value();
+                // A primvar of a type no column holds (texCoord2f, matrices): kept without a value so
+                // that the builder can name it in a warning.
+                has_value = keep && pname.rfind("primvars:", 0) == 0;
             }
         }
-        std::string interpolation;
-        if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') metadata(&interpolation);
-        (void)uniform;
-        if (!cp || !has_value || !value || connect) return;
-        store(*cp, pname, *ctype, std::move(*value), interpolation, name.line);
+        if (lex_.peek().kind == Tok::Punct && lex_.peek().text[0] == '(') property_metadata(&prop);
+        if (!has_value) {
+            // A declaration without a value still carries metadata (interpolation) for a value given
+            // elsewhere, e.g. by timeSamples written after it.
+            auto it = props.find(pname);
+            if (it != props.end() && !prop.interpolation.empty()) it->second.interpolation = prop.interpolation;
+            return;
+        }
+        auto it = props.find(pname);
+        if (it != props.end() && prop.interpolation.empty()) prop.interpolation = it->second.interpolation;
+        props.insert_or_assign(std::string(pname), std::move(prop));
+    }
+
+    /// Any value's numbers, flattened: `1`, `(1, 2, 3)`, `((1,0,0,0), ...)`, `[(0, 1), (2, 3)]`.
+    std::vector<double> number_list()
+    {
+        std::vector<double> out;
+        const Token first = lex_.peek();
+        int depth = 0;
+        do {
+            const Token t = lex_.next();
+            if (t.kind == Tok::Punct && (t.text[0] == '(' || t.text[0] == '[')) ++depth;
+            else if (t.kind == Tok::Punct && (t.text[0] == ')' || t.text[0] == ']')) --depth;
+            else if (t.kind == Tok::Punct && t.text[0] == ',' && depth > 0) continue;
+            else {
+                double v = 0;
+                if ((t.kind != Tok::Number && t.kind != Tok::Ident) || !parse_double(t.text, v)) {
+                    if (t.kind == Tok::End) lex_.fail(t, "expected the end of the value opened on line " + std::to_string(first.line));
+                    lex_.fail(t, "expected a number");
+                }
+                out.push_back(v);
+            }
+        } while (depth > 0);
+        return out;
+    }
+
+    std::vector<double> first_time_sample_numbers()
+    {
+        lex_.expect_punct('{', "opening timeSamples");
+        std::vector<double> first;
+        double first_time = INFINITY;
+        while (!lex_.accept_punct('}')) {
+            const Token tt = lex_.next();
+            double time = 0;
+            if (tt.kind != Tok::Number || !parse_double(tt.text, time)) lex_.fail(tt, "expected a time code in timeSamples");
+            lex_.expect_punct(':', "after a time code");
+            std::vector<double> v;
+            if (lex_.peek().kind == Tok::Ident && lex_.peek().text == "None") lex_.next();
+            else v = number_list();
+            if (time < first_time) {
+                first_time = time;
+                first = std::move(v);
+            }
+            lex_.accept_punct(',');
+        }
+        return first;
     }
 
     /// `{ time: value, ... }`: the earliest sample (files written for one frame have one).
@@ -324,94 +571,26 @@ private:
     static bool wanted(std::string_view name)
     {
         return name == "points" || name == "curveVertexCounts" || name == "widths" || name == "type" || name == "basis" ||
-               name == "wrap" || name.rfind("primvars:", 0) == 0;
+               name == "wrap" || name == "order" || name == "knots" || name == "ranges" || name == "pointWeights" ||
+               name == "xformOpOrder" || name.rfind("primvars:", 0) == 0 || name.rfind("xformOp:", 0) == 0;
     }
-
-    void store(CurvesPrim& cp, std::string_view name, AttrType type, AttributeData value, const std::string& interpolation,
-               size_t line)
+    /// Values read as plain numbers (double precision, any shape) rather than as a column.
+    static bool wants_numbers(std::string_view name)
     {
-        auto want = [&](AttrType expected, const char* what) {
-            if (type != expected) {
-                fail_at_line(lex_.name(), line, std::string("expected ") + what + " for '" + std::string(name) +
-                                                    "' in BasisCurves <" + cp.path + ">, found " + type_name(type) + " values");
-            }
-        };
-        auto token_of = [&](const char* what) {
-            want(AttrType::String, "a token");
-            auto& v = std::get<std::vector<std::string>>(value);
-            if (v.size() != 1) fail_at_line(lex_.name(), line, std::string("expected one token for '") + what + "'");
-            return v[0];
-        };
-        if (name == "points") {
-            want(AttrType::Float3, "point3f[]");
-            cp.points = std::move(std::get<std::vector<float3>>(value));
-            cp.points_line = line;
-        }
-        else if (name == "curveVertexCounts") {
-            if (type == AttrType::Int64) {
-                std::vector<int32_t> c;
-                for (int64_t v : std::get<std::vector<int64_t>>(value)) c.push_back(static_cast<int32_t>(std::clamp<int64_t>(v, -1, INT32_MAX)));
-                cp.counts = std::move(c);
-            }
-            else {
-                want(AttrType::Int32, "int[]");
-                cp.counts = std::move(std::get<std::vector<int32_t>>(value));
-            }
-            cp.counts_line = line;
-        }
-        else if (name == "type") {
-            cp.type = token_of("type");
-        }
-        else if (name == "basis") {
-            cp.basis = token_of("basis");
-        }
-        else if (name == "wrap") {
-            cp.wrap = token_of("wrap");
-        }
-        else if (name == "widths") {
-            want(AttrType::Float, "float[]");
-            cp.primvars.insert(cp.primvars.begin(), Primvar{"widths", std::move(value), interpolation, line, {}});
-        }
-        else {
-            std::string pv(name.substr(9));  // after "primvars:"
-            const size_t suffix = pv.size() >= 8 ? pv.size() - 8 : std::string::npos;
-            if (suffix != std::string::npos && pv.compare(suffix, 8, ":indices") == 0) {
-                if (type != AttrType::Int32) fail_at_line(lex_.name(), line, "expected int[] for primvars:" + pv);
-                pv.resize(suffix);
-                indices_[cp.path + "\n" + pv] = std::move(std::get<std::vector<int32_t>>(value));
-                return;
-            }
-            cp.primvars.push_back(Primvar{pv, std::move(value), interpolation, line, {}});
-        }
+        return name == "knots" || name == "ranges" || name == "pointWeights" || name.rfind("xformOp:", 0) == 0;
     }
 
-public:
-    /// Indexed primvars: attach the `:indices` arrays read anywhere in their prim.
-    void attach_indices(std::vector<CurvesPrim>& prims)
-    {
-        for (CurvesPrim& cp : prims) {
-            for (Primvar& pv : cp.primvars) {
-                auto it = indices_.find(cp.path + "\n" + pv.name);
-                if (it != indices_.end()) pv.indices = std::move(it->second);
-            }
-        }
-    }
-
-private:
     Lexer lex_;
     int depth_ = 0;
-    std::vector<CurvesPrim> found_;
-    std::map<std::string, std::vector<int32_t>> indices_;
+    Layer layer_;
 };
 
 }  // namespace
 
-std::vector<CurvesPrim> parse_curves_prims(const FileBytes& file)
+Layer parse_layer(const FileBytes& file)
 {
     Parser parser(file);
-    std::vector<CurvesPrim> prims = parser.parse_layer();
-    parser.attach_indices(prims);
-    return prims;
+    return parser.parse_layer();
 }
 
 }  // namespace groom::io::usda

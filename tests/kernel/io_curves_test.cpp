@@ -213,13 +213,11 @@ TEST(CurveIoUsda, RejectsMalformedInputNamingFileLineExpectedAndFound)
                        head + " int[] curveVertexCounts = [2]\n point3f[] points = [(0,0,0), (1,1,1)]\n float[] widths = [1,2,3] (interpolation = \"vertex\")\n}\n",
                        "widths.usda:6: widths has 3 values but interpolation 'vertex' needs 2");
     expect_parse_error(dir.file("brace.usda"), head + " int[] curveVertexCounts = [2]\n", "expected '}' closing prim </c>, found end of file");
-    expect_parse_error(dir.file("none.usda"), "#usda 1.0\ndef Xform \"x\" {}\n", "expected a 'def BasisCurves' prim, found none");
-    expect_parse_error(dir.file("bezier.usda"), "#usda 1.0\ndef BasisCurves \"c\" { int[] curveVertexCounts = [4] point3f[] points = [(0,0,0),(0,0,0),(0,0,0),(0,0,0)] }\n",
-                       "cubic basis 'bezier' is not supported");
+    expect_parse_error(dir.file("none.usda"), "#usda 1.0\ndef Xform \"x\" {}\n", "expected a 'def BasisCurves' or 'def NurbsCurves' prim, found none");
     expect_parse_error(dir.file("short.usda"), "#usda 1.0\ndef BasisCurves \"c\" { uniform token type = \"cubic\" uniform token basis = \"bspline\"\n int[] curveVertexCounts = [3] point3f[] points = [(0,0,0),(0,0,0),(0,0,0)] }\n",
-                       "short.usda:3: cubic nonperiodic curve 0 has 3 points; it needs at least 4");
-    expect_parse_error(dir.file("periodic.usda"), head + " uniform token wrap = \"periodic\" int[] curveVertexCounts = [2] point3f[] points = [(0,0,0),(0,0,1)] }\n",
-                       "wrap 'periodic'");
+                       "short.usda:2: BasisCurves </c>: cubic bspline nonperiodic curve 0 has 3 points; it needs at least 4");
+    expect_parse_error(dir.file("wrap.usda"), head + " uniform token wrap = \"spiral\" int[] curveVertexCounts = [2] point3f[] points = [(0,0,0),(0,0,1)] }\n",
+                       "wrap 'spiral' is not supported (expected nonperiodic, periodic or pinned)");
 }
 
 TEST(CurveIoUsda, RefusesNamesUsdCannotHoldWithoutLeavingAFile)

@@ -68,6 +68,9 @@ struct Command {
     bool scalp = false;
     std::string output = "mem:out";    ///< what -o names
     std::vector<Option> options;
+    /// Defaults that cost more than a fuzz run may take, lowered unless the fuzzer sets the option
+    /// itself (e.g. gather's 20000 hairs: 13 s on a two-core machine).
+    std::vector<std::pair<std::string, std::string>> light = {};
 };
 
 /// The commands whose work is an op in ops/, and what they take.
@@ -78,7 +81,7 @@ std::vector<Command> commands = {
     {"braid", InputKind::Curves, false},      {"partition", InputKind::Curves, true},
     {"populate", InputKind::Curves, false},   {"curl", InputKind::Curves, false},
     {"generate", InputKind::Curves, true},    {"puff", InputKind::None, true},
-    {"gather", InputKind::Puffs, true},       {"edges", InputKind::None, true},
+    {"gather", InputKind::Puffs, true, "mem:out", {}, {{"--hairs", "200"}}},       {"edges", InputKind::None, true},
     {"sections", InputKind::None, true},      {"render", InputKind::Curves, false, "out.png"},
     {"head", InputKind::None, false, "head.obj"},
 };
@@ -359,8 +362,20 @@ PolygonSoup make_mesh(FuzzedDataProvider& fdp)
 
 std::vector<std::string> scratch;  ///< mem: paths to erase after each run
 
+bool print_runs = false;
+
 std::string store_curves(const std::string& name, CurveSet cs)
 {
+    if (print_runs) {
+        std::string line = "ops_fuzz: " + name + ":";
+        for (size_t c = 0; c < cs.num_curves(); ++c) {
+            line += " [";
+            for (const float3& p : cs.positions().subspan(cs.offsets()[c], cs.points_in(c)))
+                line += "(" + format_double(p.x) + "," + format_double(p.y) + "," + format_double(p.z) + ")";
+            line += "]";
+        }
+        std::fprintf(stderr, "%s\n", line.c_str());
+    }
     const std::string path = "mem:fuzz_" + name;
     store_memory_curves(path, std::move(cs));
     scratch.push_back(path);
@@ -385,6 +400,10 @@ void check_output(const std::string& path)
 }
 
 const Command* only = nullptr;
+// GROOM_FUZZ_PRINT=1 (print_runs, above): print each command line, its inputs and its result.
+/// Exit codes seen (0, 1, 2) and inputs refused before the command ran, printed at exit with
+/// GROOM_FUZZ_PRINT, to check the fuzzer reaches the ops rather than only their refusals.
+int64_t seen[4] = {};
 
 }  // namespace
 
@@ -426,6 +445,9 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
             std::abort();
         }
     }
+    print_runs = std::getenv("GROOM_FUZZ_PRINT") != nullptr;
+    if (print_runs)
+        std::atexit([] { std::fprintf(stderr, "ops_fuzz: exit 0: %lld, 1: %lld, 2: %lld; inputs refused: %lld\n", (long long)seen[0], (long long)seen[1], (long long)seen[2], (long long)seen[3]); });
     std::cout.rdbuf(discard.rdbuf());
     std::cerr.rdbuf(discard.rdbuf());
     return 0;
@@ -510,6 +532,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         if (o.required) chosen.push_back(&o);
     for (int k = fdp.ConsumeIntegralInRange(0, 10); k > 0; --k)
         chosen.push_back(&cmd.options[fdp.ConsumeIntegralInRange<size_t>(0, cmd.options.size() - 1)]);
+    for (const auto& [name, value] : cmd.light) {
+        if (std::none_of(chosen.begin(), chosen.end(), [&, &name = name](const Option* o) { return o->name == name; }))
+            args.insert(args.end(), {name, value});
+    }
     for (const Option* option : chosen) {
         const Option& o = *option;
         args.push_back(o.name);
@@ -534,7 +560,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         erase_memory_scalp("mem:fuzz_mesh");
         for (const auto& entry : std::filesystem::directory_iterator(sandbox)) std::filesystem::remove_all(entry.path());
     };
+    if (print_runs) {
+        std::string line = "groom";
+        for (const std::string& a : args) line += " '" + a + "'";
+        std::fprintf(stderr, "ops_fuzz: %s%s\n", line.c_str(), refused ? "  (input refused)" : "");
+    }
     if (refused) {
+        ++seen[3];
         clean_up();
         return 0;
     }
@@ -542,6 +574,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     std::string error;
     const int code = groom::cli::run_captured(args, error);
     if (code != 0 && code != 1 && code != 2) __builtin_trap();
+    ++seen[code];
+    if (print_runs) std::fprintf(stderr, "ops_fuzz: exit %d %s\n", code, error.c_str());
     // A std::exception that is not a groom::Error (std::out_of_range, std::length_error ...).
     if (code != 0 && error.rfind("unexpected failure", 0) == 0) {
         std::fprintf(stderr, "ops_fuzz: %s\n", error.c_str());

@@ -68,19 +68,26 @@ struct Command {
     bool scalp = false;
     std::string output = "mem:out";    ///< what -o names
     std::vector<Option> options;
-    /// Defaults that cost more than a fuzz run may take, lowered unless the fuzzer sets the option
-    /// itself (e.g. gather's 20000 hairs: 13 s on a two-core machine).
-    std::vector<std::pair<std::string, std::string>> light = {};
+    /// Values given unless the fuzzer sets the option (or one of `unless`) itself: defaults that
+    /// cost more than a fuzz run may take (gather's 20000 hairs: 13 s on two cores), and required
+    /// options with a value that works, so most runs reach the op. "@x,y,z" is scaled with the head.
+    struct Light {
+        std::string option, value;
+        std::vector<std::string> unless = {};
+    };
+    std::vector<Light> light = {};
 };
 
 /// The commands whose work is an op in ops/, and what they take.
 std::vector<Command> commands = {
-    {"resample", InputKind::Curves, false},   {"project", InputKind::Curves, true},
+    {"resample", InputKind::Curves, false, "mem:out", {}, {{"--count", "8", {"--segment-length"}}}},   {"project", InputKind::Curves, true},
     {"cull", InputKind::Curves, true},        {"hairline", InputKind::None, true},
     {"parting", InputKind::None, true},       {"cornrow-guides", InputKind::None, true},
     {"braid", InputKind::Curves, false},      {"partition", InputKind::Curves, true},
     {"populate", InputKind::Curves, false},   {"curl", InputKind::Curves, false},
-    {"generate", InputKind::Curves, true},    {"puff", InputKind::None, true},
+    {"generate", InputKind::Curves, true, "mem:out", {}, {{"--count", "50"}}},
+    {"puff", InputKind::None, true, "mem:out", {},
+     {{"--center", "@0,12,-1"}, {"--radius", "@3"}, {"--sphere-center", "@0,20,-1"}, {"--sphere-radius", "@5"}, {"--hairs", "20"}}},
     {"gather", InputKind::Puffs, true, "mem:out", {}, {{"--hairs", "200"}}},       {"edges", InputKind::None, true},
     {"sections", InputKind::None, true},      {"render", InputKind::Curves, false, "out.png"},
     {"head", InputKind::None, false, "head.obj"},
@@ -200,9 +207,9 @@ std::string format_double(double v)
 double pick_number(FuzzedDataProvider& fdp, const Option& o)
 {
     const int how = fdp.ConsumeIntegralInRange(0, 9);
-    if (how < 5 && !o.numbers.empty()) {
+    if (how < 6 && !o.numbers.empty()) {
         double v = o.numbers[fdp.ConsumeIntegralInRange<size_t>(0, o.numbers.size() - 1)];
-        switch (fdp.ConsumeIntegralInRange(0, 4)) {
+        switch (fdp.ConsumeIntegralInRange(0, 9)) {
         case 1: v = std::nextafter(float(v), 1e30f); break;   // just past a range's end
         case 2: v = std::nextafter(float(v), -1e30f); break;
         case 3: v = v * 10.0; break;
@@ -314,10 +321,11 @@ CurveSet make_curves(FuzzedDataProvider& fdp, float scale, int max_curves)
         }
     }
     if (fdp.ConsumeBool()) {
+        // The last two are refused when read; the rest (0, 1e30, 3e38 included) reach the op.
         static const float widths[] = {0.0f, 0.01f, 0.05f, 1.0f, 1e30f, 3e38f, 1e-30f, -1.0f, std::numeric_limits<float>::quiet_NaN()};
         auto w = cs.add<float>(Domain::Point, "width");
-        const float common = widths[fdp.ConsumeIntegralInRange<size_t>(0, std::size(widths) - 1)];
-        for (auto& x : w) x = fdp.ConsumeIntegralInRange(0, 7) == 0 ? widths[fdp.ConsumeIntegralInRange<size_t>(0, std::size(widths) - 1)] : common * scale;
+        const float common = widths[fdp.ConsumeIntegralInRange<size_t>(0, std::size(widths) - 3)];
+        for (auto& x : w) x = fdp.ConsumeIntegralInRange(0, 31) == 0 ? widths[fdp.ConsumeIntegralInRange<size_t>(0, std::size(widths) - 1)] : common * scale;
     }
     if (fdp.ConsumeBool()) {
         auto id = cs.add<int64_t>(Domain::Curve, "id");
@@ -528,13 +536,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 
     // The required options (each time), then up to ten drawn from all.
     std::vector<const Option*> chosen;
-    for (const Option& o : cmd.options)
-        if (o.required) chosen.push_back(&o);
-    for (int k = fdp.ConsumeIntegralInRange(0, 10); k > 0; --k)
+    for (const Option& o : cmd.options) {
+        const bool has_light = std::any_of(cmd.light.begin(), cmd.light.end(), [&](const Command::Light& l) { return l.option == o.name; });
+        if (o.required && (!has_light || fdp.ConsumeIntegralInRange(0, 3) == 0)) chosen.push_back(&o);
+    }
+    for (int k = fdp.ConsumeIntegralInRange(0, 3) == 0 ? fdp.ConsumeIntegralInRange(0, 10) : fdp.ConsumeIntegralInRange(0, 3); k > 0; --k)
         chosen.push_back(&cmd.options[fdp.ConsumeIntegralInRange<size_t>(0, cmd.options.size() - 1)]);
-    for (const auto& [name, value] : cmd.light) {
-        if (std::none_of(chosen.begin(), chosen.end(), [&, &name = name](const Option* o) { return o->name == name; }))
-            args.insert(args.end(), {name, value});
+    for (const Command::Light& l : cmd.light) {
+        const bool set = std::any_of(chosen.begin(), chosen.end(), [&](const Option* o) { return o->name == l.option || contains(l.unless, o->name); });
+        if (set) continue;
+        std::string value = l.value;
+        if (value[0] == '@') {
+            std::stringstream ss(value.substr(1));
+            value.clear();
+            for (std::string x; std::getline(ss, x, ',');) value += (value.empty() ? "" : ",") + format_double(std::stof(x) * scale);
+        }
+        args.insert(args.end(), {l.option, value});
     }
     for (const Option* option : chosen) {
         const Option& o = *option;

@@ -1,5 +1,6 @@
 // `groom cornrow-guides`: procedural front-to-back cornrow guides over a scalp (ops/cornrow_guides.h).
 #include "cli/command.h"
+#include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
@@ -13,7 +14,7 @@ namespace {
 
 struct Args {
     ScalpBuildParams scalp_params;
-    std::string scalp, output, tails_out, center;
+    std::string scalp, output, tails_out, center, hairline;
     CornrowGuidesParams params;
 };
 
@@ -35,6 +36,9 @@ void setup(CommandContext& ctx)
     app->add_option("--hairline-curve", p.hairline_curve, "How much further back the outermost rows start, degrees")->capture_default_str();
     app->add_option("--back-angle", p.back_angle, "Where rows end at the nape (negative = below the horizontal), degrees")
         ->capture_default_str();
+    app->add_option("--hairline", args->hairline,
+                    "Hairline: one closed curve around the head (`groom hairline`); rows then run from it at the front to it at the "
+                    "nape, in place of --front-angle, --hairline-curve and --back-angle");
     app->add_option("--samples", p.samples, "Points per guide, >= 2")->capture_default_str();
     app->add_option("--offset", p.offset, "Height of the guides above the scalp, scene units")->capture_default_str();
     app->add_option("--tail-length", p.tail_length, "Length of each tail past the nape, scene units (needs --tails-out)")
@@ -44,7 +48,7 @@ void setup(CommandContext& ctx)
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         Args& a = *args;
-        check_outputs({{"-o", a.output}, {"--tails-out", a.tails_out}}, {a.scalp}, common);
+        check_outputs({{"-o", a.output}, {"--tails-out", a.tails_out}}, {a.scalp, a.hairline}, common);
         if (!a.tails_out.empty() && a.params.tail_length <= 0.0f) a.params.tail_length = 12.0f;
         if (!a.center.empty()) {
             const std::vector<float> c = parse_floats("--center", a.center, 3, 3);
@@ -54,7 +58,11 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
-        const CornrowGuides g = cornrow_guides(*scalp, a.params);
+        // The rows are laid +Y up (the frame of `groom head`), so the hairline is read around +Y.
+        RegionOptions region_options;
+        region_options.hairline = a.hairline;
+        const std::unique_ptr<HairRegion> region = make_region(region_options, *scalp);
+        const CornrowGuides g = cornrow_guides(*scalp, a.params, region.get());
         OutputBatch outputs;  // both files land together, or neither
         write_curves(g.guides, a.output, outputs);
         if (!a.tails_out.empty()) write_curves(g.tails, a.tails_out, outputs);

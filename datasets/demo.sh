@@ -76,8 +76,10 @@ echo "2. Alisha: cornrows"
 alisha=()
 knot=2.2  # cm per knot (a strand's full cycle: 6 crossings), shared by braid and partition so edge hairs meet the braids' knots
 if have cornrow-guides; then
+    # Rows from the hairline at the front to the hairline at the nape (without one, the outer rows
+    # would start on the forehead below it).
     step "cornrow guides" groom cornrow-guides --scalp "$scalp" -o "$out/alisha_guides.usda" \
-        --count 12 --tails-out "$out/alisha_tails.usda" --tail-length 14
+        --count 12 --tails-out "$out/alisha_tails.usda" --tail-length 14 ${hairline:+--hairline "$hairline"}
     if have braid; then
         step "braid" groom braid "$out/alisha_guides.usda" --scalp "$scalp" -o "$out/alisha_braids.usda" \
             --orient scalp --strands 3 --knot-length "$knot" --rest --clearance 0.05 --fibers 40 --feed-in 0.3

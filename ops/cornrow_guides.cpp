@@ -7,14 +7,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 
 namespace groom {
 
 namespace {
 
-constexpr float kDeg = 3.14159265358979f / 180.0f;
+constexpr float kPi = 3.14159265358979f;
+constexpr float kDeg = kPi / 180.0f;
 
 std::string fmt(float v) { return format_number(v); }
 
@@ -60,9 +65,50 @@ void CornrowGuidesParams::validate() const
     require(tail_samples >= 2 && tail_samples <= 100000, "`tail_samples` must be in [2, 100000] (got " + std::to_string(tail_samples) + ")");
 }
 
-CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params)
+namespace {
+
+/// The part of a row's arc inside the hairline, as arc angles [a0, a1] (radians), given the whole
+/// arc `at(a)` on the scalp for a in [lo, hi]: the run of inside samples through the highest point,
+/// each end refined by bisection on the hairline's margin.
+std::pair<float, float> inside_arc(const HairRegion& region, float lo, float hi, int row, const std::function<float3(float)>& at)
+{
+    constexpr int kSamples = 512;
+    std::vector<char> inside(kSamples + 1);
+    int top = -1;
+    float best = -std::numeric_limits<float>::infinity();
+    const float3 up(0.0f, 1.0f, 0.0f);
+    for (int k = 0; k <= kSamples; ++k) {
+        const float3 p = at(lo + (hi - lo) * float(k) / float(kSamples));
+        inside[size_t(k)] = region.inside_hairline(p);
+        if (inside[size_t(k)] && dot(p, up) > best) best = dot(p, up), top = k;
+    }
+    if (top < 0) {
+        throw InvalidGeometry("cornrow-guides: row " + std::to_string(row) +
+                              " never enters the hairline (check --hairline belongs to this head and --center/--radius/--spread)");
+    }
+    // Bisect between an inside angle and an outside one until they are 1e-4 of the arc apart.
+    const auto refine = [&](float in, float out) {
+        for (int it = 0; it < 24 && std::fabs(out - in) > 1e-4f * (hi - lo); ++it) {
+            const float mid = 0.5f * (in + out);
+            (region.inside_hairline(at(mid)) ? in : out) = mid;
+        }
+        return in;
+    };
+    int b = top, e = top;
+    while (b > 0 && inside[size_t(b - 1)]) --b;
+    while (e < kSamples && inside[size_t(e + 1)]) ++e;
+    const float step = (hi - lo) / float(kSamples);
+    const float a0 = b == 0 ? lo : refine(lo + step * float(b), lo + step * float(b - 1));
+    const float a1 = e == kSamples ? hi : refine(lo + step * float(e), lo + step * float(e + 1));
+    return {a0, a1};
+}
+
+}  // namespace
+
+CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params, const HairRegion* region)
 {
     params.validate();
+    if (region != nullptr && !region->has_hairline()) region = nullptr;
     const int n = params.count;
     CornrowGuides out;
     std::vector<int64_t> counts(size_t(n), params.samples);
@@ -85,13 +131,22 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
             const float rho = std::sqrt(params.radius * params.radius - h * h * std::sin(phi) * std::sin(phi));
             // The arc runs from the hairline (front, +Z) over the top to the nape: an angle from +Z
             // towards `lean`, from front_angle to 180 - back_angle.
-            const float a0 = (params.front_angle + params.hairline_curve * u * u) * kDeg;
-            const float a1 = (180.0f - params.back_angle) * kDeg;
+            const auto at = [&](float a) {
+                return on_scalp(scalp, pivot + lean * (s0 + rho * std::sin(a)) + float3(0.0f, 0.0f, rho * std::cos(a)), 0.0f);
+            };
+            float a0 = (params.front_angle + params.hairline_curve * u * u) * kDeg;
+            float a1 = (180.0f - params.back_angle) * kDeg;
+            if (region != nullptr) {
+                // As far as the rows can go without crossing: 1 degree short of where they meet,
+                // front and back (the axis pierces the circle at angle -asin(h cos phi / rho)).
+                const float meet = std::asin(std::min(1.0f, h * std::cos(phi) / rho));
+                std::tie(a0, a1) = inside_arc(*region, -meet + kDeg, kPi + meet - kDeg, int(i), at);
+            }
             std::vector<float3> path(static_cast<size_t>(dense));
             for (int k = 0; k < dense; ++k) {
                 const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
-                const float3 q = pivot + lean * (s0 + rho * std::sin(a)) + float3(0.0f, 0.0f, rho * std::cos(a));
-                path[size_t(k)] = on_scalp(scalp, q, params.offset);
+                const float3 q = at(a);
+                path[size_t(k)] = params.offset > 0.0f ? q + scalp.normal(q) * params.offset : q;
             }
             const std::vector<float3> even = resample_by_count(path, params.samples);
             for (int k = 0; k < params.samples; ++k) {

@@ -15,6 +15,7 @@
 
 #include "fields/surface.h"
 #include "kernel/curve_set.h"
+#include "ops/hair_region.h"
 
 namespace groom {
 
@@ -50,7 +51,11 @@ struct CornrowGuides {
 };
 
 /// Makes the guides on `scalp` (any Surface: an exact sphere in tests, a ScalpField for real heads).
-/// Throws InvalidParam.
-CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params);
+/// With a `region` that has a hairline, every row runs from the hairline at the front to the
+/// hairline at the nape instead of between front_angle (+ hairline_curve) and back_angle: its arc is
+/// laid as far as the rows' meeting points allow and cut where it leaves the hairline (found to
+/// 1e-4 of the arc's angle), keeping the part through the row's highest point. Throws InvalidParam,
+/// and InvalidGeometry when a row never enters the hairline.
+CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params, const HairRegion* region = nullptr);
 
 }  // namespace groom

@@ -1,5 +1,6 @@
-"""groom inside Blender: braid, partition, curl, puff and generate as operators (bpy.ops.groom.*)
-on the selected guide curves and a scalp mesh, each result a new hair Curves object.
+"""groom inside Blender: braid, partition, curl, puff, generate, hairline, edges, sections and gather
+as operators (bpy.ops.groom.*) on the selected curves and a scalp mesh, each result a new hair
+Curves object.
 
 The add-on is a thin layer over the `groom` Python module (build/python, or installed with
 `cmake --install`): Debian's Blender 3.4 runs on the system Python 3.11, the interpreter the module

@@ -50,6 +50,47 @@ def guides_from_objects(objects):
     return groom.CurveSet(np.concatenate(chunks), np.array(counts, np.int64))
 
 
+_BLENDER_NAMES = {"position", "radius", "curve_type", "resolution", "cyclic", "tilt", "handle_left", "handle_right"}
+_DETAIL = "groom_"  # prefix of the object properties that hold groom's detail attributes
+
+
+def curveset_from_object(ob):
+    """A groom.CurveSet from one object, with what curves_object kept of groom's attributes: 32-bit
+    integer, float and vector curve attributes (Blender attributes on the CURVE domain) and the
+    detail attributes (object properties named groom_NAME), so a puff made here can be gathered."""
+    curves = guides_from_objects([ob])
+    if ob.type != 'CURVES':
+        return curves
+    for attribute in ob.data.attributes:
+        if attribute.domain != 'CURVE' or attribute.name in _BLENDER_NAMES or attribute.name.startswith("."):
+            continue
+        n = len(ob.data.curves)
+        if attribute.data_type == 'INT':
+            values = np.empty(n, np.int32)
+            attribute.data.foreach_get('value', values)
+        elif attribute.data_type == 'FLOAT':
+            values = np.empty(n, np.float32)
+            attribute.data.foreach_get('value', values)
+        elif attribute.data_type == 'FLOAT_VECTOR':
+            values = np.empty(n * 3, np.float32)
+            attribute.data.foreach_get('vector', values)
+            values = values.reshape(-1, 3)
+        else:
+            continue
+        curves.curve_attributes[attribute.name] = values
+    for key in ob.keys():
+        if key.startswith(_DETAIL):
+            value = ob[key]
+            name = key[len(_DETAIL):]
+            if isinstance(value, str):
+                curves.detail_attributes[name] = value
+            elif isinstance(value, (int, float)):
+                curves.detail_attributes[name] = np.array([value], np.float32 if isinstance(value, float) else np.int32)
+            else:
+                curves.detail_attributes[name] = np.array(list(value), np.float32).reshape(1, -1)
+    return curves
+
+
 def scalp_from_object(ob, voxel=0.0):
     """groom.Scalp from a mesh object's evaluated triangles, in world space."""
     if ob is None or ob.type != 'MESH':
@@ -95,4 +136,34 @@ def curves_object(curves, name, collection):
     if 'width' in curves.point_attributes:
         radius = ob.data.attributes.get('radius') or ob.data.attributes.new('radius', 'FLOAT', 'POINT')
         radius.data.foreach_set('value', 0.5 * np.asarray(curves.point_attributes['width'], np.float32))
+    _keep_attributes(curves, ob)
     return ob
+
+
+def _keep_attributes(curves, ob):
+    """groom's curve attributes that Blender can hold (32-bit int, float, float3; not the 64-bit ids)
+    as CURVE-domain attributes, and its detail attributes as object properties (groom_NAME), for
+    curveset_from_object and for the artist's own node trees."""
+    for name in curves.curve_attributes.keys():
+        if name in _BLENDER_NAMES:
+            continue
+        values = np.asarray(curves.curve_attributes[name])
+        if values.dtype == np.int32:
+            a = ob.data.attributes.new(name, 'INT', 'CURVE')
+            a.data.foreach_set('value', values)
+        elif values.dtype == np.float32 and values.ndim == 1:
+            a = ob.data.attributes.new(name, 'FLOAT', 'CURVE')
+            a.data.foreach_set('value', values)
+        elif values.dtype == np.float32 and values.ndim == 2 and values.shape[1] == 3:
+            a = ob.data.attributes.new(name, 'FLOAT_VECTOR', 'CURVE')
+            a.data.foreach_set('vector', values.ravel())
+    for name in curves.detail_attributes.keys():
+        value = curves.detail_attributes[name]
+        if isinstance(value, str):
+            ob[_DETAIL + name] = value
+        else:
+            flat = np.asarray(value).ravel()
+            if flat.size == 1:
+                ob[_DETAIL + name] = flat[0].item()
+            elif flat.dtype.kind == 'f':
+                ob[_DETAIL + name] = [float(x) for x in flat]

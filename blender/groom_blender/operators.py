@@ -1,8 +1,11 @@
-"""The operators (bpy.ops.groom.braid, .partition, .curl, .puff, .generate) and their settings.
+"""The operators (bpy.ops.groom.braid, .partition, .curl, .puff, .generate, .hairline, .edges, .sections,
+.gather) and their settings.
 
 Each setting is named like the command-line option it feeds (knot_length -> --knot-length) and only
 settings the artist changed are passed on, so an untouched panel runs with groom's own defaults; the
-defaults shown here are the CLI's (`groom COMMAND --help`)."""
+defaults shown here are the CLI's (`groom COMMAND --help`). Two settings are always passed: the head's up
+and forward directions, because Blender is Z-up with the face toward -Y where groom's own defaults
+(+Y up, face +Z) are those of the DCCs that export Y-up."""
 
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, PointerProperty
@@ -22,8 +25,19 @@ PATTERNS = [
 ]
 
 
+LAYOUTS = [
+    ("grid", "Grid", "Box braids, twists, bantu knots"),
+    ("rows", "Rows", "Fulani: front to back, a centre row"),
+    ("radial", "Radial", "Wedges around the crown"),
+]
+
+
 def _mesh_poll(self, ob):
     return ob.type == 'MESH'
+
+
+def _curves_poll(self, ob):
+    return ob.type in {'CURVES', 'CURVE'}
 
 
 class GroomSettings(bpy.types.PropertyGroup):
@@ -55,16 +69,57 @@ class GroomSettings(bpy.types.PropertyGroup):
     sphere_center: FloatVectorProperty(name="Puff centre", default=(0.0, 1.5, 0.0), subtype='XYZ')
     sphere_radius: FloatProperty(name="Puff radius", default=0.5, min=0.0)
     puff_hairs: IntProperty(name="Puff hairs", default=0, min=0)
+    # the head, for hairline, edges, sections and gather
+    up: FloatVectorProperty(name="Up", default=(0.0, 0.0, 1.0), subtype='XYZ', description="The head's up direction")
+    forward: FloatVectorProperty(name="Forward", default=(0.0, -1.0, 0.0), subtype='XYZ', description="The direction the face looks")
+    hairline: PointerProperty(name="Hairline", type=bpy.types.Object, poll=_curves_poll,
+                              description="One closed curve around the head (Groom Hairline makes one); none = groom's default")
+    parting: PointerProperty(name="Parting", type=bpy.types.Object, poll=_curves_poll,
+                             description="Parting curves on the scalp: bare lines no hair crosses")
+    parting_gap: FloatProperty(name="Parting gap", default=0.3, min=0.0, description="Bare width along each parting")
+    # edges
+    edge_count: IntProperty(name="Edge hairs", default=0, min=0, description="Exact number of baby hairs (0 = from the density)")
+    edge_length: FloatProperty(name="Edge length", default=2.4, min=0.0, description="Arc length of one baby hair")
+    edge_radius: FloatProperty(name="Swirl radius", default=0.15, min=0.0, description="Tightest radius of curvature of a baby hair")
+    units_per_cm: FloatProperty(name="Units per cm", default=1.0, min=0.0,
+                                description="Scene units per centimetre: edges' defaults are centimetres (0.01 for metres)")
+    # sections
+    layout: EnumProperty(name="Layout", items=LAYOUTS, default="grid")
+    cols: IntProperty(name="Columns", default=8, min=1, max=256, description="grid: bands across the head; rows: rows")
+    section_length: FloatProperty(name="Guide length", default=30.0, min=0.0, description="Length of each section guide's free part")
+    # gather
+    gather_hairs: IntProperty(name="Gathered hairs", default=20000, min=1, description="Hairs over the scalp outside the puffs' bases")
+    lift: FloatProperty(name="Lift", default=0.08, min=0.0, description="Greatest height of the gathered hair above the scalp")
 
 
-def _given(settings, names):
-    """The settings among `names` the artist set (so groom's defaults apply to the rest)."""
+def _given(settings, names, rename=None):
+    """The settings among `names` the artist set (so groom's defaults apply to the rest), keyed by
+    groom's keyword (`rename` maps a setting to it where two ops share a keyword)."""
     out = {}
     for name in names:
         if settings.is_property_set(name):
             value = getattr(settings, name)
-            out[name] = tuple(value) if hasattr(value, "__len__") and not isinstance(value, str) else value
+            key = (rename or {}).get(name, name)
+            out[key] = tuple(value) if hasattr(value, "__len__") and not isinstance(value, str) else value
     return out
+
+
+def _head(settings, forward=True):
+    """up= (and forward=), always: Blender's axes are not groom's defaults."""
+    kw = {"up": tuple(settings.up)}
+    if forward:
+        kw["forward"] = tuple(settings.forward)
+    return kw
+
+
+def _region(settings):
+    """hairline= and parting= from the chosen curve objects, and the parting gap if set."""
+    kw = _given(settings, ("parting_gap",))
+    for name in ("hairline", "parting"):
+        ob = getattr(settings, name)
+        if ob is not None:
+            kw[name] = convert.curveset_from_object(ob)
+    return kw
 
 
 class _GroomOperator:
@@ -153,4 +208,60 @@ class GROOM_OT_puff(_GroomOperator, bpy.types.Operator):
                           sphere_radius=s.sphere_radius, hairs=s.puff_hairs, **kw)
 
 
-CLASSES = [GroomSettings, GROOM_OT_braid, GROOM_OT_partition, GROOM_OT_curl, GROOM_OT_generate, GROOM_OT_puff]
+class GROOM_OT_hairline(_GroomOperator, bpy.types.Operator):
+    """A default hairline around the scalp (forehead, temples, sideburns, ears, nape)"""
+    bl_idname = "groom.hairline"
+    bl_label = "Groom Hairline"
+    needs_guides = False
+
+    def run(self, s, guides, scalp, kw):
+        kw.update(_head(s))
+        return groom.hairline(scalp=scalp, **kw)
+
+
+class GROOM_OT_edges(_GroomOperator, bpy.types.Operator):
+    """Edges (baby hairs) laid flat in swirls along the hairline"""
+    bl_idname = "groom.edges"
+    bl_label = "Groom Edges"
+    needs_guides = False
+
+    def run(self, s, guides, scalp, kw):
+        kw.update(_head(s))
+        kw.update(_region(s))
+        kw.update(_given(s, ("edge_count", "edge_length", "edge_radius", "units_per_cm", "seed"),
+                         {"edge_count": "count", "edge_length": "length", "edge_radius": "radius"}))
+        return groom.edges(scalp=scalp, **kw)
+
+
+class GROOM_OT_sections(_GroomOperator, bpy.types.Operator):
+    """Part the scalp into sections, one guide each (feed them to Braid or Curl)"""
+    bl_idname = "groom.sections"
+    bl_label = "Groom Sections"
+    needs_guides = False
+
+    def run(self, s, guides, scalp, kw):
+        kw.update(_head(s))
+        kw.update(_region(s))
+        kw.pop("parting", None)  # sections make their own partings
+        kw.update(_given(s, ("layout", "cols", "section_length", "seed"), {"section_length": "length"}))
+        return groom.sections(scalp=scalp, **kw)
+
+
+class GROOM_OT_gather(_GroomOperator, bpy.types.Operator):
+    """Gather the rest of the scalp's hair into the selected puffs (made by Groom Puff)"""
+    bl_idname = "groom.gather"
+    bl_label = "Groom Gather"
+    needs_guides = False
+
+    def run(self, s, guides, scalp, kw):
+        chosen = [ob for ob in bpy.context.selected_objects if ob.type == 'CURVES' and "groom_puff_base" in ob]
+        if not chosen:
+            raise ValueError("gather: select the puffs (hair objects made by Groom Puff) to gather the hair into")
+        kw.update(_head(s, forward=False))
+        kw.update(_region(s))
+        kw.update(_given(s, ("gather_hairs", "lift", "type", "seed"), {"gather_hairs": "hairs"}))
+        return groom.gather([convert.curveset_from_object(ob) for ob in chosen], scalp=scalp, **kw)
+
+
+CLASSES = [GroomSettings, GROOM_OT_braid, GROOM_OT_partition, GROOM_OT_curl, GROOM_OT_generate, GROOM_OT_puff,
+           GROOM_OT_hairline, GROOM_OT_edges, GROOM_OT_sections, GROOM_OT_gather]

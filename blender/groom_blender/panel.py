@@ -48,6 +48,21 @@ class GROOM_PT_panel(bpy.types.Panel):
             box.prop(s, name)
         box.operator("groom.puff")
 
+        box = self.layout.box()
+        box.label(text="Whole scalp")
+        for name in ("up", "forward", "hairline", "parting", "parting_gap"):
+            box.prop(s, name)
+        box.operator("groom.hairline")
+        for name in ("edge_count", "edge_length", "edge_radius", "units_per_cm"):
+            box.prop(s, name)
+        box.operator("groom.edges")
+        for name in ("layout", "cols", "section_length"):
+            box.prop(s, name)
+        box.operator("groom.sections")
+        for name in ("gather_hairs", "lift"):
+            box.prop(s, name)
+        box.operator("groom.gather", text="Groom Gather (selected puffs)")
+
 
 class GROOM_MT_menu(bpy.types.Menu):
     """Object > Groom: every operator, with the settings of the Groom panel."""
@@ -55,7 +70,7 @@ class GROOM_MT_menu(bpy.types.Menu):
     bl_idname = "GROOM_MT_menu"
 
     def draw(self, context):
-        for op in ("braid", "partition", "curl", "generate", "puff"):
+        for op in ("braid", "partition", "curl", "generate", "puff", "hairline", "edges", "sections", "gather"):
             self.layout.operator("groom." + op)
 
 

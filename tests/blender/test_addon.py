@@ -97,6 +97,83 @@ for name, expected_fn, props in cases:
             ob.data.attributes['radius'].data.foreach_get('value', radius)
             check(f"{name}: radius is half the width", np.array_equal(radius, 0.5 * expected.point_attributes["width"]))
 
+# The whole scalp, Z-up as Blender is: a head-sized sphere (radius 10, centimetres like groom's
+# defaults), its hairline, edges along it, grid sections, and two puffs gathered. Each object must
+# equal the module's output for the same inputs with up = +Z and the face toward -Y.
+for key in ("fibers", "knot_length", "count", "type", "hairs", "puff_hairs", "center", "radius", "sphere_center", "sphere_radius"):
+    settings.property_unset(key)
+bpy.ops.mesh.primitive_uv_sphere_add(radius=10.0, segments=96, ring_count=48, location=(0, 0, 0))
+head = bpy.context.active_object
+head.name = "head"
+settings.scalp = head
+settings.scalp_voxel = 0.1
+head_field = convert.scalp_from_object(head, 0.1)
+up, forward = (0.0, 0.0, 1.0), (0.0, -1.0, 0.0)
+
+
+def same_as(name, ob, expected):
+    """The new object holds exactly `expected` (counts and positions)."""
+    counts = (len(ob.data.curves), len(ob.data.points))
+    check(f"{name}: curve and point counts", counts == (expected.num_curves, expected.num_points), f"{counts} vs {expected}")
+    if counts == (expected.num_curves, expected.num_points) and expected.num_points:
+        pos = np.empty(expected.num_points * 3, np.float32)
+        ob.data.attributes['position'].data.foreach_get('vector', pos)
+        err = np.abs(pos.reshape(-1, 3) - expected.points).max()
+        check(f"{name}: positions", err == 0.0, f"max difference {err}")
+
+
+def run_op(name):
+    result = getattr(bpy.ops.groom, name)()
+    check(f"{name}: operator finished", result == {'FINISHED'}, str(result))
+    return bpy.context.view_layer.objects.active if result == {'FINISHED'} else None
+
+
+hairline_ob = run_op("hairline")
+if hairline_ob is not None:
+    expected = groom.hairline(scalp=head_field, up=up, forward=forward)
+    same_as("hairline", hairline_ob, expected)
+    # Z-up read right: the hairline is higher at the forehead (-Y) than at the nape (+Y).
+    p = expected.points
+    check("hairline: forehead above the nape", p[np.argmin(p[:, 1]), 2] > p[np.argmax(p[:, 1]), 2] + 2.0)
+    settings.hairline = hairline_ob
+    hairline = convert.curveset_from_object(hairline_ob)
+    settings.edge_count = 40
+    edges_ob = run_op("edges")
+    if edges_ob is not None:
+        same_as("edges", edges_ob, groom.edges(scalp=head_field, up=up, forward=forward, hairline=hairline, count=40))
+    settings.cols = 4
+    sections_ob = run_op("sections")
+    if sections_ob is not None:
+        same_as("sections", sections_ob, groom.sections(scalp=head_field, up=up, forward=forward, hairline=hairline, cols=4))
+    puffs = []
+    for side in (-1, 1):
+        settings.center, settings.radius = (6.0 * side, 0.0, 8.0), 2.5
+        settings.sphere_center, settings.sphere_radius = (10.0 * side, 0.0, 13.0), 4.0
+        ob = run_op("puff")
+        if ob is not None:
+            puffs.append(ob)
+    check("puff: keeps its base and sphere for gather", all("groom_puff_base" in ob for ob in puffs) and len(puffs) == 2)
+    if len(puffs) == 2:
+        puff_sets = [convert.curveset_from_object(ob) for ob in puffs]
+        check("puff: kind kept as a curve attribute", all((np.asarray(c.curve_attributes["kind"]) == 0).all() for c in puff_sets))
+        for ob in bpy.context.view_layer.objects:
+            ob.select_set(ob in puffs)
+        settings.gather_hairs = 200
+        gathered = run_op("gather")
+        if gathered is not None:
+            expected = groom.gather(puff_sets, scalp=head_field, up=up, hairline=hairline, hairs=200)
+            same_as("gather", gathered, expected)
+            kind = np.asarray(expected.curve_attributes["kind"])
+            check("gather: hairs and bands", (kind == 1).sum() == 200 and (kind == 2).sum() > 0)
+    for ob in bpy.context.view_layer.objects:
+        ob.select_set(False)
+    r = None
+    try:
+        r = bpy.ops.groom.gather()
+        check("gather with no puff selected: cancelled", r == {'CANCELLED'}, str(r))
+    except RuntimeError as e:
+        check("gather with no puff selected: reported", "select the puffs" in str(e), str(e))
+
 # Errors reach the artist as a report, not a traceback: a partition with no scalp.
 settings.scalp = None
 select_guides()

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 using namespace groom;
@@ -27,6 +28,45 @@ TEST(CornrowGuidesCli, GuidesAndTailsOnTheDefaultHead)
         EXPECT_LT(g.positions()[pts.end - 1].z, -3.0f);
         EXPECT_EQ(t.positions()[t.points_of(c).begin], g.positions()[pts.end - 1]);
     }
+}
+
+TEST(CornrowGuidesCli, WithTheHeadsHairlineEveryRowStartsAndEndsOnIt)
+{
+    // The default head's hairline from `groom hairline`: each row's root and tip lie on the scalp
+    // within 0.05 cm of that curve (the hairline is a polyline of 180 points over a ~60 cm loop, and
+    // the rows cross it at an angle), where without it the outer rows start on the forehead, 1 cm
+    // and more below it. A hairline that is not a curve file is an error naming it.
+    test::TempDir dir;
+    ASSERT_EQ(run_groom({"head", "-o", dir.file("head.obj"), "--resolution", "48"}).exit_code, 0);
+    ASSERT_EQ(run_groom({"hairline", "--scalp", dir.file("head.obj"), "-o", dir.file("hl.usda"), "-q"}).exit_code, 0);
+    const auto r = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g.usda"), "--count", "8", "--hairline",
+                              dir.file("hl.usda"), "--tails-out", dir.file("t.usda"), "-q"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("plain.usda"), "--count", "8", "-q"}).exit_code, 0);
+    const CurveSet hl = read_curves(dir.file("hl.usda")), g = read_curves(dir.file("g.usda")), plain = read_curves(dir.file("plain.usda"));
+    const auto to_hairline = [&](const float3& p) {
+        float best = 1e30f;
+        const auto H = hl.positions();
+        for (size_t k = 0; k < H.size(); ++k) {
+            const float3 a = H[k], b = H[(k + 1) % H.size()];
+            const float t = std::clamp(dot(p - a, b - a) / std::max(dot(b - a, b - a), 1e-12f), 0.0f, 1.0f);
+            best = std::min(best, length(p - (a + (b - a) * t)));
+        }
+        return best;
+    };
+    ASSERT_EQ(g.num_curves(), 8u);
+    float plain_worst = 0.0f;
+    for (size_t c = 0; c < g.num_curves(); ++c) {
+        const IndexRange pts = g.points_of(c);
+        EXPECT_LT(to_hairline(g.positions()[pts.begin]), 0.05f) << "row " << c << " root";
+        EXPECT_LT(to_hairline(g.positions()[pts.end - 1]), 0.05f) << "row " << c << " tip";
+        plain_worst = std::max(plain_worst, to_hairline(plain.positions()[plain.points_of(c).begin]));
+    }
+    EXPECT_GT(plain_worst, 1.0f) << "the plain rows should start away from the hairline (else this test shows nothing)";
+    const auto bad = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("x.usda"), "--hairline", dir.file("head.obj")});
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.err.find("head.obj"), std::string::npos) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x.usda")));
 }
 
 TEST(CornrowGuidesCli, BadOptionsAreUsageErrors)

@@ -1,5 +1,7 @@
 #include "ops/cornrow_guides.h"
 
+#include "circle_on_sphere.h"
+
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 
@@ -65,6 +67,52 @@ TEST(CornrowGuides, WithTheFanAxisThroughTheCentreGuidesAreGreatCirclesWithExact
         EXPECT_GT(P[r.begin].z, P[r.end - 1].z);
         if (i != 2) EXPECT_EQ(P[r.begin + 20].x > c.x, u > 0.0f);
     }
+}
+
+TEST(CornrowGuides, WithAHairlineRowsRunFromItAtTheFrontToItAtTheNape)
+{
+    // A level and a tilted (higher at the front, as on a real head) circular hairline on a sphere
+    // of radius 8: each bounds exactly the cap above its plane (HairRegion's closed form), so every
+    // row must start and end on that plane (the ends are found to 1e-4 of the arc's angle: within
+    // 4e-3 of it here) with every point of the row on the cap, the root at the front and the tip at
+    // the back. The rows are not great circles (pivot 5), and the same rows with no hairline keep
+    // their --front-angle / --back-angle ends.
+    const float3 c{0.5f, 3.0f, -1.0f};
+    const float R = 8.0f;
+    const AnalyticSphere sphere(c, R);
+    CornrowGuidesParams p;
+    p.center = c;
+    p.radius = R + 1.0f;
+    p.pivot = 5.0f;
+    p.count = 7;
+    p.spread = 50.0f;
+    p.samples = 48;
+    p.back_angle = -20.0f;  // above where these rows meet (-33.7 degrees); replaced by the hairline anyway
+    for (const float3 n : {float3(0, 1, 0), normalize(float3(0, 1, -0.35f))}) {
+        const float offset = 0.15f * R;
+        const CurveSet hairline = test::circle_on_sphere(c, R, n, offset, 720);
+        const HairRegion region(sphere, hairline, CurveSet(), HairRegionParams{});
+        const CornrowGuides g = cornrow_guides(sphere, p, &region);
+        ASSERT_EQ(g.guides.num_curves(), 7u);
+        const auto P = g.guides.positions();
+        for (size_t i = 0; i < 7; ++i) {
+            const IndexRange r = g.guides.points_of(i);
+            EXPECT_NEAR(dot(P[r.begin] - c, n), offset, 4e-3f) << "row " << i << " root";
+            EXPECT_NEAR(dot(P[r.end - 1] - c, n), offset, 4e-3f) << "row " << i << " tip";
+            for (int64_t k = r.begin; k < r.end; ++k) EXPECT_GT(dot(P[k] - c, n), offset - 4e-3f) << "row " << i;
+            EXPECT_GT(P[r.begin].z, c.z) << "row " << i << " starts at the front";
+            EXPECT_LT(P[r.end - 1].z, c.z) << "row " << i << " ends at the back";
+        }
+    }
+    // No hairline in the region: the plain rows.
+    const HairRegion none(sphere, CurveSet(), CurveSet(), HairRegionParams{});
+    const CornrowGuides a = cornrow_guides(sphere, p, &none), b = cornrow_guides(sphere, p);
+    ASSERT_EQ(a.guides.num_points(), b.guides.num_points());
+    for (size_t k = 0; k < a.guides.num_points(); ++k) EXPECT_EQ(a.guides.positions()[k], b.guides.positions()[k]);
+    // A hairline the rows never reach: an error naming the row.
+    const CurveSet tiny = test::circle_on_sphere(c, R, float3(0, -1, 0), 0.99f * R, 64);  // around the bottom
+    const HairRegion away(sphere, tiny, CurveSet(), HairRegionParams{float3(0, -1, 0)});
+    EXPECT_THROW(cornrow_guides(sphere, p, &away), InvalidGeometry);
 }
 
 TEST(CornrowGuides, OffsetLiftsAlongTheNormalAndTailsHangWithoutEnteringTheScalp)

@@ -3,6 +3,8 @@
 // sphere by that circle's plane.
 #include "ops/hair_region.h"
 
+#include "circle_on_sphere.h"
+
 #include "kernel/error.h"
 #include "kernel/rng.h"
 
@@ -18,18 +20,9 @@ const float3 kC{0.5f, 1.0f, -0.5f};
 constexpr float kR = 8.0f;
 constexpr float kPi = 3.14159265358979f;
 
-/// The circle where the plane through kC + normal * offset (unit normal) cuts the sphere, n points.
 CurveSet circle_on_sphere(const float3& normal, float offset, int n, bool reverse = false)
 {
-    const float3 e1 = any_perpendicular(normal), e2 = cross(normal, e1);
-    const float r = std::sqrt(kR * kR - offset * offset);
-    CurveSet c = CurveSet::from_counts(std::vector<int64_t>{n});
-    auto P = c.positions_for_write();
-    for (int i = 0; i < n; ++i) {
-        const float a = 2 * kPi * i / n * (reverse ? -1.0f : 1.0f);
-        P[i] = kC + normal * offset + (e1 * std::cos(a) + e2 * std::sin(a)) * r;
-    }
-    return c;
+    return test::circle_on_sphere(kC, kR, normal, offset, n, reverse);
 }
 
 float3 random_on_sphere(Rng& rng)

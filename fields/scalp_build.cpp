@@ -176,15 +176,6 @@ double check_extent(std::span<const float3> points, const ScalpBuildParams& para
                               format_number(kMaxExtent) + " (distances would overflow float): scale it down");
     }
     const double h = params.voxel_size > 0.0f ? params.voxel_size : diag / 256.0;
-    // OpenVDB refuses a transform whose scale determinant is below 3e-15 (ArithmeticError "Non-zero
-    // scale values required", from inside meshToVolume's tasks): h^3 must stay above that.
-    constexpr double kMinVoxel = 2.0e-5;
-    if (!(h >= kMinVoxel)) {
-        throw InvalidGeometry(params.source + ": voxel size " + format_number(h) + (params.voxel_size > 0.0f ? "" : " (automatic)") +
-                              " is below " + format_number(kMinVoxel) + ", the smallest OpenVDB's transforms take (the mesh is " +
-                              format_number(diag) + " units across): scale the mesh up" +
-                              (params.voxel_size > 0.0f ? " or use a larger `voxel`" : ""));
-    }
     double far = 0.0;
     for (const double c : {box.lo.x, box.lo.y, box.lo.z, box.hi.x, box.hi.y, box.hi.z}) far = std::max(far, std::fabs(c));
     // A float holds 24 bits: 2^24 voxels from the origin, neighbouring voxel centres round to one
@@ -221,6 +212,16 @@ VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::ar
                             " GiB for the level set (" + format_number(voxels) + " voxels), over the " +
                             format_number(budget / double(1ull << 30)) + " GiB budget (`memory`); use `voxel` " +
                             format_number(suggest2) + " or larger (the mesh is " + format_number(diag) + " units across)");
+    }
+    // After the budget (whose advice names a workable voxel). OpenVDB refuses a transform whose scale
+    // determinant is below 3e-15 (ArithmeticError "Non-zero scale values required", thrown inside
+    // meshToVolume's tasks, which ended the process): h^3 must stay above that.
+    constexpr float kMinVoxel = 2.0e-5f;  // float: --voxel 2e-5 is a float
+    if (!(h >= double(kMinVoxel))) {
+        throw InvalidGeometry(params.source + ": voxel size " + format_number(h) + (params.voxel_size > 0.0f ? "" : " (automatic)") +
+                              " is below " + format_number(kMinVoxel) + ", the smallest OpenVDB's transforms take (the mesh is " +
+                              format_number(diag) + " units across): scale the mesh up" +
+                              (params.voxel_size > 0.0f ? " or use a larger `voxel`" : ""));
     }
     return {h, bytes};
 }

@@ -4,10 +4,12 @@
 #
 #   bash scripts/fuzz.sh                     # every target, 5 s each
 #   bash scripts/fuzz.sh --seconds 600 usda  # one target for ten minutes
-#   bash scripts/fuzz.sh --op-seconds 3      # the op targets (op_<command>) for 3 s each, the others 5 s
-#   bash scripts/fuzz.sh --seconds 300 op_braid   # one op for five minutes
+#   bash scripts/fuzz.sh --op-seconds 40     # target `ops` (every op command, drawn per input) 40 s
+#   bash scripts/fuzz.sh --seconds 300 op_braid   # one op command for five minutes
 #
-# op_<command> runs fuzz/ops_fuzz.cpp (one binary for every op) with GROOM_FUZZ_OP=<command>.
+# `ops` and op_<command> run fuzz/ops_fuzz.cpp (one binary for every op command); op_<command> sets
+# GROOM_FUZZ_OP=<command> and keeps its own corpus. The default list has `ops` (one start-up for
+# all commands, so CI pays it once); --op-seconds sets the time of `ops` and op_* targets.
 # The working corpus grows in $GROOM_SANITIZE_BUILD_DIR/fuzz-corpus/<target> across runs; a crash
 # leaves its input in .../fuzz-artifacts/ and the script exits 1. Make every crash a test in
 # tests/kernel/regression_test.cpp (input under tests/data/regressions/<target>/).
@@ -27,13 +29,19 @@ while (($#)); do
 done
 ops=(resample project cull hairline parting cornrow-guides braid partition populate curl generate puff gather edges
   sections render head)
-all=(usda obj_curves ply_curves hair obj_mesh ply_mesh off stl cli_args parse_floats "${ops[@]/#/op_}")
+all=(usda obj_curves ply_curves hair obj_mesh ply_mesh off stl cli_args parse_floats ops)
 ((${#targets[@]})) || targets=("${all[@]}")
 
 source "$(dirname "${BASH_SOURCE[0]}")/sanitize-env.sh"
 configure_sanitize_build
 build_targets=(make_fuzz_corpus)
-binary_of() { if [[ $1 == op_* ]]; then echo ops_fuzz; else echo "${1}_fuzz"; fi; }
+binary_of() { if [[ $1 == op_* || $1 == ops ]]; then echo ops_fuzz; else echo "${1}_fuzz"; fi; }
+for t in "${targets[@]}"; do
+  if [[ $t == op_* && " ${ops[*]} " != *" ${t#op_} "* ]]; then
+    echo "fuzz.sh: no op command '${t#op_}' (op targets: ${ops[*]/#/op_})" >&2
+    exit 2
+  fi
+done
 for t in "${targets[@]}"; do build_targets+=("$(binary_of "$t")"); done
 mapfile -t build_targets < <(printf '%s\n' "${build_targets[@]}" | sort -u)
 cmake --build "$sbuild" -j "$jobs" --target "${build_targets[@]}" 2>&1 | grep -E 'error|warning: unused' || true
@@ -57,8 +65,8 @@ for t in "${targets[@]}"; do
   log=$sbuild/fuzz-artifacts/$t.log
   run_seconds=$seconds
   op_env=()
-  if [[ $t == op_* ]]; then
-    op_env=(GROOM_FUZZ_OP="${t#op_}")
+  if [[ $t == op_* || $t == ops ]]; then
+    [[ $t == op_* ]] && op_env=(GROOM_FUZZ_OP="${t#op_}")
     [[ -n $op_seconds ]] && run_seconds=$op_seconds
   fi
   # -timeout: one input taking over 10 s is a hang; -rss_limit_mb / -malloc_limit_mb: a reader that

@@ -18,7 +18,7 @@ PolygonSoup tetrahedron(float size)
 }
 
 // op_project, op_cull, op_hairline: a mesh 1e-4 across (automatic voxel 6.8e-7) or an explicit voxel
-// of 1e-6 made OpenVDB throw ArithmeticError ("Non-zero scale values required") from inside
+// of 1e-6 (on a mesh small enough for the memory budget) made OpenVDB throw ArithmeticError ("Non-zero scale values required") from inside
 // meshToVolume's task group, which ended the process (std::terminate); the CLI would have called it
 // an "unexpected failure". Now InvalidGeometry naming the voxel and the smallest one OpenVDB takes.
 TEST(OpFuzz, VoxelTooSmallForOpenVdbIsRefusedNamingIt)
@@ -32,9 +32,9 @@ TEST(OpFuzz, VoxelTooSmallForOpenVdbIsRefusedNamingIt)
         EXPECT_NE(std::string(e.what()).find("scale the mesh up"), std::string::npos) << e.what();
     }
     ScalpBuildParams p;
-    p.voxel_size = 1e-6f;
+    p.voxel_size = 1e-6f;  // on a mesh 1e-5 across: 17 voxels, well inside the budget
     try {
-        build_scalp(tetrahedron(1.0f), p);
+        build_scalp(tetrahedron(1e-5f), p);
         FAIL() << "voxel 1e-6 was accepted";
     }
     catch (const InvalidGeometry& e) {

@@ -85,7 +85,7 @@ void BM_Partition(benchmark::State& state)
     PartitionParams params;
     params.count = 48;
     params.samples = 12;
-    params.width = 0.0005f;
+    params.widths.root = params.widths.tip = 0.0005f;
     int64_t segments = 0;
     for (auto _ : state) {
         const CurveSet out = partition(l.guides, *l.scalp, params);

@@ -3,6 +3,7 @@
 // so `groom edges --scalp head.vdb -o edges.usda` works on `groom head`'s head alone.
 #include "cli/command.h"
 #include "cli/scalp_options.h"
+#include "cli/width_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
@@ -24,6 +25,8 @@ struct Args {
     EdgesParams params;
     HairRegionParams region;
     float units_per_cm = 1.0f;
+    float width = 0.0f;
+    WidthOptions widths;
 };
 
 void setup(CommandContext& ctx)
@@ -54,7 +57,10 @@ void setup(CommandContext& ctx)
     app->add_option("--swoop", p.swoop, "Hairline length a group of hairs laid together shares, scene units, > 0")->capture_default_str();
     app->add_option("--variation", p.variation, "Per-hair random variation of length, radius and heading, [0, 0.9]")->capture_default_str();
     app->add_option("--height", p.height, "Height of the hairs above the skin (each in [h/2, h]), scene units, >= 0")->capture_default_str();
-    app->add_option("--width", p.width, "Hair diameter written as `width`, scene units, > 0")->capture_default_str();
+    add_width_options(app, args->widths, "the defaults x --units-per-cm");
+    app->add_option("--width", args->width, "One hair diameter root to tip (--root-width W --tip-width W), scene units, > 0")
+        ->excludes(args->widths.root_opt)
+        ->excludes(args->widths.tip_opt);
     app->add_option("--points", p.points, "Points per hair, [4, 4096]")->capture_default_str();
     app->add_option("--seed", p.seed, "Seed for every random choice")->capture_default_str();
     app->add_option("--first-id", p.first_id, "Curve ids start here, >= 0")->capture_default_str();
@@ -75,9 +81,17 @@ void setup(CommandContext& ctx)
         // The defaults are a head in centimetres; a scene in other units gets them scaled, while
         // every length the user typed is taken as given (scene units).
         for (auto [option, value] : {std::pair{"--depth", &params.depth}, {"--length", &params.length}, {"--radius", &params.radius},
-                                     {"--swoop", &params.swoop}, {"--height", &params.height}, {"--width", &params.width}}) {
+                                     {"--swoop", &params.swoop}, {"--height", &params.height}}) {
             if (app->count(option) == 0) *value *= u;
         }
+        params.widths = hair_widths_from(args->widths, "edges");
+        if (app->count("--width")) {
+            if (!(std::isfinite(args->width) && args->width > 0.0f)) {
+                throw InvalidParam("edges: --width must be > 0 scene units (got " + format_number(args->width) + ")");
+            }
+            params.widths.root = params.widths.tip = args->width;
+        }
+        params.widths = params.widths.resolved(u);
         if (app->count("--density") == 0) params.density /= u;
         params.up = parse_float3("--up", args->up);
         params.forward = parse_float3("--forward", args->forward);

@@ -3,6 +3,7 @@
 #include "cli/command.h"
 #include "cli/region_options.h"
 #include "cli/scalp_options.h"
+#include "cli/width_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
 #include "ops/generate.h"
@@ -19,6 +20,7 @@ struct Args {
     ScalpBuildParams scalp_params;
     GenerateParams params;
     RegionOptions hair_region;
+    WidthOptions widths;
 };
 
 void setup(CommandContext& ctx)
@@ -47,6 +49,7 @@ void setup(CommandContext& ctx)
     app->add_option("--seed", p.seed, "Random seed for the roots")->capture_default_str();
     add_scalp_build_options(app, args->scalp_params);
     add_region_options(app, args->hair_region);
+    add_width_options(app, args->widths, "the guides' widths, else the defaults");
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input, args->scalp, args->hair_region.hairline, args->hair_region.parting}, common);
@@ -56,6 +59,7 @@ void setup(CommandContext& ctx)
             args->params.region_radius = v[3];
             if (!(v[3] > 0.0f)) throw InvalidParam("generate: --region radius must be > 0 (got " + std::to_string(v[3]) + ")");
         }
+        args->params.widths = hair_widths_from(args->widths, "generate");
         args->params.validate();
         const auto start = std::chrono::steady_clock::now();
         const CurveSet guides = read_curves(args->input);

@@ -20,7 +20,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
-    std::string input;
+    std::string input, group;
     bool json = false, mesh = false, curves = false;
 };
 
@@ -129,7 +129,8 @@ void info_curves(const Args& a)
 
 void info_mesh(const Args& a)
 {
-    const PolygonSoup soup = read_mesh(a.input);
+    const PolygonSoup soup = read_mesh(a.input, a.group);
+    const std::vector<MeshGroup> groups = read_mesh_groups(a.input);
     const MeshStats s = mesh_stats(soup);
     Bounds3 b;
     for (const float3& p : soup.points) b.extend(p);
@@ -149,10 +150,15 @@ void info_mesh(const Args& a)
         j["duplicate_vertices"] = s.duplicate_vertices;
         j["degenerate_faces"] = s.degenerate_faces;
         if (!b.empty()) j["bounds"] = {{"min", json_triple(b.lo)}, {"max", json_triple(b.hi)}};
+        if (!a.group.empty()) j["group"] = a.group;
+        if (!groups.empty()) {
+            j["groups"] = nlohmann::ordered_json::array();
+            for (const MeshGroup& g : groups) j["groups"].push_back({{"name", g.name}, {"faces", g.faces}});
+        }
         o << j.dump(2) << "\n";
     }
     else {
-        o << a.input << ": mesh\n";
+        o << a.input << ": mesh" << (a.group.empty() ? "" : " (group " + a.group + ")") << "\n";
         o << "  vertices            " << s.vertices << "\n";
         o << "  faces               " << s.faces << " (" << s.triangles << " triangles, " << s.quads << " quads, " << s.ngons << " n-gons)\n";
         o << "  shells              " << s.shells << "\n";
@@ -162,6 +168,8 @@ void info_mesh(const Args& a)
         o << "  degenerate faces    " << s.degenerate_faces << "\n";
         if (!b.empty()) o << "  bounds              " << triple(b.lo) << " to " << triple(b.hi) << "  size " << triple(b.size()) << "\n";
         o << "  (edges, shells and duplicates count vertices at identical positions as one)\n";
+        // The names a --group / --scalp-group can pick.
+        for (const MeshGroup& g : groups) o << "  group " << (g.name) << "  " << g.faces << " faces\n";
     }
     std::cout << o.str();
 }
@@ -174,6 +182,7 @@ void setup(CommandContext& ctx)
     app->add_flag("--json", args->json, "Print JSON instead of text");
     auto* m = app->add_flag("--mesh", args->mesh, "Read FILE as a mesh (default: decided by extension and content)");
     app->add_flag("--curves", args->curves, "Read FILE as curves")->excludes(m);
+    app->add_option("--group", args->group, "OBJ mesh: describe only the faces of this object ('o') or group ('g')");
     ctx.run = [args] {
         bool curves = args->curves;
         if (!args->curves && !args->mesh) {
@@ -185,6 +194,7 @@ void setup(CommandContext& ctx)
             }
             curves = holds_curves(args->input);
         }
+        if (curves && !args->group.empty()) throw InvalidParam("info: --group applies to meshes; " + args->input + " holds curves");
         if (curves) info_curves(*args);
         else info_mesh(*args);
     };

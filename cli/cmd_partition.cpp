@@ -2,6 +2,7 @@
 #include "cli/command.h"
 #include "cli/region_options.h"
 #include "cli/scalp_options.h"
+#include "cli/width_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/atomic_file.h"
@@ -9,6 +10,7 @@
 #include "ops/partition.h"
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <string>
@@ -23,6 +25,10 @@ struct Args {
     float frequency = 0.0f, knot_length = 0.0f, knot_bias = 0.0f;
     PartitionParams params;
     RegionOptions hair_region;
+    WidthOptions widths;
+    float width = 0.0f;
+    CLI::Option* width_opt = nullptr;
+    bool width_given() const { return width_opt && width_opt->count() > 0; }
 };
 
 /// Lines of a small text file with their numbers, comments (#) and blank lines dropped, each split at
@@ -137,7 +143,10 @@ void setup(CommandContext& ctx)
     auto* count = app->add_option("--count", p.count, "Segments per side of each guide (>= 1)")->capture_default_str();
     auto* spacing = app->add_option("--spacing", p.spacing, "Arc length between segments along the guide, scene units (> 0)");
     app->add_option("--samples", p.samples, "Points per segment (>= 2)")->capture_default_str();
-    app->add_option("--width", p.width, "Hair width, scene units (> 0)")->capture_default_str();
+    add_width_options(app, args->widths);
+    args->width_opt = app->add_option("--width", args->width, "One hair diameter root to tip (--root-width W --tip-width W), scene units, > 0")
+        ->excludes(args->widths.root_opt)
+        ->excludes(args->widths.tip_opt);
     app->add_option("--jitter", p.jitter, "Random shift of segments along the guide, fraction of the spacing [0, 1]")->capture_default_str();
     app->add_option("--seed", p.seed, "Random seed for --jitter")->capture_default_str();
     app->add_option("--max-gap", p.max_gap, "Ignore neighbours (and stations) farther than this, scene units; 0 = automatic, 4 typical gaps between guides")->capture_default_str();
@@ -180,6 +189,13 @@ void setup(CommandContext& ctx)
             for (const CLI::Option* o : {frequency, knot_length, knot_bias, knot_density}) {
                 if (o->count()) throw InvalidParam("partition: " + o->get_name() + " applies only with --centroids knots");
             }
+        }
+        params.widths = hair_widths_from(args->widths, "partition");
+        if (args->width_given()) {
+            if (!(std::isfinite(args->width) && args->width > 0.0f)) {
+                throw InvalidParam("partition: --width must be > 0 scene units (got " + format_number(args->width) + ")");
+            }
+            params.widths.root = params.widths.tip = args->width;
         }
         params.validate();  // options first: no need to read anything to reject them
 

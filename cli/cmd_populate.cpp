@@ -1,5 +1,6 @@
 // `groom populate`: fill a disc around each input curve with hair fibers (see ops/populate.h).
 #include "cli/command.h"
+#include "cli/width_options.h"
 #include "kernel/io/curve_io.h"
 #include "ops/populate.h"
 
@@ -9,6 +10,7 @@ namespace {
 struct Args {
     std::string input, output;
     PopulateParams params;
+    WidthOptions widths;
 };
 
 void setup(CommandContext& ctx)
@@ -25,10 +27,12 @@ void setup(CommandContext& ctx)
         ->capture_default_str();
     app->add_option("--radius-scale", args->params.radius_scale,
                     "Point float attribute of the input that scales the radius per point (e.g. a taper)");
+    add_width_options(app, args->widths, "--width (one fiber width, automatic by default)");
     app->add_option("--seed", args->params.seed, "Random seed for the fiber offsets")->capture_default_str();
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input}, common);
+        args->params.widths = hair_widths_from(args->widths, "populate");
         args->params.validate();
         const CurveSet in = read_curves(args->input);
         const auto progress = make_progress(common);

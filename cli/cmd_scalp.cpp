@@ -74,6 +74,8 @@ void setup(CommandContext& ctx)
     app->add_option("--band", args->params.band_voxels, "Narrow-band half width in voxels (1..64)")->capture_default_str();
     app->add_flag("--flip", args->params.flip, "The mesh is inside out: swap inside and outside");
     app->add_option("--report", args->report, "Write the repair report as JSON to this file");
+    app->add_option("--group", args->params.group,
+                    "OBJ mesh: only the faces of this object ('o') or group ('g'), e.g. the head without eyes, teeth and hair proxies");
     app->add_flag("--keep-enclosed", args->keep_enclosed, "Keep shells that lie inside another (eyes, teeth); removed by default");
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, voxel, &common] {
@@ -91,7 +93,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
 
         const auto start = std::chrono::steady_clock::now();
-        const PolygonSoup soup = read_mesh(a.input);
+        const PolygonSoup soup = read_mesh(a.input, a.params.group);
         auto progress = make_progress(common);
         RepairReport report;
         const ScalpField scalp = build_scalp(soup, a.params, &report, progress.get());

@@ -51,7 +51,7 @@ void add_curl_options(CLI::App* app, CurlOptions& o, bool with_seed)
     app->add_option("--frequency", o.frequency, "Cycles per scene unit of guide, lo,hi, per curve (default: type ratio / amplitude)");
     app->add_option("--phase", o.phase, "Rotation of the cross-section, turns, lo,hi, per curve (default 0,1)");
     app->add_option("--offset", o.offset, "Cycle centre offset from the guide, scene units, lo,hi, per cycle (default 0)");
-    app->add_option("--units-per-cm", o.params.units_per_cm, "Scene units per centimetre, for the type's default radius")->capture_default_str();
+    app->add_option("--units-per-cm", o.params.units_per_cm, "Scene units per centimetre, for the type's default radius and the default widths")->capture_default_str();
     app->add_option("--root-ease", o.params.root_ease, "Straight length at the root, scene units")->capture_default_str();
     app->add_option("--root-ramp", o.params.root_ramp, "Cycles over which the curl grows in after the straight root")->capture_default_str();
     app->add_option("--samples", o.params.samples, "Output points per curl cycle, 4..256")->capture_default_str();
@@ -61,6 +61,8 @@ void add_curl_options(CLI::App* app, CurlOptions& o, bool with_seed)
     app->add_option("--polygon-sides", o.params.shape.polygon_sides, "Polygon sides, 3..64")->capture_default_str();
     app->add_option("--ellipse-aspect", o.params.shape.ellipse_aspect, "Ellipse minor/major axis, (0, 1]")->capture_default_str();
     app->add_option("--rose-petals", o.params.shape.rose_petals, "Polar rose k in r = cos(k theta), 1..32")->capture_default_str();
+    // Default widths scale with --units-per-cm, as the default radius does.
+    add_width_options(app, o.widths, "the input's widths (interpolated), else the defaults x --units-per-cm");
     if (with_seed) app->add_option("--seed", o.params.seed, "Random seed")->capture_default_str();
 }
 
@@ -84,6 +86,7 @@ CurlParams curl_params_from(const CurlOptions& o)
     p.phase = parse_range("--phase", o.phase, p.phase);
     p.offset = parse_range("--offset", o.offset, p.offset);
     p.preserve_length = !o.keep_extent;
+    p.widths = hair_widths_from(o.widths, "curl");
     p.validate();
     return p;
 }

@@ -2,6 +2,7 @@
 // generates (e.g. `groom puff`), so every curl option is spelled, documented and checked once.
 #pragma once
 
+#include "cli/width_options.h"
 #include "ops/curl.h"
 
 #include <CLI/CLI.hpp>
@@ -16,12 +17,13 @@ namespace groom::cli {
 struct CurlOptions {
     std::string type, dominant, shapes, amplitude, frequency, phase, offset;
     bool keep_extent = false;
+    WidthOptions widths;
     CurlParams params;
 };
 
 /// Adds --type --dominant --uniformity --shapes --amplitude --frequency --phase --offset
 /// --units-per-cm --root-ease --root-ramp --samples --blend --keep-extent --lame-exponent
-/// --polygon-sides --ellipse-aspect --rose-petals and (with_seed) --seed to `app`, writing into `o`.
+/// --polygon-sides --ellipse-aspect --rose-petals --root-width --tip-width and (with_seed) --seed to `app`, writing into `o`.
 /// A command with a --seed of its own passes with_seed = false and sets o.params.seed itself.
 void add_curl_options(CLI::App* app, CurlOptions& o, bool with_seed = true);
 

@@ -23,6 +23,8 @@ void add_scalp_build_options(CLI::App* app, ScalpBuildParams& params)
         ->check(CLI::Range(1.0f, 64.0f))
         ->capture_default_str();
     app->add_flag("--scalp-flip", params.flip, "When --scalp is a mesh: it is inside out, swap inside and outside");
+    app->add_option("--scalp-group", params.group,
+                    "When --scalp is an OBJ mesh: only the faces of this object ('o') or group ('g'), e.g. the head without eyes and teeth");
 }
 
 }  // namespace groom::cli

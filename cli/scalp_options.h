@@ -8,7 +8,7 @@
 
 namespace groom::cli {
 
-/// Adds --scalp-voxel, --scalp-band and --scalp-flip, which only matter when --scalp is a mesh
+/// Adds --scalp-voxel, --scalp-band, --scalp-flip and --scalp-group, which only matter when --scalp is a mesh
 /// (a .vdb from `groom scalp` is used as it is).
 void add_scalp_build_options(CLI::App* app, ScalpBuildParams& params);
 

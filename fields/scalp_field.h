@@ -34,6 +34,9 @@ struct ScalpBuildParams {
     uint64_t memory_budget = 0;
     bool remove_enclosed_shells = true;   ///< drop shells lying inside a larger one (eyes, teeth)
     std::string source = "scalp";         ///< names the mesh (its file) in messages
+    /// An OBJ mesh: only the faces of the object (`o`) or group (`g`) of this name (the head, not
+    /// its eyes, teeth or hair proxies); empty = every face. Not for a .vdb (already one surface).
+    std::string group;
     void validate() const;        ///< throws InvalidParam naming the option, value and range
 };
 

@@ -341,13 +341,18 @@ std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const Scal
         if (it == m.fields.end()) throw IoError(path + ": no scalp stored under this name");
         return it->second;
     }
-    if (io::extension_of(path) == "vdb") return std::make_shared<ScalpField>(read_scalp_vdb(path, progress));
+    if (io::extension_of(path) == "vdb") {
+        if (!params.group.empty()) {
+            throw InvalidParam("--scalp-group " + params.group + ": " + path + " is a level set, not a mesh; choose the group when making it (groom scalp --group)");
+        }
+        return std::make_shared<ScalpField>(read_scalp_vdb(path, progress));
+    }
     if (!is_mesh_path(path)) {
         throw InvalidParam("`scalp` " + path + ": expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
     }
     ScalpBuildParams named = params;
     named.source = path;
-    return std::make_shared<ScalpField>(build_scalp(read_mesh(path), named, nullptr, progress));
+    return std::make_shared<ScalpField>(build_scalp(read_mesh(path, params.group), named, nullptr, progress));
 }
 
 }  // namespace groom

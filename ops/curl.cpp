@@ -361,6 +361,7 @@ void CurlParams::validate() const
         throw InvalidParam("curl: `blend` must be in [0, 0.5) cycles (got " + num(blend) + ")");
     }
     shape.validate();
+    widths.validate("curl");
     curl_shape_tiers(*this);  // the dominant must be allowed, and U < 1 needs another shape
 }
 
@@ -536,6 +537,7 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     for (size_t c = 0; c < nc; ++c) identity[c] = int64_t(c);
     carry_curve_attributes(src, dst, identity);
     if (gather) carry_point_attributes(src, dst, src_point, {attr::P, attr::width, "shape", "cycle"});
+    apply_hair_widths(dst, params.widths, params.units_per_cm);
     return dst;
 }
 

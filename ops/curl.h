@@ -8,6 +8,7 @@
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
 #include "ops/curl_shapes.h"
+#include "ops/hair_widths.h"
 
 #include <cstdint>
 #include <string>
@@ -62,6 +63,9 @@ struct CurlParams {
     bool preserve_length = true;
     /// Lame exponent, polygon sides, ellipse aspect, rose petals.
     ShapeParams shape;
+    /// Point `width` of the output (--root-width, --tip-width): unset keeps the input's widths
+    /// (interpolated), else the human-hair defaults times units_per_cm.
+    HairWidths widths;
     uint64_t seed = 0;
 
     /// Throws InvalidParam naming the option (`curl: --uniformity ...`), the value and the range.
@@ -96,7 +100,8 @@ int pick_curl_shape(const CurlShapeTiers& tiers, double x);
 /// shape_k(t) rotated by the curve's phase; cycles blend over +-blend cycles around each join.
 /// Randomness: Rng(seed, curve id, stream), so the result is the same for any thread count and
 /// does not depend on the other curves.
-/// Reads point P (and width), curve id. Writes point P, point `shape` (int32 dictionary index of
+/// Reads point P (and width), curve id. Writes point P, point `width` (see CurlParams::widths),
+/// point `shape` (int32 dictionary index of
 /// the point's cycle), point `cycle` (int32 index of the cycle within the curve, 0 in the straight
 /// root), detail `hair_type`. Point counts change (samples per cycle); `width` is interpolated,
 /// other point attributes take the nearest input point's value, curve and detail attributes carry.

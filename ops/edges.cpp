@@ -198,7 +198,7 @@ void EdgesParams::validate() const
     positive("swoop", swoop);
     if (!(variation >= 0.0f && variation <= 0.9f)) throw InvalidParam("edges: `variation` must be in [0, 0.9] (got " + format_number(variation) + ")");
     non_negative("height", height);
-    positive("width", width);
+    widths.validate("edges");
     if (points < 4 || points > 4096) throw InvalidParam("edges: `points` must be in [4, 4096] (got " + std::to_string(points) + ")");
     if (first_id < 0) throw InvalidParam("edges: `first_id` must be >= 0 (got " + std::to_string(first_id) + ")");
     if (kind < 0) throw InvalidParam("edges: `kind` must be >= 0 (got " + std::to_string(kind) + ")");
@@ -379,7 +379,6 @@ CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams
     }
     CurveSet out = CurveSet::from_counts(counts);
     auto P = out.positions_for_write();
-    auto width = out.add<float>(Domain::Point, attr::width);
     auto ids = out.add<int64_t>(Domain::Curve, attr::id);
     auto kind = out.add<int32_t>(Domain::Curve, "kind");
     auto group = out.add<int32_t>(Domain::Curve, "group");
@@ -388,7 +387,6 @@ CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams
             const IndexRange r = out.points_of(size_t(c));
             const std::vector<float3>& src = hairs[size_t(station[size_t(c)])];
             std::copy(src.begin(), src.end(), P.begin() + r.begin);
-            std::fill(width.begin() + r.begin, width.begin() + r.end, params.width);
             ids[size_t(c)] = params.first_id + station[size_t(c)];
             kind[size_t(c)] = params.kind;
             group[size_t(c)] = group_of[size_t(station[size_t(c)])];
@@ -400,6 +398,7 @@ CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams
     rule.margin = 1e-4f * params.length;
     rule.max_steps = 4;
     keep_outside(out, scalp, rule);
+    apply_hair_widths(out, params.widths);
     return out;
 }
 

@@ -9,6 +9,7 @@
 #include "fields/surface.h"
 #include "kernel/curve_set.h"
 #include "ops/hair_region.h"
+#include "ops/hair_widths.h"
 
 #include <cstdint>
 #include <string>
@@ -60,7 +61,9 @@ struct EdgesParams {
     /// Height of a hair above the skin, scene units, >= 0: each hair lies at its own height in
     /// [height/2, height], reached one step from its root (--height).
     float height = 0.05f;
-    float width = 0.006f;  ///< hair diameter written as point `width`, scene units, > 0 (--width)
+    /// Point `width`, tapered root to tip (--root-width, --tip-width; --width W for both); unset ends
+    /// take the human-hair defaults (ops/hair_widths.h).
+    HairWidths widths;
     int points = 24;       ///< points per hair, [4, 4096] (--points)
     uint64_t seed = 0;     ///< (--seed)
     int64_t first_id = 0;  ///< hair ids first_id, first_id+1, ... along the hairline, >= 0 (--first-id)
@@ -99,7 +102,7 @@ struct EdgesParams {
 ///                  outside its hairline are kept: edges grow at the hairline), and a hair that
 ///                  would cross a parting (region->crosses_parting) bends the other way, or is
 ///                  dropped when that crosses too.
-/// Writes point P, point `width`; curve int64 `id` (first_id + station, so dropping one hair does
+/// Writes point P, point `width` (params.widths); curve int64 `id` (first_id + station, so dropping one hair does
 /// not renumber the others), int32 `kind`, int32 `group` (swoop index along the hairline).
 /// Deterministic: every random draw is Rng(seed, hair id or swoop, stream); any thread count gives the same.
 /// Throws InvalidParam (params), InvalidGeometry (hairline not one closed curve around `up`, or no

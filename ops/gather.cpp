@@ -256,6 +256,9 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
             puff_of[i] = k;
         }
     });
+    // The whole hair, flat part and puff part, tapers over its own length.
+    const HairWidths widths = params.curl.widths.resolved(params.curl.units_per_cm);
+    taper_widths(out, *widths.root, *widths.tip);
 
     // --- Bands: rings around each base, outside the bunch of hair going up, on top of the flat hair.
     if (params.band_strands > 0) {

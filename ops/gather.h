@@ -50,7 +50,9 @@ struct GatherParams {
 };
 
 struct GatherResult {
-    CurveSet hairs;   ///< P, curve `id`, `kind` = 1, `puff` (index into the puffs), point `flat` (1 on the scalp part)
+    /// P, point `width` (curl.widths, tapered over the whole hair), curve `id`, `kind` = 1, `puff`
+    /// (index into the puffs), point `flat` (1 on the scalp part)
+    CurveSet hairs;
     CurveSet bands;   ///< P, `width`, curve `id`, `kind` = 2, `puff`
     int64_t roots_without_puff = 0;  ///< sections of the scalp with no puff in them: no hair there
 };

@@ -154,6 +154,7 @@ void GenerateParams::validate() const
         throw InvalidParam("generate: `first_id` " + std::to_string(first_id) + " + " + std::to_string(count) +
                            " curves passes the largest id, 2^63 - 1 (ids would wrap to negative)");
     }
+    widths.validate("generate");
 }
 
 std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& scalp, const RootSampler& sample,
@@ -326,6 +327,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     for (const float3& p : P) box.extend(p);
     const float margin = 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
     keep_outside(dst, scalp, KeepOutside{params.clearance, margin, 8});
+    apply_hair_widths(dst, params.widths);
     return dst;
 }
 

@@ -10,6 +10,7 @@
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
 #include "ops/hair_region.h"
+#include "ops/hair_widths.h"
 
 #include <cstdint>
 #include <functional>
@@ -58,6 +59,9 @@ struct GenerateParams {
     /// Where hair grows (--hairline, --parting): roots only where region->haired(); null = anywhere.
     /// Not owned; must outlive the call.
     const HairRegion* region = nullptr;
+    /// Point `width` (--root-width, --tip-width): unset keeps the guides' widths (each point takes
+    /// its nearest guide's, as other point attributes do), else the human-hair defaults.
+    HairWidths widths;
 
     /// Throws InvalidParam naming the option, the value and the valid range.
     void validate() const;
@@ -68,7 +72,8 @@ struct GenerateParams {
 /// @param guides  root-to-tip curves with >= 2 points each; at least one guide, two for the footprint.
 /// @param scalp   the surface roots lie on; normals orient the blend, points inside are pushed out.
 /// @param sample  area-uniform scalp sampler (see RootSampler).
-/// Reads point P of the guides. Writes point P, curve int64 `id`, curve int32 `guide` (nearest guide);
+/// Reads point P of the guides. Writes point P, point `width` (GenerateParams::widths), curve int64
+/// `id`, curve int32 `guide` (nearest guide);
 /// every other curve attribute of the nearest guide is carried, and point attributes from the nearest
 /// guide's point at the same fraction of arc length.
 /// Throws InvalidParam (bad params, too few guides), InvalidGeometry (a guide with < 2 points or no

@@ -42,7 +42,7 @@ void PartitionParams::validate() const
     if (spacing == 0.0f) require(count >= 1, "`count` must be >= 1 (got " + std::to_string(count) + ")");
     else require(std::isfinite(spacing) && spacing > 0.0f, "`spacing` must be > 0 scene units (got " + num(spacing) + ")");
     require(samples >= 2, "`samples` must be >= 2 (got " + std::to_string(samples) + ")");
-    require(std::isfinite(width) && width > 0.0f, "`width` must be > 0 scene units (got " + num(width) + ")");
+    widths.validate("partition");
     require(std::isfinite(jitter) && jitter >= 0.0f && jitter <= 1.0f, "`jitter` must be in [0, 1] (got " + num(jitter) + ")");
     require(std::isfinite(max_gap) && max_gap >= 0.0f, "`max_gap` must be >= 0 scene units, 0 = automatic (got " + num(max_gap) + ")");
     require(std::isfinite(max_height) && max_height >= 0.0f,
@@ -222,7 +222,6 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     auto out_side = dst.add<int32_t>(Domain::Curve, "side");
     auto out_group = dst.add<int32_t>(Domain::Curve, "group");
     auto out_id = dst.add<int64_t>(Domain::Curve, attr::id);
-    auto out_width = dst.add<float>(Domain::Point, attr::width);
     std::vector<int64_t> src_curve(static_cast<size_t>(total), 0);
     const int samples = params.samples;
     parallel_for(int64_t(nc), 1, [&](int64_t b, int64_t e) {
@@ -250,12 +249,13 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                         keep_outside(x, scalp, KeepOutside{0.0f, 0.0f, 2}, u * end_height);
                     }
                     out_P[first + j] = x;
-                    out_width[first + j] = params.width;
                 }
             }
         }
     });
     carry_curve_attributes(guides, dst, src_curve);
+    // New hairs: always the taper asked for, never a guide's (braid-sized) curve width.
+    apply_hair_widths(dst, params.widths.resolved());
     return dst;
 }
 

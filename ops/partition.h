@@ -10,6 +10,7 @@
 #include "kernel/progress.h"
 #include "ops/adjacency.h"
 #include "ops/braid.h"
+#include "ops/hair_widths.h"
 
 #include <cstdint>
 #include <vector>
@@ -42,8 +43,9 @@ struct PartitionParams {
     float spacing = 0.0f;
     /// Points per segment (>= 2): the root, points that follow the scalp, the end on the source.
     int samples = 8;
-    /// Fibre diameter written to point `width`, scene units (> 0).
-    float width = 0.01f;
+    /// Point `width`, tapered root to tip (--root-width, --tip-width; --width W for both); unset ends
+    /// take the human-hair defaults (ops/hair_widths.h).
+    HairWidths widths;
     /// Random shift of each station along the source, as a fraction of the spacing; [0, 1].
     float jitter = 0.0f;
     uint64_t seed = 0;
@@ -90,7 +92,7 @@ struct PartitionParams {
 /// `guide` (int32 source index), `side` (int32, 0 left = normal x tangent side, 1 right), `group`
 /// (int32 centroid index along the source; the station index with CentroidMode::Stations), `id`
 /// (int64, a hash of the guide's id, side and station, stable when other guides are removed), point
-/// `width`; the source's curve attributes carry through (its `id` is replaced). Curves are ordered by
+/// `width` (params.widths, root to end); the source's curve attributes carry through (its `id` is replaced). Curves are ordered by
 /// guide, then side, then station.
 /// Deterministic for any thread count.
 /// @throws InvalidParam from params.validate(), or for a guide index out of range in

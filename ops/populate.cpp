@@ -32,6 +32,10 @@ void PopulateParams::validate() const
     if (!std::isfinite(width) || width < 0.0f) {
         throw InvalidParam("populate: `width` must be a finite number >= 0 (got " + fmt(width) + ")");
     }
+    widths.validate("populate");
+    if (width > 0.0f && widths.given()) {
+        throw InvalidParam("populate: `width` " + fmt(width) + " and --root-width/--tip-width are exclusive (one width, or a taper)");
+    }
 }
 
 CurveSet populate(const CurveSet& src, const PopulateParams& params, Progress* progress)
@@ -130,6 +134,7 @@ CurveSet populate(const CurveSet& src, const PopulateParams& params, Progress* p
     });
     carry_curve_attributes(src, dst, src_curve);
     carry_point_attributes(src, dst, src_point, {attr::P});
+    if (params.widths.given()) apply_hair_widths(dst, params.widths);
     return dst;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "kernel/curve_set.h"
+#include "ops/hair_widths.h"
 #include "kernel/progress.h"
 
 #include <cstdint>
@@ -21,6 +22,9 @@ struct PopulateParams {
     /// Fiber width written on output points, scene units; >= 0. 0 = automatic: 2 r / sqrt(M) at a
     /// point of disc radius r, so the M fibers about cover the disc's area.
     float width = 0.0f;
+    /// Given (--root-width, --tip-width): each fiber's width tapers linearly in its own arc length
+    /// instead (an unset end takes the human-hair default, ops/hair_widths.h); exclusive with `width`.
+    HairWidths widths;
     uint64_t seed = 0;
     /// Name of a point float attribute of the input that scales the disc radius (and the automatic
     /// width) per point, e.g. a braid's amplitude taper. Empty = no scaling.
@@ -37,7 +41,7 @@ struct PopulateParams {
 /// Reads point P, curve id (else the index), point width (radius = 0), point params.radius_scale.
 /// Writes, for input curve c, curves c*M .. c*M+M-1 with c's point count:
 ///   point P = C(j) + r(j) (u n(j) + v b(j)), (u, v) uniform in the unit disc per fiber, n, b the
-///   rotation-minimising frame of curve c; point width (see PopulateParams::width);
+///   rotation-minimising frame of curve c; point width (see PopulateParams::width, ::widths);
 ///   curve fiber (int32, 0..M-1); curve id (int64, source id * M + fiber);
 ///   every other curve, point and detail attribute of curve c.
 /// @throws InvalidParam (bad params, radius 0 without a point width attribute, radius_scale absent),

@@ -202,6 +202,7 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     dst.add<float>(Domain::Detail, "puff_radius")[0] = params.radius;
     dst.add<float3>(Domain::Detail, "puff_sphere_center")[0] = params.sphere_center;
     dst.add<float>(Domain::Detail, "puff_sphere_radius")[0] = params.sphere_radius;
+    apply_hair_widths(dst, params.curl.widths, params.curl.units_per_cm);
     return dst;
 }
 
@@ -238,6 +239,8 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     // curl freely and keep the result outside afterwards, which skips the points provably outside.
     result.hairs = curl(centres, curl_params, nullptr, progress);
     keep_outside(result.hairs, scalp, KeepOutside{});
+    // Hairs taper over their own final length, not the guides' (whose widths the centrelines carry).
+    apply_hair_widths(result.hairs, params.curl.widths.resolved(params.curl.units_per_cm));
     for (int32_t& k : result.hairs.add<int32_t>(Domain::Curve, "kind")) k = 1;
     return result;
 }

@@ -62,7 +62,8 @@ struct PuffParams {
 /// guide_points points evenly spaced in arc length; its tip is sphere_center + sphere_radius * d
 /// (on the sphere to float rounding). Interior points inside the scalp are moved onto it (keep_outside,
 /// fields/keep_outside.h, clearance 0).
-/// Writes point P, curve int64 `id`, int32 `kind` (0 = guide), int32 `guide` (its own index), and
+/// Writes point P, point `width` (curl.widths), curve int64 `id`, int32 `kind` (0 = guide), int32
+/// `guide` (its own index), and
 /// the detail attributes `groom gather` reads: float3 `puff_base` (c0), float `puff_radius`, float3
 /// `puff_sphere_center`, float `puff_sphere_radius`.
 /// Throws InvalidParam (params; a tip that would lie inside the scalp), InvalidGeometry (the region
@@ -85,7 +86,8 @@ struct PuffResult {
 /// fall inside the scalp are then moved onto it (keep_outside on the curves, clearance 0: roots stay).
 /// A curl moves points at most curl_reach(curl) off the centreline, so every hair tip lies within
 /// that distance of the sphere.
-/// Hairs: point P (+ the curl op's point `shape`, `cycle`), curve `id` (after the guides' ids),
+/// Hairs: point P, `width` (curl.widths tapered over each curled hair; the defaults when unset) (+ the
+/// curl op's point `shape`, `cycle`), curve `id` (after the guides' ids),
 /// `kind` = 1, `guide` = nearest guide; detail `hair_type`. No hair point lies inside the scalp.
 /// Throws as puff_guides(), generate() and curl() do.
 PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParams& params, Progress* progress = nullptr);

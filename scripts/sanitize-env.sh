@@ -22,7 +22,7 @@ configure_sanitize_build() {
   cmake -S "$root" -B "$sbuild" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" \
     -DGROOM_SANITIZE=ON -DGROOM_FUZZ=ON -DGROOM_BUILD_TESTS=ON -DGROOM_BUILD_BENCHMARKS=OFF \
-    -DGROOM_BUILD_PYTHON=OFF "${launcher[@]}" >/dev/null
+    -DGROOM_BUILD_PYTHON=OFF -DGROOM_TEST_TIMEOUT=1200 "${launcher[@]}" >/dev/null
 }
 
 # Sanitizer behaviour for everything run from the build: stop at the first report, with a stack.

@@ -54,7 +54,13 @@ std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::s
     for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
         for (const Attribute& a : curves.attributes(d).all()) {
             if (d == Domain::Point && a.name == attr::P) continue;
-            if (fmt.keeps && !fmt.keeps(d, a)) lost.push_back(std::string(domain_name(d)) + " " + a.name);
+            if (fmt.keeps && !fmt.keeps(d, a)) {
+                std::string what = std::string(domain_name(d)) + " " + a.name;
+                if (a.type() == AttrType::Int64 && fmt.extension == "ply") {
+                    what += " (64-bit values beyond 2^53, which PLY's 32-bit integers cannot hold and its doubles would round)";
+                }
+                lost.push_back(what);
+            }
         }
     }
     return lost;

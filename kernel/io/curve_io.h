@@ -40,8 +40,9 @@ void write_curves(const CurveSet& curves, const std::string& path, const CurveWr
 void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& batch, const CurveWriteOptions& options = {});
 
 /// The columns of `curves` that the format of `path` cannot hold ("domain name" each, e.g.
-/// "curve id"): .obj keeps only P; .hair keeps P and point width, opacity, Cd; .usda and .ply
-/// keep everything (.ply stores int64 as double, exact up to 2^53, and refuses more).
+/// "curve id"): .obj keeps only P; .hair keeps P and point width, opacity, Cd; .usda keeps
+/// everything; .ply everything but int64 columns with values beyond +-2^53 (stored as double,
+/// exact up to 2^53: such a column is left out, never rounded), named with that reason.
 std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path);
 
 /// Whether a file that could be either (.obj, .ply) holds curves rather than a mesh, by content:

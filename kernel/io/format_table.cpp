@@ -78,12 +78,13 @@ const std::array<Format, 10> kFormats = [] {
 
     Format obj = row("obj", "Wavefront OBJ (l polylines, f faces)");
     obj.read_curves = read_obj_curves_row, obj.write_curves = write_obj_curves_row;
-    obj.read_mesh = read_obj_mesh, obj.write_mesh = write_obj_mesh;
+    obj.read_mesh = [](const FileBytes& f) { return read_obj_mesh(f); }, obj.write_mesh = write_obj_mesh;
     obj.content_is_curves = obj_holds_curves, obj.keeps = obj_keeps;
 
     Format ply = row("ply", "PLY (edge or curve element, or faces)");
     ply.sniff = sniff_ply, ply.read_curves = read_ply_curves_row, ply.write_curves = write_ply_curves_row;
     ply.read_mesh = read_ply_mesh, ply.write_mesh = write_ply_mesh, ply.content_is_curves = ply_holds_curves;
+    ply.keeps = ply_keeps_column;
 
     Format hair = row("hair", "Cem Yuksel's .hair");
     hair.sniff = sniff_hair, hair.read_curves = read_hair_row, hair.write_curves = write_hair_row, hair.keeps = hair_keeps;

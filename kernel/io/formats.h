@@ -18,14 +18,22 @@ struct ObjData {
     std::vector<float3> points;
     std::vector<int64_t> line_offsets{0};   ///< per `l` record
     std::vector<int32_t> line_indices;      ///< 0-based, resolved (negative indices made absolute)
+    std::vector<size_t> line_lines;         ///< per `l` record: its line in the file
     PolygonSoup faces;                      ///< `f` records (shares `points` only after finish)
+    /// Per face: index into `names`, the object (`o`) and group (`g`) names in force at the face.
+    std::vector<int32_t> face_names;
+    std::vector<std::vector<std::string>> names;  ///< distinct name sets, [0] = none given
 };
-/// Parses v/l/f records (vt, vn, o, g, s, usemtl, mtllib and comments are ignored).
+/// Parses v/l/f/o/g records (vt, vn, s, usemtl, mtllib and comments are ignored).
 ObjData parse_obj(const FileBytes& file);
 
+/// Curves: an `l` record with 3 or more points is one curve; two-point records (what Blender's OBJ
+/// exporters write, one per edge) are joined into chains where they share vertices (edge_chains.h).
 CurveSet read_obj_curves(const FileBytes& file);
 std::string write_obj_curves(const CurveSet& curves);
-PolygonSoup read_obj_mesh(const FileBytes& file);
+/// The faces of the whole file, or (group not empty) only those inside an `o` object or `g` group
+/// of that name; ParseError naming the names the file has when none matches.
+PolygonSoup read_obj_mesh(const FileBytes& file, const std::string& group = {});
 std::string write_obj_mesh(const PolygonSoup& soup);
 
 // --- USD ASCII BasisCurves (usda_lexer, usda_parser, usda_build, usda_write) -----------------------
@@ -35,6 +43,9 @@ std::string write_usda(const CurveSet& curves);
 // --- PLY (ply_parse, ply_curves, ply_mesh, ply_writer) ---------------------------------------------
 CurveSet read_ply_curves(const FileBytes& file);
 std::string write_ply_curves(const CurveSet& curves, PlyEncoding encoding);
+/// Whether write_ply_curves keeps a column: every one but an int64 column with a value beyond
+/// +-2^53 (stored as double, which would round it; left out instead).
+bool ply_keeps_column(Domain d, const Attribute& a);
 PolygonSoup read_ply_mesh(const FileBytes& file);
 std::string write_ply_mesh(const PolygonSoup& soup);
 

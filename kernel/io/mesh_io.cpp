@@ -2,7 +2,10 @@
 
 #include "kernel/io/atomic_file.h"
 #include "kernel/io/format_table.h"
+#include "kernel/io/formats.h"
 #include "kernel/io/io_util.h"
+
+#include <algorithm>
 
 namespace groom {
 
@@ -18,6 +21,36 @@ PolygonSoup read_mesh(const std::string& path)
     const io::FileBytes file = io::read_all(path);
     if (file.data.empty()) throw ParseError(file.name + ": file is empty (expected a mesh)");
     return fmt.read_mesh(file);
+}
+
+PolygonSoup read_mesh(const std::string& path, const std::string& group)
+{
+    if (group.empty()) return read_mesh(path);
+    const io::Format& fmt = io::format_for(path, io::kReadMesh, "mesh");
+    if (fmt.extension != "obj") {
+        throw InvalidParam("--group " + group + ": only OBJ meshes have named groups ('o' and 'g' records); " + path + " is not an .obj");
+    }
+    const io::FileBytes file = io::read_all(path);
+    if (file.data.empty()) throw ParseError(file.name + ": file is empty (expected a mesh)");
+    return io::read_obj_mesh(file, group);
+}
+
+std::vector<MeshGroup> read_mesh_groups(const std::string& path)
+{
+    const io::Format& fmt = io::format_for(path, io::kReadMesh, "mesh");
+    if (fmt.extension != "obj") return {};
+    const io::ObjData obj = io::parse_obj(io::read_all(path));
+    std::vector<int64_t> per_set(obj.names.size(), 0);
+    for (int32_t k : obj.face_names) ++per_set[size_t(k)];
+    std::vector<MeshGroup> out;
+    for (size_t k = 0; k < obj.names.size(); ++k) {
+        for (const std::string& name : obj.names[k]) {
+            auto it = std::find_if(out.begin(), out.end(), [&](const MeshGroup& g) { return g.name == name; });
+            if (it == out.end()) it = out.insert(out.end(), MeshGroup{name, 0});
+            it->faces += per_set[k];
+        }
+    }
+    return out;
 }
 
 void write_mesh(const PolygonSoup& soup, const std::string& path)

@@ -1,9 +1,13 @@
-// Wavefront OBJ: `v` positions, `l` polylines (curves) and `f` faces (meshes). One `l` record is
-// one curve, root first; a soup keeps every `f` record as one face.
+// Wavefront OBJ: `v` positions, `l` polylines (curves) and `f` faces (meshes). An `l` record of 3 or
+// more points is one curve, root first; two-point records are joined into chains (Blender writes one
+// per edge). A soup keeps every `f` record as one face, optionally only those of one `o`/`g` name.
+#include "kernel/io/edge_chains.h"
 #include "kernel/io/formats.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace groom::io {
 
@@ -41,6 +45,26 @@ ObjData parse_obj(const FileBytes& file)
     TextCursor cur(file.data);
     std::vector<Pending> forward;  // indices past the vertices defined so far, checked at the end
     std::vector<int32_t> record;
+    // Names in force: the object's (`o`) then the groups' (`g`, several allowed); a new `o` clears the groups.
+    std::string object;
+    std::vector<std::string> groups;
+    std::map<std::vector<std::string>, int32_t> name_ids;
+    obj.names.emplace_back();
+    name_ids[{}] = 0;
+    int32_t current_names = 0;
+    auto update_names = [&] {
+        std::vector<std::string> set;
+        if (!object.empty()) set.push_back(object);
+        set.insert(set.end(), groups.begin(), groups.end());
+        const auto [it, fresh] = name_ids.try_emplace(set, int32_t(obj.names.size()));
+        if (fresh) obj.names.push_back(set);
+        current_names = it->second;
+    };
+    auto rest_names = [&] {
+        std::vector<std::string> v;
+        for (std::string_view t = cur.token(); !t.empty() && t.front() != '#'; t = cur.token()) v.emplace_back(t);
+        return v;
+    };
     auto take_indices = [&](const char* what) {
         record.clear();
         for (std::string_view t = cur.token(); !t.empty() && t.front() != '#'; t = cur.token()) {
@@ -72,13 +96,26 @@ ObjData parse_obj(const FileBytes& file)
                 if (record.empty()) fail_at_line(file.name, cur.line(), "expected vertex indices after 'l', found end of line");
                 obj.line_indices.insert(obj.line_indices.end(), record.begin(), record.end());
                 obj.line_offsets.push_back(static_cast<int64_t>(obj.line_indices.size()));
+                obj.line_lines.push_back(cur.line());
             }
             else if (key == "f") {
                 take_indices("face");
                 if (record.empty()) fail_at_line(file.name, cur.line(), "expected vertex indices after 'f', found end of line");
                 obj.faces.add_face(record);
+                obj.face_names.push_back(current_names);
             }
-            else if (key == "vt" || key == "vn" || key == "vp" || key == "o" || key == "g" || key == "s" || key == "usemtl" ||
+            else if (key == "o") {
+                const std::vector<std::string> v = rest_names();
+                object.clear();
+                for (const std::string& t : v) object += (object.empty() ? "" : " ") + t;  // an object name may hold spaces
+                groups.clear();
+                update_names();
+            }
+            else if (key == "g") {
+                groups = rest_names();
+                update_names();
+            }
+            else if (key == "vt" || key == "vn" || key == "vp" || key == "s" || key == "usemtl" ||
                      key == "mtllib" || key == "p" || key == "curv" || key == "cstype" || key == "deg" || key == "mg") {
                 // Not geometry we keep.
             }
@@ -105,11 +142,42 @@ CurveSet read_obj_curves(const FileBytes& file)
                          std::to_string(obj.faces.num_faces()) + " of them): this is a mesh");
     }
     const size_t n = obj.line_offsets.size() - 1;
-    std::vector<int64_t> counts(n);
-    for (size_t c = 0; c < n; ++c) counts[c] = obj.line_offsets[c + 1] - obj.line_offsets[c];
+    // Two-point records are edges, joined where they share a vertex; the others are whole curves.
+    std::vector<int64_t> from, to, edge_record;
+    for (size_t r = 0; r < n; ++r) {
+        if (obj.line_offsets[r + 1] - obj.line_offsets[r] != 2) continue;
+        const int64_t a = obj.line_indices[size_t(obj.line_offsets[r])], b = obj.line_indices[size_t(obj.line_offsets[r]) + 1];
+        if (a == b) fail_at_line(file.name, obj.line_lines[r], "'l' record joins vertex " + std::to_string(a + 1) + " to itself");
+        from.push_back(a), to.push_back(b), edge_record.push_back(int64_t(r));
+    }
+    const EdgeChains chains = join_edge_chains(int64_t(obj.points.size()), from, to, false, file.name, 1, "two-point 'l' records (edges)");
+    // Only edges (Blender's files): curves in the order of their vertices, which is the order the
+    // exporter had them in (it writes the edges themselves in another order). With whole records
+    // too: each curve where its first record is in the file. Files groom writes (no shared
+    // vertices, vertices in curve order) read back curve for curve either way.
+    struct Piece {
+        int64_t record;
+        const int32_t* indices32;   // a whole record, or
+        const int64_t* indices64;   // a chain
+        int64_t count;
+    };
+    std::vector<Piece> pieces;
+    for (size_t r = 0; r < n; ++r) {
+        const int64_t k = obj.line_offsets[r + 1] - obj.line_offsets[r];
+        if (k != 2) pieces.push_back({int64_t(r), obj.line_indices.data() + obj.line_offsets[r], nullptr, k});
+    }
+    for (size_t c = 0, at = 0; c < chains.counts.size(); at += size_t(chains.counts[c]), ++c) {
+        pieces.push_back({edge_record[size_t(chains.first_edge[c])], nullptr, chains.order.data() + at, chains.counts[c]});
+    }
+    if (from.size() < n) std::stable_sort(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) { return x.record < y.record; });
+    std::vector<int64_t> counts(pieces.size());
+    for (size_t c = 0; c < pieces.size(); ++c) counts[c] = pieces[c].count;
     CurveSet cs = CurveSet::from_counts(counts);
     auto P = cs.positions_for_write();
-    for (size_t i = 0; i < obj.line_indices.size(); ++i) P[i] = obj.points[obj.line_indices[i]];
+    size_t i = 0;
+    for (const Piece& piece : pieces) {
+        for (int64_t j = 0; j < piece.count; ++j) P[i++] = obj.points[size_t(piece.indices32 ? int64_t(piece.indices32[j]) : piece.indices64[j])];
+    }
     return cs;
 }
 
@@ -141,14 +209,47 @@ std::string write_obj_curves(const CurveSet& curves)
     return out;
 }
 
-PolygonSoup read_obj_mesh(const FileBytes& file)
+PolygonSoup read_obj_mesh(const FileBytes& file, const std::string& group)
 {
     ObjData obj = parse_obj(file);
     if (obj.faces.num_faces() == 0 && obj.line_offsets.size() > 1) {
         throw ParseError(file.name + ": expected a mesh ('f' faces), found only polylines ('l'): these are curves");
     }
-    obj.faces.points = std::move(obj.points);
-    return std::move(obj.faces);
+    if (group.empty()) {
+        obj.faces.points = std::move(obj.points);
+        return std::move(obj.faces);
+    }
+    std::vector<char> wanted(obj.names.size(), 0);
+    for (size_t k = 0; k < obj.names.size(); ++k) wanted[k] = std::find(obj.names[k].begin(), obj.names[k].end(), group) != obj.names[k].end();
+    // Only the vertices the chosen faces use, renumbered: the other parts' vertices would be
+    // isolated points in the soup.
+    PolygonSoup soup;
+    std::vector<int32_t> new_index(obj.points.size(), -1);
+    std::vector<int32_t> face;
+    for (size_t f = 0; f < obj.faces.num_faces(); ++f) {
+        if (!wanted[size_t(obj.face_names[f])]) continue;
+        face.clear();
+        for (int32_t v : obj.faces.face(f)) {
+            if (new_index[size_t(v)] < 0) {
+                new_index[size_t(v)] = int32_t(soup.points.size());
+                soup.points.push_back(obj.points[size_t(v)]);
+            }
+            face.push_back(new_index[size_t(v)]);
+        }
+        soup.add_face(face);
+    }
+    if (soup.num_faces() == 0) {
+        std::vector<std::string> all;
+        for (const auto& set : obj.names)
+            for (const std::string& name : set)
+                if (std::find(all.begin(), all.end(), name) == all.end()) all.push_back(name);
+        std::string list;
+        for (size_t k = 0; k < all.size() && k < 20; ++k) list += (list.empty() ? "" : ", ") + ("'" + all[k] + "'");
+        if (all.size() > 20) list += " and " + std::to_string(all.size() - 20) + " more";
+        throw ParseError(file.name + ": no faces in an object or group named '" + group + "' (" +
+                         (all.empty() ? std::string("the file has no 'o' or 'g' records") : "the file has " + list) + ")");
+    }
+    return soup;
 }
 
 std::string write_obj_mesh(const PolygonSoup& soup)

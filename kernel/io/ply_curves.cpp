@@ -1,5 +1,6 @@
 // PLY curves: read_ply_curves / write_ply_curves and the `comment groom ...` lines that carry attribute
 // types and detail values. Apart from the mesh reader because curves need their own elements and metadata.
+#include "kernel/io/edge_chains.h"
 #include "kernel/io/formats.h"
 #include "kernel/io/ply_data.h"
 #include "kernel/io/ply_writer.h"
@@ -159,11 +160,13 @@ void add_columns(const PlyElement& e, const std::map<std::string, AttrType>& typ
     }
 }
 
-/// PLY properties for the columns of one domain. int64 is stored as double (exact to 2^53).
+/// PLY properties for the columns of one domain. int64 is stored as double (exact to 2^53); a
+/// column holding more is left out (ply_keeps_column), never rounded.
 void columns_for(const CurveSet& cs, Domain d, std::vector<Column>& cols, std::vector<std::string>& comments)
 {
     for (const Attribute& a : cs.attributes(d).all()) {
         if (d == Domain::Point && a.name == attr::P) continue;
+        if (!ply_keeps_column(d, a)) continue;
         if (a.type() == AttrType::String) throw InvalidParam("ply: " + std::string(domain_name(d)) + " attribute '" + a.name + "' holds strings; PLY cannot store them");
         for (char c : a.name) {
             if (c <= ' ' || c > '~') throw InvalidParam("ply: attribute name '" + a.name + "' contains spaces or non-ASCII characters");
@@ -174,12 +177,6 @@ void columns_for(const CurveSet& cs, Domain d, std::vector<Column>& cols, std::v
             case AttrType::Float: cols.push_back({a.name, PlyType::Float32, [ap](size_t i) { return double(ap->values<float>()[i]); }}); break;
             case AttrType::Int32: cols.push_back({a.name, PlyType::Int32, [ap](size_t i) { return double(ap->values<int32_t>()[i]); }}); break;
             case AttrType::Int64:
-                for (int64_t v : a.values<int64_t>()) {
-                    if (v > (int64_t(1) << 53) || v < -(int64_t(1) << 53)) {
-                        throw InvalidParam("ply: int64 attribute '" + a.name + "' holds " + std::to_string(v) +
-                                           ", beyond 2^53: PLY stores it as double and would round it (use .usda)");
-                    }
-                }
                 cols.push_back({a.name, PlyType::Float64, [ap](size_t i) { return double(ap->values<int64_t>()[i]); }});
                 break;
             case AttrType::Float3:
@@ -193,6 +190,17 @@ void columns_for(const CurveSet& cs, Domain d, std::vector<Column>& cols, std::v
 
 }  // namespace
 }  // namespace ply
+
+bool ply_keeps_column(Domain, const Attribute& a)
+{
+    if (a.type() != AttrType::Int64) return true;
+    // PLY's integers are 32-bit; a double holds every integer up to 2^53 exactly and no more (ids
+    // made by hashing, as partition's, use all 63 bits).
+    constexpr int64_t kExact = int64_t(1) << 53;
+    for (int64_t v : a.values<int64_t>())
+        if (v > kExact || v < -kExact) return false;
+    return true;
+}
 
 CurveSet read_ply_curves(const FileBytes& file)
 {
@@ -230,11 +238,8 @@ CurveSet read_ply_curves(const FileBytes& file)
         const PlyProperty* a = edge->find("vertex1");
         const PlyProperty* b = edge->find("vertex2");
         if (!a || !b) fail_at_line(file.name, edge->line, "expected properties vertex1 and vertex2 on element edge");
-        // Chains: each vertex has at most one edge on each side. Edges are taken as undirected;
-        // a chain whose edges all point one way starts at its source (root to tip).
         const int64_t n = static_cast<int64_t>(v->count);
-        std::vector<int64_t> nb0(n, -1), nb1(n, -1);
-        std::vector<char> is_target(n, 0);
+        std::vector<int64_t> from(edge->count), to(edge->count);
         for (size_t e = 0; e < edge->count; ++e) {
             const double fa = a->values[e], fb = b->values[e];
             // Written so NaN and fractions (float-typed index properties) fail too, before any cast.
@@ -242,36 +247,12 @@ CurveSet read_ply_curves(const FileBytes& file)
                 throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + number_text(fa) + " and " + number_text(fb) +
                                  ": index out of range (" + std::to_string(n) + " vertices)");
             }
-            const int64_t ia = static_cast<int64_t>(fa), ib = static_cast<int64_t>(fb);
-            if (ia == ib) throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + std::to_string(ia) + " to itself");
-            is_target[ib] = 1;
-            for (int64_t x : {ia, ib}) {
-                const int64_t other = x == ia ? ib : ia;
-                if (nb0[x] < 0) nb0[x] = other;
-                else if (nb1[x] < 0) nb1[x] = other;
-                else throw ParseError(file.name + ": vertex " + std::to_string(x) + " has more than two edges: curves must be simple chains");
-            }
+            from[e] = static_cast<int64_t>(fa), to[e] = static_cast<int64_t>(fb);
+            if (from[e] == to[e]) throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + std::to_string(from[e]) + " to itself");
         }
-        std::vector<char> seen(n, 0);
-        for (int64_t s = 0; s < n; ++s) {
-            if (seen[s] || nb1[s] >= 0) continue;  // start at chain ends (and isolated vertices)
-            std::vector<int64_t> chain{s};
-            seen[s] = 1;
-            for (int64_t prev = -1, at = s;;) {
-                const int64_t next = nb0[at] != prev ? nb0[at] : nb1[at];
-                if (next < 0 || seen[next]) break;
-                chain.push_back(next);
-                seen[next] = 1;
-                prev = at;
-                at = next;
-            }
-            // Walked from the end that is a target while the other end is not: reverse to root-first.
-            if (chain.size() > 1 && is_target[chain.front()] && !is_target[chain.back()]) std::reverse(chain.begin(), chain.end());
-            order.insert(order.end(), chain.begin(), chain.end());
-            counts.push_back(static_cast<int64_t>(chain.size()));
-        }
-        for (int64_t s = 0; s < n; ++s)
-            if (!seen[s]) throw ParseError(file.name + ": vertex " + std::to_string(s) + " lies on a closed loop of edges; curves must be open chains");
+        EdgeChains chains = join_edge_chains(n, from, to, true, file.name, 0, "edges");
+        order = std::move(chains.order);
+        counts = std::move(chains.counts);
     }
 
     CurveSet cs = CurveSet::from_counts(counts);

@@ -170,7 +170,13 @@ TEST(Edges, CountWinsOverDensityAndIdsFollowTheHairline)
         EXPECT_GT(az, last);  // stations in order of azimuth from `from`
         last = az;
     }
-    for (float w : width) EXPECT_EQ(w, p.width);
+    // Tapered from the default root width to the default tip width (ops/hair_widths.h).
+    for (size_t c = 0; c < 37; ++c) {
+        const IndexRange r = cs.points_of(c);
+        EXPECT_EQ(width[r.begin], kDefaultRootWidthCm);
+        EXPECT_EQ(width[r.end - 1], kDefaultTipWidthCm);
+        for (int64_t i = r.begin + 1; i < r.end; ++i) EXPECT_LE(width[i], width[i - 1]);
+    }
 }
 
 TEST(Edges, EachHairTurnsAsAsked)
@@ -458,7 +464,8 @@ TEST(Edges, RejectsBadParamsNamingThem)
         {[](EdgesParams& p) { p.swoop = 0.0f; }, "`swoop`"},
         {[](EdgesParams& p) { p.variation = 1.0f; }, "`variation`"},
         {[](EdgesParams& p) { p.height = NAN; }, "`height`"},
-        {[](EdgesParams& p) { p.width = 0.0f; }, "`width`"},
+        {[](EdgesParams& p) { p.widths.root = 0.0f; }, "--root-width"},
+        {[](EdgesParams& p) { p.widths.tip = -1.0f; }, "--tip-width"},
         {[](EdgesParams& p) { p.points = 3; }, "`points`"},
         {[](EdgesParams& p) { p.first_id = -1; }, "`first_id`"},
         {[](EdgesParams& p) { p.kind = -1; }, "`kind`"},

@@ -102,7 +102,10 @@ TEST(Partition, ThreeMeridianArcsRootAtTheMidpointOnTheSphere)
     // The midpoint between neighbours at the equator is half way in longitude.
     const size_t c = curves_of(out, 1, 0)[0];
     EXPECT_GT(first_point(out, c).z, 0.0f);  // side 0 = left = towards +longitude
-    for (int64_t p = out.points_of(0).begin; p < out.points_of(0).end; ++p) EXPECT_EQ(out.find<float>(Domain::Point, "width")[p], 0.01f);
+    // Root to end, the default taper (ops/hair_widths.h).
+    const auto W = out.find<float>(Domain::Point, "width");
+    EXPECT_EQ(W[out.points_of(0).begin], kDefaultRootWidthCm);
+    EXPECT_EQ(W[out.points_of(0).end - 1], kDefaultTipWidthCm);
 }
 
 TEST(Partition, ArcsOfDifferentLengthsUseTheNearestEndAndTheMediatedFraction)
@@ -408,7 +411,7 @@ TEST(Partition, RejectsEachInvalidOption)
     expect_rejected([](auto& p) { p.spacing = 0.5f; }, "`count` and `spacing` are exclusive");
     expect_rejected([](auto& p) { p.count = 0; p.spacing = -1; }, "`spacing` must be > 0 scene units (got -1)");
     expect_rejected([](auto& p) { p.samples = 1; }, "`samples` must be >= 2 (got 1)");
-    expect_rejected([](auto& p) { p.width = 0; }, "`width` must be > 0");
+    expect_rejected([](auto& p) { p.widths.root = 0; }, "--root-width must be a finite number > 0");
     expect_rejected([](auto& p) { p.jitter = 2; }, "`jitter` must be in [0, 1] (got 2)");
     expect_rejected([](auto& p) { p.max_gap = -1; }, "`max_gap` must be >= 0");
     expect_rejected([](auto& p) { p.max_height = INFINITY; }, "`max_height`");

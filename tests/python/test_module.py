@@ -246,3 +246,26 @@ def test_sections_part_the_scalp_inside_the_hairline(sphere, tmp_path):
     assert groom.read(str(partings)).num_curves >= 3
     with pytest.raises(groom.ParamError, match="cols"):
         groom.sections(scalp=sphere, layout="rows", cols=4, **kw)
+
+
+def test_ops_that_make_hairs_take_root_and_tip_widths(sphere):
+    """root_width= and tip_width= are the CLI's --root-width and --tip-width: the root point gets the
+    one, the tip point the other, widths fall monotonically between; without them curl writes the
+    human-hair defaults (0.008 to 0.004), and edges' width= is still one diameter."""
+    def check(cs, root, tip):
+        w = cs.point_attributes["width"]
+        assert w.dtype == np.float32 and len(w) == cs.num_points
+        starts, ends = cs.offsets[:-1], cs.offsets[1:] - 1
+        np.testing.assert_array_equal(w[starts], np.float32(root))
+        np.testing.assert_array_equal(w[ends], np.float32(tip))
+        for c in range(cs.num_curves):
+            assert (np.diff(w[cs.offsets[c]:cs.offsets[c + 1]]) <= 0).all()
+
+    guides = straight_guides()
+    check(groom.curl(guides, amplitude=(0.1, 0.2)), 0.008, 0.004)
+    check(groom.curl(guides, amplitude=(0.1, 0.2), root_width=0.01, tip_width=0.002), 0.01, 0.002)
+    hairline = groom.hairline(scalp=sphere)
+    check(groom.edges(scalp=sphere, hairline=hairline, count=20, root_width=0.003, tip_width=0.001), 0.003, 0.001)
+    check(groom.edges(scalp=sphere, hairline=hairline, count=20, width=0.002), 0.002, 0.002)
+    with pytest.raises(groom.ParamError, match="root_width must be a finite number > 0"):
+        groom.curl(guides, root_width=-1)

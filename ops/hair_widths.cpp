@@ -1,0 +1,78 @@
+#include "ops/hair_widths.h"
+
+#include "kernel/error.h"
+#include "kernel/parallel.h"
+
+#include <cmath>
+#include <string>
+
+namespace groom {
+
+HairWidths HairWidths::resolved(float units_per_cm) const
+{
+    return {root.value_or(kDefaultRootWidthCm * units_per_cm), tip.value_or(kDefaultTipWidthCm * units_per_cm)};
+}
+
+void HairWidths::validate(std::string_view op) const
+{
+    // Widths beyond this are not hair in any unit anyone models in (1e6 scene units = 10 km in cm).
+    constexpr float kMax = 1e6f;
+    if (root && !(std::isfinite(*root) && *root > 0.0f && *root <= kMax)) {
+        throw InvalidParam(std::string(op) + ": --root-width must be a finite number > 0 and <= 1e+06 (got " + format_number(*root) + ")");
+    }
+    if (tip && !(std::isfinite(*tip) && *tip >= 0.0f && *tip <= kMax)) {
+        throw InvalidParam(std::string(op) + ": --tip-width must be a finite number >= 0 and <= 1e+06 (got " + format_number(*tip) + ")");
+    }
+}
+
+void taper_widths(CurveSet& curves, float root, float tip)
+{
+    AttributeSet& points = curves.attributes(Domain::Point);
+    if (const Attribute* a = points.find(attr::width); a && a->type() != AttrType::Float) points.remove(attr::width);
+    // A per-curve width (USD's uniform widths) would shadow the per-point one in writers: the taper replaces it.
+    curves.attributes(Domain::Curve).remove(attr::width);
+    const auto P = curves.positions();
+    auto W = curves.add<float>(Domain::Point, attr::width);
+    const double r = root, t = tip;
+    parallel_for(int64_t(curves.num_curves()), 1024, [&](int64_t b, int64_t e) {
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange pr = curves.points_of(size_t(c));
+            const int64_t n = pr.size();
+            if (n == 0) continue;
+            double total = 0.0;
+            for (int64_t i = pr.begin + 1; i < pr.end; ++i) total += double(distance(P[i], P[i - 1]));
+            // Fractions in double: (1 - f) r + f t is then monotone in f to double rounding, and the
+            // one rounding to float keeps that order (rounding is monotone).
+            double s = 0.0;
+            for (int64_t i = 0; i < n; ++i) {
+                if (i > 0) s += double(distance(P[pr.begin + i], P[pr.begin + i - 1]));
+                double f = total > 0.0 ? s / total : (n > 1 ? double(i) / double(n - 1) : 0.0);
+                if (i == n - 1 && n > 1) f = 1.0;  // the sum of the segments need not land on total exactly
+                W[pr.begin + i] = i == 0 ? root : f == 1.0 ? tip : float((1.0 - f) * r + f * t);
+            }
+        }
+    });
+}
+
+void apply_hair_widths(CurveSet& curves, const HairWidths& widths, float units_per_cm)
+{
+    if (!widths.given()) {
+        if (!curves.find<float>(Domain::Point, attr::width).empty()) return;
+        // A width per curve (a constant or uniform USD width) is still the input's width: keep it, per point.
+        const auto cw = curves.find<float>(Domain::Curve, attr::width);
+        if (!cw.empty()) {
+            const std::vector<float> per_curve(cw.begin(), cw.end());
+            curves.attributes(Domain::Curve).remove(attr::width);
+            auto W = curves.add<float>(Domain::Point, attr::width);
+            for (size_t c = 0; c < curves.num_curves(); ++c) {
+                const IndexRange pr = curves.points_of(c);
+                for (int64_t i = pr.begin; i < pr.end; ++i) W[i] = per_curve[c];
+            }
+            return;
+        }
+    }
+    const HairWidths w = widths.resolved(units_per_cm);
+    taper_widths(curves, *w.root, *w.tip);
+}
+
+}  // namespace groom

@@ -96,7 +96,7 @@ void setup(CommandContext& ctx)
                     "or auto: under with --orient scalp, else over. For rope and twist: the lay's direction")
         ->capture_default_str();
     app->add_option("--strands", a.params.strands,
-                    "Strands per braid N, >= 2 (default: the pattern's: plait 3, fishtail 8, twist 2, rope 3, round 4)");
+                    "Strands per braid N, [2, 32] (default: the pattern's: plait 3, fishtail 8, twist 2, rope 3, round 4)");
     a.frequency_opt = app->add_option("--frequency", a.frequency,
                                       "F: knots (full x cycles) over each whole guide, >= 0 (default " + fmt(d.kDefaultFrequency) + ")");
     a.knot_length_opt = app->add_option("--knot-length", a.knot_length,

@@ -6,6 +6,7 @@
 #include "fields/surface_path.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/memory_budget.h"
 
 #include <chrono>
 #include <cstdio>
@@ -51,6 +52,15 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        // Before walking: each leg takes at most 4 |a - b| / step + 16 steps between the waypoints'
+        // surface points (surface_path), each point held three times (path, all, output).
+        // `--step 1e-6` across the head made 12 million points past a 64 MiB --memory (op fuzzer).
+        double bound = 0.0;
+        for (const std::vector<float3>& w : waypoints)
+            for (size_t k = 0; k + 1 < w.size(); ++k)
+                bound += 4.0 * double(distance(scalp->closest_point(w[k]), scalp->closest_point(w[k + 1]))) / double(args->step) + 16.0;
+        check_memory("parting: up to " + format_number(bound) + " points at --step " + format_number(args->step), bound * 36.0,
+                     "use a larger --step");
         std::vector<int64_t> counts;
         std::vector<float3> all, path;
         for (size_t i = 0; i < waypoints.size(); ++i) {

@@ -213,6 +213,16 @@ VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::ar
                             format_number(budget / double(1ull << 30)) + " GiB budget (`memory`); use `voxel` " +
                             format_number(suggest2) + " or larger (the mesh is " + format_number(diag) + " units across)");
     }
+    // After the budget (whose advice names a workable voxel). OpenVDB refuses a transform whose scale
+    // determinant is below 3e-15 (ArithmeticError "Non-zero scale values required", thrown inside
+    // meshToVolume's tasks, which ended the process): h^3 must stay above that.
+    constexpr float kMinVoxel = 2.0e-5f;  // float: --voxel 2e-5 is a float
+    if (!(h >= double(kMinVoxel))) {
+        throw InvalidGeometry(params.source + ": voxel size " + format_number(h) + (params.voxel_size > 0.0f ? "" : " (automatic)") +
+                              " is below " + format_number(kMinVoxel) + ", the smallest OpenVDB's transforms take (the mesh is " +
+                              format_number(diag) + " units across): scale the mesh up" +
+                              (params.voxel_size > 0.0f ? " or use a larger `voxel`" : ""));
+    }
     return {h, bytes};
 }
 

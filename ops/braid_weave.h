@@ -46,8 +46,11 @@ std::string braid_pattern_list();
 /// Strands a pattern uses when --strands is not given.
 int default_strands(BraidPattern p);
 /// Throws InvalidParam when `strands` does not suit the pattern (fishtail: even and >= 4; twist: 2;
-/// round: even and >= 4; the rest >= 2).
+/// round: even and >= 4; the rest >= 2; every pattern at most kMaxStrands).
 void validate_pattern_strands(BraidPattern p, int strands);
+
+/// The most strands a braid may have (the weave costs about N^3).
+inline constexpr int kMaxStrands = 32;
 
 /// One strand's place in the cross-section: x lateral in [-1, 1] (times A), y height (times B);
 /// `press` in [0, 1] is 1 where the strand is pressed against another (a crossing) and 0 between.

@@ -5,6 +5,7 @@
 #include "kernel/math/frames.h"
 #include "kernel/math/polyline.h"
 #include "kernel/math/spline.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
 #include "ops/hair_types.h"
@@ -446,6 +447,13 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
         throw LimitExceeded("curl: the output would have " + std::to_string(total) + " points (limit " + std::to_string(kMaxPoints) +
                             "); lower `samples` or `frequency`");
     }
+    // Before allocating (a curve 1.7e7 units long asked for 5e8 points and was killed past 2 GB: op
+    // fuzzer): the output copies every point column of the input and adds shape, cycle and width; a
+    // worker's centreline holds a curve's points and frames.
+    int64_t largest = 0;
+    for (const CurveSetup& s : setup) largest = std::max(largest, s.points);
+    check_memory("curl: " + std::to_string(total) + " output points (curve length x `frequency` x `samples`)",
+                 double(total) * (bytes_per_point(src) + 12.0) + double(largest) * 64.0, "lower `frequency` or `samples`");
 
     std::vector<int64_t> counts(nc);
     for (size_t c = 0; c < nc; ++c) counts[c] = setup[c].points;

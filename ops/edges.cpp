@@ -3,6 +3,7 @@
 
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
 
@@ -242,6 +243,12 @@ CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams
                            format_number(wanted) + " hairs; at most 10000000");
     }
     const int64_t ns = int64_t(wanted);
+    // Before allocating: each hair's points are held twice (its own list, then the output: position
+    // and width), and a hair costs its list and ids. The default density on a head modelled in
+    // metres x 100 (1e4 x centimetres) asked for 5e6 hairs with no estimate (op fuzzer).
+    check_memory("edges: " + std::to_string(ns) + " hairs (`density` x " + format_number(total) + " of hairline, or `count`) x " +
+                     std::to_string(params.points) + " `points`",
+                 double(ns) * (double(params.points) * 2.0 * 16.0 + 64.0), "lower `density`, `count` or `points` (or set `units_per_cm`)");
     const double spacing = total / double(ns);
     // Swoops are counted from the face's middle (azimuth 0) when the chosen part holds it, so the
     // pattern is symmetric there; else from `from`.

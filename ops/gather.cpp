@@ -4,6 +4,7 @@
 #include "fields/surface_path.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
 #include "ops/puff.h"
@@ -86,6 +87,12 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
     std::vector<uint64_t> puff_section(np);
     for (size_t k = 0; k < np; ++k) puff_section[k] = region.section(puffs[k].base);
 
+    // Before sampling: each hair draws about 3 candidate roots (a position, a normal, a face) and
+    // holds its puff part's centreline (`hair_points`) twice, with a normal per point, before the
+    // curl (which checks its own output). Its flat path depends on where it lands and is not counted.
+    check_memory("gather: " + std::to_string(params.hairs) + " `hairs` x " + std::to_string(params.hair_points) + " `hair_points`",
+                 double(params.hairs) * (3.0 * 32.0 + double(params.hair_points) * 3.0 * 12.0 + 128.0), "lower `hairs`");
+
     // --- Roots: area-uniform rounds, kept where the region is haired and no puff's base is.
     const uint64_t seed = mix64(params.curl.seed ^ 0x67617468ull);
     std::vector<SurfaceSample> roots;
@@ -125,6 +132,17 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
                             "this head, and are the puffs inside it?)");
     }
     const int64_t nh = int64_t(roots.size());
+    // Before walking: a flat part takes at most 4 |root - base| / step + 16 steps (surface_path),
+    // each point held with its normal, twice. On a head 1e4 times larger than `step` expects, 200
+    // hairs walked for minutes (op fuzzer): the bound is known here, so both memory and time are.
+    double path_points = 0.0;
+    for (int64_t i = 0; i < nh; ++i) {
+        const GatherPuff& puff = puffs[owner[size_t(i)]];
+        path_points += 4.0 * (double(distance(roots[size_t(i)].position, puff.base)) + double(puff.base_radius)) / double(params.step) + 16.0;
+    }
+    check_memory("gather: the flat parts of " + std::to_string(nh) + " hairs at `step` " + format_number(params.step) + " (up to " +
+                     format_number(path_points) + " points)",
+                 path_points * 2.0 * 24.0, "use a larger `step` or fewer `hairs`");
     ProgressStep step(progress, "gather", nh);
 
     // --- Flat parts: on the scalp from each root to its puff's base circle.

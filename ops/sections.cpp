@@ -6,6 +6,7 @@
 #include "fields/surface_path.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
 #include "ops/hair_region.h"
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 namespace groom {
@@ -200,6 +202,13 @@ SectionsResult sections(const Surface& scalp, const CurveSet& hairline, const Ro
     const float tiny = 1e-5f * map.mean_radius();
 
     // --- Partings: each border line's waypoints joined on the scalp.
+    // Before drawing them: a border (at most one per section and band) is shorter than the scalp's
+    // circumference, and its path holds a point per `step`, twice (waypoints, path). On a head 1e4
+    // times larger than the default `step` expects, the defaults walked for minutes (op fuzzer).
+    const double parting_points = double(ns + map.num_bands() + 1) * 2.0 * std::numbers::pi * double(map.mean_radius()) / double(params.step);
+    check_memory("sections: partings of up to " + format_number(parting_points) + " points at `step` " + format_number(params.step) +
+                     " on a scalp of mean radius " + format_number(map.mean_radius()),
+                 parting_points * 24.0, "use a larger `step`");
     const std::vector<SectionMap::Border> borders = map.borders(4.0f * params.step, 0.5f * params.parting_gap);
     std::vector<std::vector<float3>> paths(borders.size());
     parallel_for(int64_t(borders.size()), 1, [&](int64_t b, int64_t e) {

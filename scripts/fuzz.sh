@@ -4,28 +4,46 @@
 #
 #   bash scripts/fuzz.sh                     # every target, 5 s each
 #   bash scripts/fuzz.sh --seconds 600 usda  # one target for ten minutes
+#   bash scripts/fuzz.sh --op-seconds 40     # target `ops` (every op command, drawn per input) 40 s
+#   bash scripts/fuzz.sh --seconds 300 op_braid   # one op command for five minutes
 #
+# `ops` and op_<command> run fuzz/ops_fuzz.cpp (one binary for every op command); op_<command> sets
+# GROOM_FUZZ_OP=<command> and keeps its own corpus. The default list has `ops` (one start-up for
+# all commands, so CI pays it once); --op-seconds sets the time of `ops` and op_* targets.
 # The working corpus grows in $GROOM_SANITIZE_BUILD_DIR/fuzz-corpus/<target> across runs; a crash
 # leaves its input in .../fuzz-artifacts/ and the script exits 1. Make every crash a test in
 # tests/kernel/regression_test.cpp (input under tests/data/regressions/<target>/).
 set -euo pipefail
 seconds=5
+op_seconds=
 targets=()
 while (($#)); do
   case "$1" in
     --seconds) seconds=$2; shift 2 ;;
     --seconds=*) seconds=${1#*=}; shift ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    --op-seconds) op_seconds=$2; shift 2 ;;
+    --op-seconds=*) op_seconds=${1#*=}; shift ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
     *) targets+=("$1"); shift ;;
   esac
 done
-all=(usda obj_curves ply_curves hair obj_mesh ply_mesh off stl cli_args parse_floats)
+ops=(resample project cull hairline parting cornrow-guides braid partition populate curl generate puff gather edges
+  sections render head)
+all=(usda obj_curves ply_curves hair obj_mesh ply_mesh off stl cli_args parse_floats ops)
 ((${#targets[@]})) || targets=("${all[@]}")
 
 source "$(dirname "${BASH_SOURCE[0]}")/sanitize-env.sh"
 configure_sanitize_build
 build_targets=(make_fuzz_corpus)
-for t in "${targets[@]}"; do build_targets+=("${t}_fuzz"); done
+binary_of() { if [[ $1 == op_* || $1 == ops ]]; then echo ops_fuzz; else echo "${1}_fuzz"; fi; }
+for t in "${targets[@]}"; do
+  if [[ $t == op_* && " ${ops[*]} " != *" ${t#op_} "* ]]; then
+    echo "fuzz.sh: no op command '${t#op_}' (op targets: ${ops[*]/#/op_})" >&2
+    exit 2
+  fi
+done
+for t in "${targets[@]}"; do build_targets+=("$(binary_of "$t")"); done
+mapfile -t build_targets < <(printf '%s\n' "${build_targets[@]}" | sort -u)
 cmake --build "$sbuild" -j "$jobs" --target "${build_targets[@]}" 2>&1 | grep -E 'error|warning: unused' || true
 cmake --build "$sbuild" -j "$jobs" --target "${build_targets[@]}" >/dev/null
 
@@ -35,7 +53,7 @@ rm -rf "$seeds"
 "$sbuild/fuzz/make_fuzz_corpus" "$seeds" 2>/dev/null
 mkdir -p "$sbuild/fuzz-artifacts"
 
-printf '%-13s %10s %8s %8s  %s\n' target executions exec/s corpus result
+printf '%-18s %10s %8s %8s  %s\n' target executions exec/s corpus result
 failed=0
 for t in "${targets[@]}"; do
   work=$sbuild/fuzz-corpus/$t
@@ -45,10 +63,16 @@ for t in "${targets[@]}"; do
   extra=()
   [[ -f $seeds/$t.dict ]] && extra+=(-dict="$seeds/$t.dict")
   log=$sbuild/fuzz-artifacts/$t.log
+  run_seconds=$seconds
+  op_env=()
+  if [[ $t == op_* || $t == ops ]]; then
+    [[ $t == op_* ]] && op_env=(GROOM_FUZZ_OP="${t#op_}")
+    [[ -n $op_seconds ]] && run_seconds=$op_seconds
+  fi
   # -timeout: one input taking over 10 s is a hang; -rss_limit_mb / -malloc_limit_mb: a reader that
   # believes a header's absurd count and allocates for it is a crash, not a slow run.
   set +e
-  "$sbuild/fuzz/${t}_fuzz" "${dirs[@]}" "${extra[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  env "${op_env[@]}" "$sbuild/fuzz/$(binary_of "$t")" "${dirs[@]}" "${extra[@]}" -max_total_time="$run_seconds" -timeout=10 -rss_limit_mb=2048 \
     -malloc_limit_mb=1024 -max_len=65536 -print_final_stats=1 -artifact_prefix="$sbuild/fuzz-artifacts/$t-" >"$log" 2>&1
   rc=$?
   set -e
@@ -56,6 +80,6 @@ for t in "${targets[@]}"; do
   rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
   corpus=$(find "$work" -type f | wc -l)
   if ((rc == 0)); then result=ok; else result="CRASH (see $log)"; failed=1; fi
-  printf '%-13s %10s %8s %8s  %s\n' "$t" "${execs:-0}" "${rate:-0}" "$corpus" "$result"
+  printf '%-18s %10s %8s %8s  %s\n' "$t" "${execs:-0}" "${rate:-0}" "$corpus" "$result"
 done
 exit $failed

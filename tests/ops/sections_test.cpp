@@ -4,6 +4,7 @@
 #include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
 #include "ops/hair_region.h"
@@ -545,4 +546,23 @@ TEST(Sections, TheTilingCheckFindsAMissingParting)
         if (k >= 0) ++roots[size_t(k)];
     }
     EXPECT_GE(*std::max_element(roots.begin(), roots.end()), 2);
+}
+
+// op_sections (op fuzzer): the defaults on a head 1e4 times larger (--step 0.25 on a scalp of radius
+// 1e5) walked partings for minutes. The partings' points are bounded before drawing them: here a
+// `step` 1e5 times too fine for a 1 MiB budget is refused naming `step`, and the default fits.
+TEST(Sections, PartingsTooFineForTheBudgetAreRefusedNamingStep)
+{
+    SectionsParams p = test_params(SectionLayout::Grid);
+    p.step = 2.5e-6f;
+    const MemoryLimit limit(1u << 20);
+    try {
+        sections(sphere(), sphere_hairline(), nullptr, p);
+        FAIL() << "partings at step 2.5e-6 fitted 1 MiB";
+    }
+    catch (const LimitExceeded& e) {
+        EXPECT_NE(std::string(e.what()).find("`step`"), std::string::npos) << e.what();
+    }
+    p.step = test_params(SectionLayout::Grid).step;
+    EXPECT_NO_THROW(sections(sphere(), sphere_hairline(), nullptr, p));
 }

@@ -387,7 +387,11 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
     const double det = M[0] * (M[5] * M[10] - M[6] * M[9]) - M[1] * (M[4] * M[10] - M[6] * M[8]) + M[2] * (M[4] * M[9] - M[5] * M[8]);
     const double width_scale = std::cbrt(std::abs(det));
 
-    for (const auto& [pname, pp] : cp.props) {
+    // Attributes in the order they were written (the composed view is sorted by name), so a file
+    // read and written again, or shards merged, come back byte for byte.
+    std::vector<std::pair<std::string_view, const Property*>> authored(cp.props.begin(), cp.props.end());
+    std::stable_sort(authored.begin(), authored.end(), [](const auto& a, const auto& b) { return a.second->line < b.second->line; });
+    for (const auto& [pname, pp] : authored) {
         const bool is_widths = pname == "widths";
         if (!is_widths && pname.rfind("primvars:", 0) != 0) continue;
         if (pname.size() > 8 && pname.substr(pname.size() - 8) == ":indices") continue;

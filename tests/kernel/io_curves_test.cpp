@@ -41,9 +41,11 @@ TEST(CurveIoUsda, ReadThenWrittenAgainIsTheSameFileByteForByte)
     auto P = src.positions_for_write();
     for (size_t i = 0; i < P.size(); ++i) P[i] = float3(float(i), 0.5f * float(i), 0.0f);
     auto z = src.add<int32_t>(Domain::Point, "zeta");
-    auto a = src.add<float>(Domain::Curve, "alpha");
-    for (size_t i = 0; i < z.size(); ++i) z[i] = int32_t(i);
-    a[0] = 1.5f, a[1] = -2.0f;
+    auto a = src.add<float>(Domain::Point, "alpha");
+    auto zc = src.add<int32_t>(Domain::Curve, "zc");
+    auto ac = src.add<float>(Domain::Curve, "ac");
+    for (size_t i = 0; i < z.size(); ++i) z[i] = int32_t(i), a[i] = 0.25f * float(i);
+    zc[0] = 7, zc[1] = 8, ac[0] = 1.5f, ac[1] = -2.0f;
     write_curves(src, dir.file("a.usda"));
     write_curves(read_curves(dir.file("a.usda")), dir.file("b.usda"));
     EXPECT_EQ(read_bytes(dir.file("a.usda")), read_bytes(dir.file("b.usda")));

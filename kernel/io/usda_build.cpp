@@ -399,6 +399,9 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
         const std::string label(pname);
         const std::string name = is_widths ? std::string(attr::width) : label.substr(9);
         if (!pp->column) {
+            // groom writes a curve's root UV twice: primvars:root_uv (which it reads back) and
+            // texCoord2f primvars:st for renderers; the copy is no news to the user.
+            if (label == "primvars:st" && cp.props.find(std::string_view("primvars:root_uv")) != cp.props.end()) continue;
             if (warn) warn(file + ":" + std::to_string(pp->line) + ": " + label + " of <" + cp.path + "> (" + pp->type + ") left out: no attribute type holds it");
             continue;
         }

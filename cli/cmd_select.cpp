@@ -3,6 +3,7 @@
 #include "cli/command.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/io_util.h"
 #include "ops/select.h"
 
 #include <algorithm>
@@ -59,9 +60,20 @@ void setup(CommandContext& ctx)
         params.prims = split(a.prims);
         params.invert = a.invert;
         params.validate();
-        const CurveSet curves = read_curves(a.input);
+        // A USD input names each curve's prim for --prim (the reader's prim_paths), dropped again
+        // from the output: they describe this file's prims, not the selection's.
+        CurveReadOptions read_options;
+        const std::string ext = io::extension_of(a.input);
+        const bool usd = ext == "usda" || ext == "usd" || a.input == "-";
+        read_options.prim_paths = usd && !params.prims.empty();
+        read_options.warn = [&common](const std::string& w) { note(common, "warning: " + w); };
+        const CurveSet curves = read_curves(a.input, read_options);
         SelectStats stats;
-        const CurveSet out = select(curves, params, &stats);
+        CurveSet out = select(curves, params, &stats);
+        if (read_options.prim_paths) {
+            out.attributes(Domain::Curve).remove("prim");
+            out.attributes(Domain::Detail).remove("prim_paths");
+        }
         write_curves(out, a.output);
         note(common, "select: " + std::to_string(stats.matched) + " of " + std::to_string(curves.num_curves()) + " curves match, " +
                          std::to_string(stats.kept) + " kept -> " + a.output);

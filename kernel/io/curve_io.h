@@ -24,6 +24,9 @@ struct CurveReadOptions {
     int cubic_samples_per_segment = 8;
     /// USD only: read these prims and their descendants (absolute prim paths); empty = every prim.
     std::vector<std::string> prims;
+    /// USD only: name each curve's prim: curve int attribute `prim` indexing the lines of detail
+    /// string `prim_paths` (one prim path a line), for `groom select --prim`.
+    bool prim_paths = false;
     /// Receives each warning (a prim skipped, a primvar left out, an arc to another file); null = dropped.
     std::function<void(const std::string&)> warn;
 };

@@ -540,10 +540,18 @@ CurveSet read_usda(const FileBytes& file, const CurveReadOptions& options)
     std::vector<std::string> skipped;
     const std::vector<ComposedCurves> prims = compose_curves(layer, file.name, options.prims, warn, skipped);
     std::vector<CurveSet> parts;
+    std::string paths;  // options.prim_paths: the read prims' paths, one a line
     for (const ComposedCurves& cp : prims) {
         try {
             CurveSet cs = build_prim(file.name, cp, options, warn);
-            if (cs.num_curves() > 0) parts.push_back(std::move(cs));
+            if (cs.num_curves() == 0) continue;
+            if (options.prim_paths) {
+                cs.attributes(Domain::Curve).remove("prim");
+                auto prim = cs.add<int32_t>(Domain::Curve, "prim");
+                std::fill(prim.begin(), prim.end(), int32_t(parts.size()));
+                paths += (paths.empty() ? "" : "\n") + cp.path;
+            }
+            parts.push_back(std::move(cs));
         }
         catch (const Error& e) {
             // ParseError (the prim's data), InvalidGeometry (a transform that overflows the points,
@@ -565,6 +573,10 @@ CurveSet read_usda(const FileBytes& file, const CurveReadOptions& options)
         return CurveSet();  // only prims with no curves: an empty but valid result
     }
     CurveSet all = concatenate(parts, file.name, warn);
+    if (options.prim_paths) {
+        all.attributes(Domain::Detail).remove("prim_paths");
+        all.set_detail_string("prim_paths", paths);
+    }
     all.validate(file.name);
     return all;
 }

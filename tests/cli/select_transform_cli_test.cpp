@@ -68,9 +68,42 @@ TEST(SelectCli, BadExpressionNamesTheOptionAndWhatWasExpected)
     r = run_groom({"select", in, "-o", out});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("give --ids, --guide, --where or --prim"), std::string::npos) << r.err;
-    r = run_groom({"select", in, "--prim", "/groom", "-o", out});
+    // Prim paths come from a USD file; a .ply carries none.
+    write_curves(read_curves(in), dir.file("six.ply"));
+    r = run_groom({"select", dir.file("six.ply"), "--prim", "/groom", "-o", out});
     EXPECT_NE(r.err.find("--prim needs curves that carry their prim paths"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(SelectCli, PrimKeepsTheCurvesOfAPrimAndThoseUnderIt)
+{
+    // Three prims, one curve each at x = 0, 1, 2: /hair/a, /hair/ab (under /hair, not under
+    // /hair/a), /other. The output does not keep the prim bookkeeping.
+    TempDir dir;
+    const std::string in = dir.file("prims.usda"), out = dir.file("out.usda");
+    auto prim = [](const char* name, int x) {
+        const std::string p = "(" + std::to_string(x) + ", 0, 0), (" + std::to_string(x) + ", 1, 0)";
+        return std::string("    def BasisCurves \"") + name + "\" {\n        uniform token type = \"linear\"\n"
+               "        int[] curveVertexCounts = [2]\n        point3f[] points = [" + p + "]\n    }\n";
+    };
+    write_text(in, "#usda 1.0\ndef Xform \"hair\" {\n" + prim("a", 0) + prim("ab", 1) + "}\ndef Xform \"other\" {\n" + prim("c", 2) + "}\n");
+    auto xs = [](const CurveSet& cs) {
+        std::vector<float> x;
+        for (size_t c = 0; c < cs.num_curves(); ++c) x.push_back(cs.positions()[cs.points_of(c).begin].x);
+        return x;
+    };
+    auto r = run_groom({"select", in, "--prim", "/hair", "-o", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(xs(read_curves(out)), (std::vector<float>{0, 1}));
+    r = run_groom({"select", in, "--prim", "/hair/a", "-o", out, "--force"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(xs(read_curves(out)), (std::vector<float>{0}));
+    r = run_groom({"select", in, "--prim", "/hair/ab,/other", "--invert", "-o", out, "--force"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const CurveSet kept = read_curves(out);
+    EXPECT_EQ(xs(kept), (std::vector<float>{0}));
+    EXPECT_EQ(kept.attributes(Domain::Curve).find("prim"), nullptr);
+    EXPECT_EQ(kept.detail_string("prim_paths"), "");
 }
 
 TEST(TransformCli, MovesAStraightGuideAndConvertsUnitsAndAxis)

@@ -79,6 +79,12 @@ void check_mesh_reader(const uint8_t* data, size_t size, const char* name, Read 
     for (size_t f = 0; f + 1 < soup.face_offsets.size(); ++f) require(soup.face_offsets[f] <= soup.face_offsets[f + 1]);
     for (int32_t i : soup.face_indices) require(i >= 0 && static_cast<size_t>(i) < soup.points.size());
     for (const float3& p : soup.points) require(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    // Texture coordinates: one per corner, each -1 (none) or a (u, v) pair of `uvs`.
+    require(soup.uvs.size() % 2 == 0);
+    if (soup.has_uvs()) {
+        require(soup.face_uv_indices.size() == soup.face_indices.size());
+        for (int32_t t : soup.face_uv_indices) require(t == -1 || (t >= 0 && static_cast<size_t>(t) < soup.uvs.size() / 2));
+    }
     const MeshStats s = mesh_stats(soup);
     require(s.faces == static_cast<int64_t>(soup.num_faces()) && s.vertices == static_cast<int64_t>(soup.points.size()));
     if constexpr (!std::is_same_v<Write, std::nullptr_t>) {

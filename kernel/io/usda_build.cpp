@@ -317,6 +317,16 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
         const auto it = cp.props.find(name);
         return it == cp.props.end() || it->second->blocked ? nullptr : it->second;
     };
+    // An animated prim: groom reads one frame a file, so say which one this is.
+    if (warn) {
+        for (const auto& [pname, pp] : cp.props) {
+            if (pp->time_samples > 1) {
+                warn(file + ":" + std::to_string(pp->line) + ": " + std::string(pname) + " of <" + cp.path + "> has " +
+                     std::to_string(pp->time_samples) + " time samples; read the earliest (time " + format_number(pp->first_time) +
+                     "): groom reads one frame a file (guides.####.usda with --frames)");
+            }
+        }
+    }
     const Property* points_p = prop("points");
     const Property* counts_p = prop("curveVertexCounts");
     if (!points_p) throw ParseError(where + " has no 'points'");

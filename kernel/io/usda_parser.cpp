@@ -475,10 +475,10 @@ private:
                     prop.blocked = true;
                 }
                 else if (numbers) {
-                    prop.numbers = time_samples ? first_time_sample_numbers() : number_list();
+                    prop.numbers = time_samples ? first_time_sample_numbers(prop) : number_list();
                 }
                 else {
-                    prop.column = time_samples ? first_time_sample(*ctype, array) : typed_value(*ctype, array);
+                    prop.column = time_samples ? first_time_sample(*ctype, array, prop) : typed_value(*ctype, array);
                     if (!prop.column) prop.blocked = true;
                 }
             }
@@ -525,7 +525,7 @@ private:
         return out;
     }
 
-    std::vector<double> first_time_sample_numbers()
+    std::vector<double> first_time_sample_numbers(Property& prop)
     {
         lex_.expect_punct('{', "opening timeSamples");
         std::vector<double> first;
@@ -538,8 +538,10 @@ private:
             std::vector<double> v;
             if (lex_.peek().kind == Tok::Ident && lex_.peek().text == "None") lex_.next();
             else v = number_list();
+            ++prop.time_samples;
             if (time < first_time) {
                 first_time = time;
+                prop.first_time = time;
                 first = std::move(v);
             }
             lex_.accept_punct(',');
@@ -548,7 +550,7 @@ private:
     }
 
     /// `{ time: value, ... }`: the earliest sample (files written for one frame have one).
-    std::optional<AttributeData> first_time_sample(AttrType type, bool array)
+    std::optional<AttributeData> first_time_sample(AttrType type, bool array, Property& prop)
     {
         lex_.expect_punct('{', "opening timeSamples");
         std::optional<AttributeData> first;
@@ -559,8 +561,10 @@ private:
             if (tt.kind != Tok::Number || !parse_double(tt.text, time)) lex_.fail(tt, "expected a time code in timeSamples");
             lex_.expect_punct(':', "after a time code");
             std::optional<AttributeData> v = typed_value(type, array);
+            ++prop.time_samples;
             if (time < first_time) {
                 first_time = time;
+                prop.first_time = time;
                 first = std::move(v);
             }
             lex_.accept_punct(',');

@@ -26,6 +26,8 @@ struct Property {
     std::string interpolation;           ///< "" when not authored
     int element_size = 1;                ///< `elementSize` metadata
     size_t line = 0;
+    int time_samples = 0;                ///< samples in `.timeSamples` (the value read is the earliest)
+    double first_time = 0.0;             ///< the earliest sample's time code
 };
 
 /// An arc to another prim: `</Path>` or `@@</Path>` (in this file) or `@asset@</Path>` (another file: not read).

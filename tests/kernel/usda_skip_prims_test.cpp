@@ -71,3 +71,36 @@ TEST(UsdaSkipPrims, APrimWhoseTransformOverflowsIsSkippedNotTheFile)
     EXPECT_TRUE(r.warned("non-finite position"));
     EXPECT_TRUE(r.warned("prim </huge/c> skipped"));
 }
+
+TEST(UsdaTimeSamples, AnimatedPointsReadTheEarliestSampleAndSaySo)
+{
+    // Samples written out of order: the earliest time (1) is read, whatever the order; a default
+    // value beside the samples is what USD gives with no time, but a groom frame is a time, so the
+    // samples win. The warning names the property, prim, count and time, and the way to animate.
+    const test::UsdaRead r = test::read_usda_text(R"(#usda 1.0
+def BasisCurves "c" {
+    uniform token type = "linear"
+    int[] curveVertexCounts = [2]
+    point3f[] points = [(5, 0, 0), (5, 1, 0)]
+    point3f[] points.timeSamples = {
+        2: [(2, 0, 0), (2, 1, 0)],
+        1: [(1, 0, 0), (1, 1, 0)],
+        3: [(3, 0, 0), (3, 1, 0)],
+    }
+}
+)");
+    ASSERT_EQ(r.curves.num_points(), 2u);
+    EXPECT_EQ(r.curves.positions()[0], float3(1, 0, 0));
+    EXPECT_EQ(r.curves.positions()[1], float3(1, 1, 0));
+    EXPECT_TRUE(r.warned("points of </c> has 3 time samples; read the earliest (time 1)")) << (r.warnings.empty() ? "" : r.warnings[0]);
+    EXPECT_TRUE(r.warned("guides.####.usda with --frames"));
+    // One sample is a still frame: nothing to say.
+    const test::UsdaRead still = test::read_usda_text(R"(#usda 1.0
+def BasisCurves "c" {
+    uniform token type = "linear"
+    int[] curveVertexCounts = [2]
+    point3f[] points.timeSamples = { 7: [(1, 0, 0), (1, 1, 0)] }
+}
+)");
+    EXPECT_TRUE(still.warnings.empty());
+}

@@ -1,6 +1,7 @@
 // `groom generate`: a full groom from a few guides (ops/generate.h): roots scattered area-uniformly
 // on the scalp, shapes interpolated from the nearest guides.
 #include "cli/command.h"
+#include "cli/frame_options.h"
 #include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "cli/width_options.h"
@@ -69,6 +70,13 @@ void setup(CommandContext& ctx)
         const std::unique_ptr<HairRegion> region = make_region(args->hair_region, *scalp);
         GenerateParams params = args->params;
         params.region = region.get();
+        // A farm shard grows only its part of the roots (they are all scattered: that is cheap).
+        ShardRequest& shard = current_shard();
+        if (shard.shards > 1) {
+            params.range_begin = shard.shard * params.count / shard.shards;
+            params.range_end = (shard.shard + 1) * params.count / shard.shards;
+            shard.claimed = true;
+        }
         const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), params, progress.get());
         write_curves(out, args->output);
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

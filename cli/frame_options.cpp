@@ -217,14 +217,19 @@ int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform
     std::vector<std::string> argv{"groom"};
     argv.insert(argv.end(), words.begin(), words.end());
     int rc = 0;
+    ShardRequest& request = current_shard();
+    request = ShardRequest{plan.shard, plan.shards, false};
     try {
         rc = run_one(argv);
     }
     catch (...) {
+        request = ShardRequest{};
         for (const std::string& m : memory_inputs) erase_memory_curves(m);
         for (const Out& o : outs) erase_memory_curves(o.memory);
         throw;
     }
+    const bool claimed = request.claimed;
+    request = ShardRequest{};
     for (const std::string& m : memory_inputs) erase_memory_curves(m);
     if (rc != 0) {
         for (const Out& o : outs) erase_memory_curves(o.memory);
@@ -235,7 +240,7 @@ int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform
     for (const Out& o : outs) results.push_back(take_memory_curves(o.memory));
     for (size_t k = 0; k < outs.size(); ++k) {
         CurveSet& cs = results[k];
-        if (plan.shards > 1) {
+        if (plan.shards > 1 && !claimed) {
             // Shard I of N keeps the curves [I*C/N, (I+1)*C/N): `groom merge` of the shards in
             // order is the whole set, column by column, so a split run writes the same bytes.
             const int64_t c = static_cast<int64_t>(cs.num_curves());
@@ -252,6 +257,12 @@ int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform
 }
 
 }  // namespace
+
+ShardRequest& current_shard()
+{
+    thread_local ShardRequest request;
+    return request;
+}
 
 void add_frame_options(CLI::App* sub, const std::string& command)
 {

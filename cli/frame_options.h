@@ -32,4 +32,15 @@ bool wants_frames(const std::vector<std::string>& args);
 /// InvalidParam thrown before any frame runs.
 int run_frames(const std::vector<std::string>& args, const std::function<int(std::vector<std::string>&)>& run_one);
 
+/// The shard the running command is asked for (set by run_frames around each run of a command with
+/// --shard). A command that can make only its part of the output (curves [I*C/N, (I+1)*C/N) of the
+/// C its whole run would make, every column as the whole run has it) does so and sets `claimed`;
+/// run_frames then writes its output as it is instead of cutting the whole output. Per thread: the
+/// Python module may run commands on several threads.
+struct ShardRequest {
+    int64_t shard = 0, shards = 1;
+    bool claimed = false;
+};
+ShardRequest& current_shard();
+
 }  // namespace groom::cli

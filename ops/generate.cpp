@@ -247,7 +247,10 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     const PointIndex index(pg.roots);
     const int np = pg.points;
     const int64_t ng = int64_t(guides.num_curves());
-    const int64_t nc = int64_t(roots.size());
+    // Hairs [r0, r0 + nc) of the roots: all of them, or a shard's part.
+    const int64_t all = int64_t(roots.size());
+    const int64_t r0 = std::clamp<int64_t>(params.range_begin, 0, all);
+    const int64_t nc = std::clamp<int64_t>(params.range_end < 0 ? all : params.range_end, r0, all) - r0;
     const int k = int(std::min<int64_t>(params.neighbours, ng));
     const int query = int(std::min<int64_t>(int64_t(k) + 1, ng));
 
@@ -263,11 +266,12 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
         std::vector<PointIndex::Neighbour> hits;
         std::vector<double> w;
         for (int64_t c = b; c < e; ++c) {
-            const float3 x = roots[c];
+            const int64_t r = r0 + c;  // the hair's index among all roots
+            const float3 x = roots[r];
             float3* out = P.data() + c * np;
             index.nearest(x, query, hits);
             const int64_t g0 = hits.front().index;
-            ids[c] = params.first_id + c;
+            ids[c] = params.first_id + r;
             nearest_guide[c] = int32_t(g0);
             src_curve[c] = g0;
             std::copy_n(pg.source_point.data() + g0 * np, np, src_point.data() + c * np);
@@ -301,7 +305,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
                 for (int j = 0; j < k; ++j) w[j] = 1.0 / hits[j].distance;
                 total = weigh();
             }
-            const float3 n = normals.empty() ? scalp.normal(x) : normalize(normals[c], scalp.normal(x));
+            const float3 n = normals.empty() ? scalp.normal(x) : normalize(normals[r], scalp.normal(x));
             for (int i = 0; i < np; ++i) out[i] = float3();
             for (int j = 0; j < k; ++j) {
                 const int64_t g = hits[j].index;
@@ -323,9 +327,11 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     // Moved points are checked again and moved again with a doubled margin (up to 8 times): one
     // step along a level set's interpolated normal lands within about a tenth of a voxel of the
     // surface, either side, and on Sintel left 5,500 of 640,000 points reading up to 0.2 inside.
-    // The margin starts at a millionth of the hair's extent, a few float ulps of the scene.
+    // The margin starts at a millionth of the groom's extent (every root and every guide, so a
+    // shard's part gets the whole run's margin), a few float ulps of the scene.
     Bounds3 box;
-    for (const float3& p : P) box.extend(p);
+    for (const float3& p : roots) box.extend(p);
+    for (const float3& p : guides.positions()) box.extend(p);
     const float margin = 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
     keep_outside(dst, scalp, KeepOutside{params.clearance, margin, 8});
     apply_hair_widths(dst, params.widths);

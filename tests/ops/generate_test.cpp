@@ -504,3 +504,37 @@ TEST(Generate, RootsOnlyInsideTheHairlineAndOffThePartings)
     for (const SurfaceSample& s : scatter_roots(pole_guides(), head, test::sphere_cap_sampler(kC, kR), params)) below += s.position.y < y0;
     EXPECT_GT(below, 100);
 }
+
+TEST(Generate, ARangeIsThatSliceOfTheWholeRun)
+{
+    // A farm shard: hairs [b, e) of the roots, grown alone, equal the whole run's curves b..e-1 in
+    // every point, id, guide and width (the clearance margin comes from all roots and guides, not
+    // from the part), for a middle range, an empty one and one past the end.
+    const AnalyticSphere head(kC, kR);
+    GenerateParams params;
+    params.count = 300;
+    params.region_center = on_sphere(0, 0);
+    params.region_radius = 4.0f;
+    params.clearance = 0.05f;
+    params.seed = 5;
+    const CurveSet guides = pole_guides();
+    const CurveSet whole = generate(guides, head, test::sphere_cap_sampler(kC, kR), params);
+    ASSERT_EQ(whole.num_curves(), 300u);
+    for (const auto& [b, e] : std::vector<std::pair<int64_t, int64_t>>{{75, 150}, {10, 10}, {290, 400}}) {
+        GenerateParams part_params = params;
+        part_params.range_begin = b;
+        part_params.range_end = e;
+        const CurveSet part = generate(guides, head, test::sphere_cap_sampler(kC, kR), part_params);
+        const int64_t n = std::min<int64_t>(e, 300) - b;
+        ASSERT_EQ(int64_t(part.num_curves()), n) << b << ".." << e;
+        for (int64_t c = 0; c < n; ++c) {
+            const auto a = curve(part, size_t(c)), w = curve(whole, size_t(b + c));
+            ASSERT_EQ(a.size(), w.size());
+            for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], w[i]) << "hair " << b + c << " point " << i;
+            EXPECT_EQ(part.curve_ids()[size_t(c)], whole.curve_ids()[size_t(b + c)]);
+            EXPECT_EQ(part.find<int32_t>(Domain::Curve, "guide")[size_t(c)], whole.find<int32_t>(Domain::Curve, "guide")[size_t(b + c)]);
+            const IndexRange pr = part.points_of(size_t(c)), wr = whole.points_of(size_t(b + c));
+            EXPECT_EQ(part.find<float>(Domain::Point, attr::width)[size_t(pr.begin)], whole.find<float>(Domain::Point, attr::width)[size_t(wr.begin)]);
+        }
+    }
+}

@@ -475,10 +475,16 @@ private:
                     prop.blocked = true;
                 }
                 else if (numbers) {
-                    prop.numbers = time_samples ? first_time_sample_numbers(prop) : number_list();
+                    prop.numbers = time_samples ? earliest_sample(prop, [&] {
+                        std::vector<double> v;
+                        if (lex_.peek().kind == Tok::Ident && lex_.peek().text == "None") lex_.next();
+                        else v = number_list();
+                        return v;
+                    })
+                                                 : number_list();
                 }
                 else {
-                    prop.column = time_samples ? first_time_sample(*ctype, array, prop) : typed_value(*ctype, array);
+                    prop.column = time_samples ? earliest_sample(prop, [&] { return typed_value(*ctype, array); }) : typed_value(*ctype, array);
                     if (!prop.column) prop.blocked = true;
                 }
             }
@@ -525,45 +531,19 @@ private:
         return out;
     }
 
-    std::vector<double> first_time_sample_numbers(Property& prop)
+    /// `{ time: value, ... }`: the earliest sample's value, read by `read` (files written for one
+    /// frame have one); the count and that time go into `prop` for the builder's warning.
+    template <class Read> auto earliest_sample(Property& prop, Read read) -> decltype(read())
     {
         lex_.expect_punct('{', "opening timeSamples");
-        std::vector<double> first;
-        double first_time = INFINITY;
+        decltype(read()) first{};
         while (!lex_.accept_punct('}')) {
             const Token tt = lex_.next();
             double time = 0;
             if (tt.kind != Tok::Number || !parse_double(tt.text, time)) lex_.fail(tt, "expected a time code in timeSamples");
             lex_.expect_punct(':', "after a time code");
-            std::vector<double> v;
-            if (lex_.peek().kind == Tok::Ident && lex_.peek().text == "None") lex_.next();
-            else v = number_list();
-            ++prop.time_samples;
-            if (time < first_time) {
-                first_time = time;
-                prop.first_time = time;
-                first = std::move(v);
-            }
-            lex_.accept_punct(',');
-        }
-        return first;
-    }
-
-    /// `{ time: value, ... }`: the earliest sample (files written for one frame have one).
-    std::optional<AttributeData> first_time_sample(AttrType type, bool array, Property& prop)
-    {
-        lex_.expect_punct('{', "opening timeSamples");
-        std::optional<AttributeData> first;
-        double first_time = INFINITY;
-        while (!lex_.accept_punct('}')) {
-            const Token tt = lex_.next();
-            double time = 0;
-            if (tt.kind != Tok::Number || !parse_double(tt.text, time)) lex_.fail(tt, "expected a time code in timeSamples");
-            lex_.expect_punct(':', "after a time code");
-            std::optional<AttributeData> v = typed_value(type, array);
-            ++prop.time_samples;
-            if (time < first_time) {
-                first_time = time;
+            auto v = read();
+            if (prop.time_samples++ == 0 || time < prop.first_time) {
                 prop.first_time = time;
                 first = std::move(v);
             }

@@ -1,6 +1,7 @@
 // `groom hairline`, `groom parting` and `groom gather` end to end on a meshed sphere scalp: the chain
 // a user scripts (puffs -> hairline -> parting -> gather), exit codes, messages and refusals.
 #include "test_support.h"
+#include "sphere_scalp.h"
 
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
@@ -17,14 +18,8 @@ using groom::test::TempDir;
 
 namespace {
 
-constexpr float kR = 10.0f;
-
-std::string sphere_scalp(const TempDir& dir)
-{
-    const std::string path = dir.file("head.obj");
-    write_mesh(icosphere(float3(0, 0, 0), kR, 4), path);
-    return path;
-}
+constexpr float kR = test::kSphereScalpRadius;
+using test::sphere_scalp;
 
 /// Two puffs left and right of the top; returns their paths.
 std::vector<std::string> make_puffs(const TempDir& dir, const std::string& scalp)

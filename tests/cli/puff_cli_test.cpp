@@ -1,6 +1,7 @@
 // `groom puff` and `groom generate` end to end on a meshed sphere scalp: files in, files out, exit
 // codes and messages. Geometry is checked against the exact sphere the mesh approximates.
 #include "test_support.h"
+#include "sphere_scalp.h"
 
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
@@ -17,15 +18,8 @@ using groom::test::TempDir;
 
 namespace {
 
-constexpr float kR = 10.0f;
-
-/// An icosphere of radius 10 at the origin (5120 triangles): chordal error about 0.024.
-std::string sphere_scalp(const TempDir& dir)
-{
-    const std::string path = dir.file("head.obj");
-    write_mesh(icosphere(float3(0, 0, 0), kR, 4), path);
-    return path;
-}
+constexpr float kR = test::kSphereScalpRadius;
+using test::sphere_scalp;
 
 /// The test puff's command line; `change` replaces an option's value (or adds the option).
 std::vector<std::string> puff_args(const std::string& scalp, const std::string& out, const std::vector<std::string>& change = {})

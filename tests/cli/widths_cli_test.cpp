@@ -2,6 +2,7 @@
 // --root-width to --tip-width (ops/hair_widths.h), checked from the files it writes; .hair thickness
 // and .usda widths carry it; an input's widths are kept unless the options are given.
 #include "test_support.h"
+#include "sphere_scalp.h"
 
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
@@ -21,14 +22,8 @@ using groom::test::TempDir;
 
 namespace {
 
-constexpr float kR = 10.0f;
-
-std::string sphere_scalp(const TempDir& dir)
-{
-    const std::string path = dir.file("head.obj");
-    write_mesh(icosphere(float3(0, 0, 0), kR, 4), path);
-    return path;
-}
+constexpr float kR = test::kSphereScalpRadius;
+using test::sphere_scalp;
 
 /// Eight guides rooted on the sphere 30 degrees from its top, growing out and down, 12 points each;
 /// with `width`, a point width 0.02 at the root falling to 0.01 at the tip by point index.

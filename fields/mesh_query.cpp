@@ -237,16 +237,26 @@ float MeshQuery::signed_distance(const float3& p, float3& closest, int32_t& face
     const bool stand_in = out > far;
     const float3 q = stand_in ? float3(float(cx + dx * (far / out)), float(cy + dy * (far / out)), float(cz + dz * (far / out))) : p;
 
-    const auto hit = tree().tree.closest_point_and_primitive(K::Point_3(q.x, q.y, q.z));
-    face = static_cast<int32_t>(hit.second - tree().triangles.cbegin());
-    // The AABB tree finds the face; the pseudo-normal of the feature hit gives the sign.
-    bool boundary = false;
-    const float pseudo = geometry_.signed_distance_to_face(q, face, closest, &boundary);
-    const float d = sign_fixed(q, pseudo, boundary, true);
+    face = tree_closest_face(q);
+    const float d = signed_distance_to(q, face, closest);
     if (!stand_in) return d;
     const double ex = double(p.x) - closest.x, ey = double(p.y) - closest.y, ez = double(p.z) - closest.z;
     const float dist = float(std::sqrt(ex * ex + ey * ey + ez * ez));
     return d < 0.0f ? -dist : dist;
+}
+
+int32_t MeshQuery::tree_closest_face(const float3& p) const
+{
+    const auto hit = tree().tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
+    return static_cast<int32_t>(hit.second - tree().triangles.cbegin());
+}
+
+float MeshQuery::signed_distance_to(const float3& p, int32_t face, float3& closest) const
+{
+    // The pseudo-normal of the feature hit gives the sign; at an open rim, the winding number.
+    bool boundary = false;
+    const float pseudo = geometry_.signed_distance_to_face(p, face, closest, &boundary);
+    return sign_fixed(p, pseudo, boundary, true);
 }
 
 void MeshQuery::faces_within(const float3& center, double radius, std::vector<int32_t>& faces, std::vector<double>* distances) const

@@ -30,7 +30,7 @@ float ScalpField::query(const float3& p, float3& n, float3& closest) const
         return d;
     }
     int32_t face = -1;
-    const float sd = im.query->signed_distance(p, closest, face);
+    const float sd = im.exact_distance(p, closest, face);
     if (im.band_normal(p, n)) return sd;  // near the band's edge the band's normal is the smoother one
     const float3 delta = p - closest;
     const float len = length(delta);
@@ -55,7 +55,7 @@ float ScalpField::distance(const float3& p) const
     if (impl_->sample(p, d, g) && length_squared(g) > 0.25f) return d;
     float3 closest;
     int32_t face = -1;
-    return impl_->query->signed_distance(p, closest, face);
+    return impl_->exact_distance(p, closest, face);
 }
 
 
@@ -70,7 +70,7 @@ float ScalpField::distance_within(const float3& p, float reach) const
     if (bound != 0.0f && std::fabs(bound) >= reach) return bound;
     float3 closest;
     int32_t face = -1;
-    return impl_->query->signed_distance(p, closest, face);
+    return impl_->exact_distance(p, closest, face);
 }
 
 float3 ScalpField::normal(const float3& p) const

@@ -5,6 +5,7 @@
 #include "fields/brick_map.h"
 #include "fields/far_field.h"
 #include "fields/mesh_repair.h"
+#include "fields/near_faces.h"
 #include "fields/scalp_field.h"
 #include "fields/uv_map.h"
 #include "fields/winding_number.h"
@@ -72,6 +73,11 @@ public:
     /// their filters ever more often as p goes out (0.4 s a query at 1e20), stay cheap.
     float signed_distance(const float3& p, float3& closest, int32_t& face) const;
     static constexpr double kFarRadii = 4096.0;
+    /// The signed distance and closest point from p's closest face `face` found some other way
+    /// (fields/near_faces.h): the pseudo-normal's sign, the winding number's at an open rim, as above.
+    float signed_distance_to(const float3& p, int32_t face, float3& closest) const;
+    /// The face the tree finds closest to p (finite p; no stand-in, no sign).
+    int32_t tree_closest_face(const float3& p) const;
     /// Every face with a point within `radius` of `center` (scene units), in the tree's order, and
     /// with `distances`, each one's distance from `center` (float rounding of its closest point).
     void faces_within(const float3& center, double radius, std::vector<int32_t>& faces, std::vector<double>* distances = nullptr) const;
@@ -179,6 +185,22 @@ struct ScalpField::Impl {
         return *far_;
     }
 
+    /// Candidate closest faces per cell outside the band (fields/near_faces.h), made on first use.
+    const detail::NearFaces& near() const
+    {
+        std::call_once(near_built_, [this] { near_ = std::make_unique<detail::NearFaces>(geometry, *query, origin, voxel); });
+        return *near_;
+    }
+    /// The exact signed distance, closest point and face from the mesh: the face from near()'s
+    /// candidates, or from the AABB tree where p's cell keeps none. The same answer either way, to
+    /// float rounding at ties between faces (fields/near_faces.h).
+    float exact_distance(const float3& p, float3& closest, int32_t& face) const
+    {
+        face = near().closest_face(p);
+        if (face < 0) return query->signed_distance(p, closest, face);
+        return query->signed_distance_to(p, face, closest);
+    }
+
     /// Voxels beside a jump of the distance (see fill_band_from_sdf), left out of the query bricks.
     /// 0 means the band is 1-Lipschitz: no opening's seam and no sheets disagreeing on inside.
     int64_t seam_voxels() const
@@ -196,6 +218,8 @@ private:
     mutable int64_t seam_voxels_ = 0;
     mutable std::once_flag far_built_;
     mutable std::unique_ptr<detail::FarField> far_;
+    mutable std::once_flag near_built_;
+    mutable std::unique_ptr<detail::NearFaces> near_;
 };
 
 }  // namespace groom

@@ -1,0 +1,89 @@
+// NearFaces (the closest face outside the band from per-cell candidates) against a brute-force
+// search of every face in double: the same face, the smallest distance and the lowest index at
+// ties, on a sphere and on Sintel's open head; the same distance as the AABB tree's face; no
+// candidates on a mesh whose faces are small for the cells (the tree answers there).
+#include "fields/scalp_field.h"
+#include "fields/scalp_impl.h"
+#include "kernel/io/mesh_io.h"
+#include "kernel/rng.h"
+#include "support/sphere_mesh.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace groom {
+namespace {
+
+/// Face f's distance from p: closest_on_triangle's float point, measured in double (independent of
+/// NearFaces' own projection in double; the two agree to float rounding).
+double face_distance(const detail::MeshGeometry& g, int32_t f, const float3& p)
+{
+    detail::Feature feature;
+    const float3 c = detail::closest_on_triangle(p, g.points[g.tris[f][0]], g.points[g.tris[f][1]], g.points[g.tris[f][2]], feature);
+    const double dx = double(p.x) - c.x, dy = double(p.y) - c.y, dz = double(p.z) - c.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/// Checks `count` points of the box grown by `grow` of its size: NearFaces' face is at the
+/// brute-force minimum distance (to the float rounding of closest_on_triangle, 1e-6 relative) and
+/// the tree's face is at that distance too. Returns how many points had a candidate list.
+int check_against_brute_force(const ScalpField& field, int count, float grow, uint64_t seed)
+{
+    const auto& im = field.impl();
+    const auto& g = im.geometry;
+    const Bounds3 box = field.bounds();
+    const float3 size = box.hi - box.lo;
+    int listed = 0;
+    for (int i = 0; i < count; ++i) {
+        Rng rng(seed, uint64_t(i));
+        const float3 p = box.lo - size * grow + float3(rng.uniform() * size.x, rng.uniform() * size.y, rng.uniform() * size.z) * (1.0f + 2.0f * grow);
+        const int32_t face = im.near().closest_face(p);
+        if (face < 0) continue;
+        ++listed;
+        double best = INFINITY;
+        for (int32_t f = 0; f < int32_t(g.tris.size()); ++f) best = std::min(best, face_distance(g, f, p));
+        const double tol = 1e-6 * (best + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
+        EXPECT_NEAR(face_distance(g, face, p), best, tol) << p.x << "," << p.y << "," << p.z;
+        EXPECT_NEAR(face_distance(g, im.query->tree_closest_face(p), p), best, tol) << p.x << "," << p.y << "," << p.z;
+        // A pure function of p: asked again (from its cell, now made) the same face.
+        EXPECT_EQ(im.near().closest_face(p), face);
+    }
+    return listed;
+}
+
+TEST(NearFaces, SameFaceAsBruteForceAroundASphere)
+{
+    // Icosphere 4 of radius 1 at voxel 0.03: faces of 4.8 cell faces, lists for every cell within 48 voxels.
+    const ScalpField field = build_scalp(icosphere({0.3f, -0.2f, 0.1f}, 1.0f, 4), {0.03f, 3.0f});
+    const int listed = check_against_brute_force(field, 3000, 0.4f, 5);
+    EXPECT_GT(listed, 2000);
+    const auto counts = field.impl().near().counts();
+    EXPECT_GT(counts.cells, 0);
+    EXPECT_LE(counts.candidates, counts.cells * int64_t(detail::NearFaces::kMaxCandidates));
+}
+
+TEST(NearFaces, FacesSmallForTheCellsLeaveItToTheTree)
+{
+    // Icosphere 6 (81,920 faces) at the automatic voxel: 0.21 cell faces each, below kMinFaceArea.
+    const ScalpField field = build_scalp(icosphere({0, 0, 0}, 1.0f, 6));
+    for (int i = 0; i < 200; ++i) {
+        Rng rng(9, uint64_t(i));
+        const float3 p(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+        ASSERT_EQ(field.impl().near().closest_face(p), -1);
+    }
+    EXPECT_EQ(field.impl().near().counts().cells, 0);
+}
+
+TEST(NearFacesReal, SintelsOpenHeadSameFaceAsBruteForce)
+{
+    const std::string path = test::shared_file("sintel_tressfx_opengl/sintel.obj");
+    if (path.empty()) GTEST_SKIP() << "../shared/datasets is absent";
+    const ScalpField field = build_scalp(read_mesh(path));
+    // Where hair is: the head's box grown by a fifth on each side.
+    EXPECT_GT(check_against_brute_force(field, 1500, 0.2f, 31), 1000);
+}
+
+}  // namespace
+}  // namespace groom

@@ -16,9 +16,10 @@ ScalpField::~ScalpField() = default;
 ScalpField::ScalpField(ScalpField&&) noexcept = default;
 ScalpField& ScalpField::operator=(ScalpField&&) noexcept = default;
 
-float ScalpField::query(const float3& p, float3& n, float3& closest) const
+namespace {
+
+float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3& closest, bool cells)
 {
-    const Impl& im = *impl_;
     float d = 0.0f;
     float3 g;
     if (im.sample(p, d, g) && length_squared(g) > 0.25f) {
@@ -30,7 +31,7 @@ float ScalpField::query(const float3& p, float3& n, float3& closest) const
         return d;
     }
     int32_t face = -1;
-    const float sd = im.exact_distance(p, closest, face);
+    const float sd = im.exact_distance(p, closest, face, cells);
     if (im.band_normal(p, n)) return sd;  // near the band's edge the band's normal is the smoother one
     const float3 delta = p - closest;
     const float len = length(delta);
@@ -43,6 +44,12 @@ float ScalpField::query(const float3& p, float3& n, float3& closest) const
     n = len > 1e-6f * im.voxel ? delta / (sd < 0.0f ? -len : len) : im.geometry.face_normals[face];
     return sd;
 }
+
+}  // namespace
+
+float ScalpField::query(const float3& p, float3& n, float3& closest) const { return query_impl(*impl_, p, n, closest, false); }
+float ScalpField::query_dense(const float3& p, float3& n, float3& closest) const { return query_impl(*impl_, p, n, closest, true); }
+float ScalpField::dense_cell_size() const { return impl_->voxel * float(detail::NearFaces::kCellVoxels); }
 
 float ScalpField::distance(const float3& p) const
 {

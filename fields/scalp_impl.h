@@ -191,12 +191,12 @@ struct ScalpField::Impl {
         std::call_once(near_built_, [this] { near_ = std::make_unique<detail::NearFaces>(geometry, *query, origin, voxel); });
         return *near_;
     }
-    /// The exact signed distance, closest point and face from the mesh: the face from near()'s
-    /// candidates, or from the AABB tree where p's cell keeps none. The same answer either way, to
-    /// float rounding at ties between faces (fields/near_faces.h).
-    float exact_distance(const float3& p, float3& closest, int32_t& face) const
+    /// The exact signed distance, closest point and face from the mesh: with `cells`, the face from
+    /// near()'s candidates, or from the AABB tree where p's cell keeps none; else from the tree.
+    /// The same answer either way, to float rounding at ties between faces (fields/near_faces.h).
+    float exact_distance(const float3& p, float3& closest, int32_t& face, bool cells = false) const
     {
-        face = near().closest_face(p);
+        face = cells ? near().closest_face(p) : -1;
         if (face < 0) return query->signed_distance(p, closest, face);
         return query->signed_distance_to(p, face, closest);
     }

@@ -128,14 +128,29 @@ TEST(ProbeCli, AnswersAroundTheSphereWithinTheTessellationsBounds)
         const float3 n = normalize(cross(b - a, c - a));
         for (const float3& v : {a, b, c}) alpha = std::max(alpha, std::acos(std::min(1.0, double(dot(n, normalize(v))))));
     }
-    const std::vector<float3> pts = sphere_points(R);
-    std::string text;
-    for (const float3& p : pts) text += num(p.x) + " " + num(p.y) + " " + num(p.z) + "\n";
-    write_text(dir.file("p.txt"), text);
-    const auto r = run_groom({"probe", "--scalp", head, dir.file("p.txt"), "-o", dir.file("o.csv")});
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto rows = read_csv(read_bytes(dir.file("o.csv")));
-    ASSERT_EQ(rows.size(), pts.size());
+    // Sparse points (a few a cell: ScalpField::query) and dense ones (40 radial lines of 100 points
+    // from 0.3 to 3 out, about 10 a 2-voxel cell: query_dense), each the same for 1 and 2 threads.
+    std::vector<float3> dense;
+    for (int i = 0; i < 40; ++i) {
+        const float z = 1.0f - 2.0f * (float(i) + 0.5f) / 40.0f, r = std::sqrt(1.0f - z * z), phi = 2.39996323f * float(i);
+        for (int k = 0; k < 100; ++k) dense.push_back(float3(r * std::cos(phi), r * std::sin(phi), z) * (R + 0.3f + 0.027f * float(k)));
+    }
+    std::vector<std::vector<double>> rows;
+    for (const std::vector<float3>& pts : {sphere_points(R), dense}) {
+        std::string text;
+        for (const float3& p : pts) text += num(p.x) + " " + num(p.y) + " " + num(p.z) + "\n";
+        write_text(dir.file("p.txt"), text);
+        std::string bytes[2];
+        for (int t = 1; t <= 2; ++t) {
+            const auto r = run_groom({"probe", "--scalp", head, dir.file("p.txt"), "-o", dir.file("o.csv"), "--threads", std::to_string(t), "--force"});
+            ASSERT_EQ(r.exit_code, 0) << r.err;
+            bytes[t - 1] = read_bytes(dir.file("o.csv"));
+        }
+        EXPECT_EQ(bytes[0], bytes[1]);
+        const auto these = read_csv(bytes[0]);
+        ASSERT_EQ(these.size(), pts.size());
+        rows.insert(rows.end(), these.begin(), these.end());
+    }
     // Band: the voxel is the automatic one, diagonal / 256.
     const double h = std::sqrt(3.0) * 2.0 * R / 256.0;
     for (const auto& v : rows) {

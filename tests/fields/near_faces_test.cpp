@@ -49,6 +49,12 @@ int check_against_brute_force(const ScalpField& field, int count, float grow, ui
         EXPECT_NEAR(face_distance(g, im.query->tree_closest_face(p), p), best, tol) << p.x << "," << p.y << "," << p.z;
         // A pure function of p: asked again (from its cell, now made) the same face.
         EXPECT_EQ(im.near().closest_face(p), face);
+        // query_dense answers as query() does, to float rounding at ties between faces.
+        float3 n1, c1, n2, c2;
+        const float d1 = field.query(p, n1, c1), d2 = field.query_dense(p, n2, c2);
+        EXPECT_NEAR(d1, d2, 1e-5f * (1.0f + std::fabs(d1)));
+        EXPECT_LE(length(c1 - c2), 1e-5f * (1.0f + length(p)));
+        EXPECT_GT(dot(n1, n2), 0.99999f);
     }
     return listed;
 }

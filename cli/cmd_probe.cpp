@@ -21,13 +21,14 @@ struct Args {
     std::string scalp, input, output;
 };
 
-/// True when the points average at least 4 to a cell of `side` (counted over the cells they occupy):
-/// there ScalpField::query_dense pays for its cells (hair on Sintel: 57 a cell, 2.5x faster than
-/// query()); points spread through a volume (2M in Sintel's box: about 3 a cell) are faster with
-/// query(). A function of the points alone, so the bytes do not depend on the thread count.
+/// True when the points average at least 16 to a cell of `side` (counted over the cells they
+/// occupy): there ScalpField::query_dense pays for its cells (the hair of 62,500 hairs on Sintel: 47
+/// a cell, 2.5x faster than query()). 2M points spread through Sintel's box (4.6 a cell) took 1.7 s
+/// more CPU with the cells than with query(). A function of the points alone, so the bytes do not
+/// depend on the thread count.
 bool dense_points(const std::vector<float3>& points, float side)
 {
-    if (points.size() < 4 || !(side > 0.0f)) return false;
+    if (points.size() < 16 || !(side > 0.0f)) return false;
     std::vector<uint64_t> keys(points.size());
     const double inv = 1.0 / double(side);
     parallel_for(int64_t(points.size()), 1 << 14, [&](int64_t b, int64_t e) {
@@ -40,7 +41,7 @@ bool dense_points(const std::vector<float3>& points, float side)
     });
     tbb::parallel_sort(keys.begin(), keys.end());
     const size_t cells = size_t(std::unique(keys.begin(), keys.end()) - keys.begin());
-    return points.size() >= 4 * cells;
+    return points.size() >= 16 * cells;
 }
 
 void setup(CommandContext& ctx)

@@ -14,7 +14,7 @@
 # (default 3), so a burst of load on the shared machine hits both; each line prints the range of
 # wall seconds, CPU seconds and peak RSS over the rounds and the range of the per-round ratios
 # (reference wall / groom wall).
-# Usage: scripts/bench-probe.sh [BUILD_DIR]   (needs /usr/bin/time and python3)
+# Usage: [ROUNDS=3] [SETS="hair box"] scripts/bench-probe.sh [BUILD_DIR]   (needs /usr/bin/time and python3)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${1:-$root/build}
@@ -66,7 +66,7 @@ report() {  # name file-of-"wall cpu rss ratio" lines
 }
 
 echo "$(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $rounds rounds alternating; 2,000,000 points each"
-for set in hair box; do
+for set in ${SETS:-hair box}; do
   : >"$tmp/ref1" >"$tmp/ref2"
   for v in mesh-t1 mesh-t2 npy-t2 npyout-t2 vdb-t2; do : >"$tmp/$v"; done
   for _ in $(seq "$rounds"); do

@@ -129,11 +129,11 @@ TEST(ProbeCli, AnswersAroundTheSphereWithinTheTessellationsBounds)
         for (const float3& v : {a, b, c}) alpha = std::max(alpha, std::acos(std::min(1.0, double(dot(n, normalize(v))))));
     }
     // Sparse points (a few a cell: ScalpField::query) and dense ones (40 radial lines of 100 points
-    // from 0.3 to 3 out, about 10 a 2-voxel cell: query_dense), each the same for 1 and 2 threads.
+    // from 0.3 to 1.3 out, about 27 a 2-voxel cell: query_dense), each the same for 1 and 2 threads.
     std::vector<float3> dense;
     for (int i = 0; i < 40; ++i) {
         const float z = 1.0f - 2.0f * (float(i) + 0.5f) / 40.0f, r = std::sqrt(1.0f - z * z), phi = 2.39996323f * float(i);
-        for (int k = 0; k < 100; ++k) dense.push_back(float3(r * std::cos(phi), r * std::sin(phi), z) * (R + 0.3f + 0.027f * float(k)));
+        for (int k = 0; k < 100; ++k) dense.push_back(float3(r * std::cos(phi), r * std::sin(phi), z) * (R + 0.3f + 0.01f * float(k)));
     }
     std::vector<std::vector<double>> rows;
     for (const std::vector<float3>& pts : {sphere_points(R), dense}) {

@@ -148,8 +148,8 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                  planned * (double(params.samples) * (12.0 + 4.0) + double(sizeof(Plan)) + 4.0 * 3.0 + 8.0 + 8.0 + 8.0 + bytes_per_curve(guides)),
                  "raise `spacing` or lower `count` / `samples`");
     if (planned * params.samples > kMaxOutputPoints) {
-        throw LimitExceeded("partition: the options ask for " + num(float(planned)) + " segments of " + std::to_string(params.samples) +
-                            " points, more than " + num(float(kMaxOutputPoints)) +
+        throw LimitExceeded("partition: the options ask for " + segments + " segments of " + std::to_string(params.samples) +
+                            " points, more than " + std::to_string(int64_t(kMaxOutputPoints)) +
                             " points in all; raise `spacing` or lower `count` / `samples`");
     }
 

@@ -73,7 +73,10 @@ struct Resolved {
 ShapePoint curl_offset(std::span<const Cycle> cycles, const ShapeParams& sp, float cos_phase, float sin_phase, float blend, double u)
 {
     const int64_t last = int64_t(cycles.size()) - 1;
-    const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, last);
+    // Clamped in double before converting (NaN to 0): a u past int64's range is undefined there
+    // (UBSan stopped op_curl at this line while the op seeds were written).
+    const double fu = std::floor(u);
+    const int64_t k = fu > 0.0 ? int64_t(std::min(fu, double(std::max<int64_t>(last, 0)))) : 0;
     const float t = float(u - double(k));  // in [0, 1) inside the curl; negative before it, > 1 past the end
     auto eval = [&](int64_t c, float tc) {
         const Cycle& cy = cycles[size_t(c)];

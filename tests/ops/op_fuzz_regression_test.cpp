@@ -4,6 +4,7 @@
 #include "ops/braid.h"
 #include "ops/braid_weave.h"
 #include "ops/curl.h"
+#include "ops/render.h"
 #include "kernel/memory_budget.h"
 
 #include <gtest/gtest.h>
@@ -54,6 +55,36 @@ TEST(OpFuzz, CurlOfAVeryLongCurveIsRefusedBeforeAllocating)
     const CurveSet out = curl(guide, CurlParams{});
     EXPECT_EQ(out.num_curves(), 1u);
     EXPECT_GT(out.num_points(), 3u);
+}
+
+// op_render (found while writing the op seeds): a point of width 1e30 made a segment's box reach
+// -8e28 pixels, converted to int for its first tile (undefined; UBSan stops there). The box is
+// clamped to the image before converting: the curve paints, the picture is whole.
+TEST(OpFuzz, RenderOfAHugeWidthClampsItsTilesBeforeConverting)
+{
+    const int64_t counts[] = {4};
+    CurveSet c = CurveSet::from_counts(counts);
+    auto P = c.positions_for_write();
+    P[0] = {-1.0f, 0.0f, 0.0f};
+    P[1] = {-0.5f, 0.1f, 0.0f};
+    P[2] = {0.5f, 0.2f, 0.0f};
+    P[3] = {1.0f, 0.3f, 0.0f};
+    auto w = c.add<float>(Domain::Point, "width");
+    for (float& x : w) x = 0.01f;
+    w[1] = 1e30f;
+    RenderScene scene;
+    scene.curves = {&c};
+    RenderParams p;
+    p.width = p.height = 64;
+    p.supersample = 1;
+    const RgbImage im = render(scene, Camera{}, p);
+    ASSERT_EQ(im.width, 64);
+    ASSERT_EQ(im.height, 64);
+    // The huge round cap covers the whole picture: no pixel is left the background's grey.
+    int background = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) background += im.at(x, y)[0] == static_cast<uint8_t>(p.background.x * 255.0f + 0.5f);
+    EXPECT_EQ(background, 0);
 }
 
 }  // namespace

@@ -57,6 +57,29 @@ TEST(OpFuzz, CurlOfAVeryLongCurveIsRefusedBeforeAllocating)
     EXPECT_GT(out.num_points(), 3u);
 }
 
+// op_curl (found while writing the op seeds): `--root-ease 1e30` puts every point's cycle coordinate
+// near -1e30, and its cycle index was converted to int64 before clamping (undefined; UBSan stops
+// there). The index is clamped first: an ease longer than the curve leaves the curve uncurled, each
+// point in cycle 0.
+TEST(OpFuzz, CurlWithAHugeRootEaseClampsItsCycleIndexBeforeConverting)
+{
+    const int64_t counts[] = {3};
+    CurveSet guide = CurveSet::from_counts(counts);
+    auto P = guide.positions_for_write();
+    P[0] = {0.0f, 0.0f, 0.0f};
+    P[1] = {0.0f, 1.0f, 0.0f};
+    P[2] = {0.0f, 2.0f, 0.0f};
+    CurlParams p;
+    p.root_ease = 1e30f;
+    const CurveSet out = curl(guide, p);
+    ASSERT_EQ(out.num_curves(), 1u);
+    for (const float3& q : out.positions()) {
+        EXPECT_EQ(q.x, 0.0f);
+        EXPECT_EQ(q.z, 0.0f);
+    }
+    for (const int32_t c : out.find<int32_t>(Domain::Point, "cycle")) EXPECT_EQ(c, 0);
+}
+
 // op_render (found while writing the op seeds): a point of width 1e30 made a segment's box reach
 // -8e28 pixels, converted to int for its first tile (undefined; UBSan stops there). The box is
 // clamped to the image before converting: the curve paints, the picture is whole.

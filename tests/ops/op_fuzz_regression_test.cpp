@@ -57,6 +57,24 @@ TEST(OpFuzz, CurlOfAVeryLongCurveIsRefusedBeforeAllocating)
     EXPECT_GT(out.num_points(), 3u);
 }
 
+// op_braid (found while writing the op seeds): `--taper 1,0,0` (each value >= 0, as documented) gave
+// negative strand widths (-0.0006 on a 5-unit guide), refused only when the output was written
+// ("point 97 has width -0.000584"): the taper's spline overshoots below 0 between its values.
+TEST(OpFuzz, BraidTaperThatDipsBelowZeroBetweenItsValuesGivesNoNegativeWidth)
+{
+    const int64_t counts[] = {5};
+    CurveSet guide = CurveSet::from_counts(counts);
+    auto P = guide.positions_for_write();
+    for (int i = 0; i < 5; ++i) P[i] = {0.0f, 10.0f - float(i), float(i)};
+    BraidParams p;
+    p.taper = {1.0f, 0.0f, 0.0f};
+    const BraidResult b = braid(guide, p);
+    const auto w = b.curves.find<float>(Domain::Point, "width");
+    ASSERT_FALSE(w.empty());
+    for (size_t i = 0; i < w.size(); ++i) ASSERT_GE(w[i], 0.0f) << "point " << i;
+    EXPECT_NO_THROW(b.curves.validate("braid"));
+}
+
 // op_curl (found while writing the op seeds): `--root-ease 1e30` puts every point's cycle coordinate
 // near -1e30, and its cycle index was converted to int64 before clamping (undefined; UBSan stops
 // there). The index is clamped first: an ease longer than the curve leaves the curve uncurled, each

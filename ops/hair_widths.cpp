@@ -25,6 +25,18 @@ void HairWidths::validate(std::string_view op) const
     }
 }
 
+namespace {
+
+/// |a - b| in double: in float it overflows to inf past 1.8e19 apart (fibers of a guide 1e30 wide,
+/// op_populate), and the arc-length fractions then came out inf / inf = NaN widths.
+double segment_length(const float3& a, const float3& b)
+{
+    const double dx = double(a.x) - b.x, dy = double(a.y) - b.y, dz = double(a.z) - b.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+}  // namespace
+
 void taper_widths(CurveSet& curves, float root, float tip)
 {
     AttributeSet& points = curves.attributes(Domain::Point);
@@ -40,12 +52,12 @@ void taper_widths(CurveSet& curves, float root, float tip)
             const int64_t n = pr.size();
             if (n == 0) continue;
             double total = 0.0;
-            for (int64_t i = pr.begin + 1; i < pr.end; ++i) total += double(distance(P[i], P[i - 1]));
+            for (int64_t i = pr.begin + 1; i < pr.end; ++i) total += segment_length(P[i], P[i - 1]);
             // Fractions in double: (1 - f) r + f t is then monotone in f to double rounding, and the
             // one rounding to float keeps that order (rounding is monotone).
             double s = 0.0;
             for (int64_t i = 0; i < n; ++i) {
-                if (i > 0) s += double(distance(P[pr.begin + i], P[pr.begin + i - 1]));
+                if (i > 0) s += segment_length(P[pr.begin + i], P[pr.begin + i - 1]);
                 double f = total > 0.0 ? s / total : (n > 1 ? double(i) / double(n - 1) : 0.0);
                 if (i == n - 1 && n > 1) f = 1.0;  // the sum of the segments need not land on total exactly
                 W[pr.begin + i] = i == 0 ? root : f == 1.0 ? tip : float((1.0 - f) * r + f * t);

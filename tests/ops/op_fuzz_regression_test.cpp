@@ -4,6 +4,7 @@
 #include "ops/braid.h"
 #include "ops/braid_weave.h"
 #include "ops/curl.h"
+#include "ops/hair_widths.h"
 #include "ops/render.h"
 #include "kernel/memory_budget.h"
 
@@ -73,6 +74,25 @@ TEST(OpFuzz, BraidTaperThatDipsBelowZeroBetweenItsValuesGivesNoNegativeWidth)
     ASSERT_FALSE(w.empty());
     for (size_t i = 0; i < w.size(); ++i) ASSERT_GE(w[i], 0.0f) << "point " << i;
     EXPECT_NO_THROW(b.curves.validate("braid"));
+}
+
+// op_populate (found while writing the op seeds): `--radius 0` around a guide of width 1e30 puts
+// fibers 1e30 apart, whose segments measured in float are inf, so the taper's arc-length fractions
+// were inf / inf and the widths NaN (refused when written). Lengths are measured in double.
+TEST(OpFuzz, TaperOfACurveWhoseSegmentsOverflowFloatIsFinite)
+{
+    const int64_t counts[] = {3};
+    CurveSet c = CurveSet::from_counts(counts);
+    auto P = c.positions_for_write();
+    P[0] = {-1e30f, 0.0f, 0.0f};
+    P[1] = {1e30f, 0.0f, 0.0f};
+    P[2] = {3e30f, 0.0f, 0.0f};
+    taper_widths(c, 0.008f, 0.004f);
+    const auto w = c.find<float>(Domain::Point, "width");
+    ASSERT_EQ(w.size(), 3u);
+    EXPECT_EQ(w[0], 0.008f);
+    EXPECT_FLOAT_EQ(w[1], 0.006f);
+    EXPECT_EQ(w[2], 0.004f);
 }
 
 // op_curl (found while writing the op seeds): `--root-ease 1e30` puts every point's cycle coordinate

@@ -66,6 +66,16 @@ struct Resolved {
     float amplitude_mid = 0.0f;
 };
 
+/// The cycle that cycle coordinate u falls in, of `count`: floor(u) clamped to [0, count - 1] in
+/// double before converting (NaN gives 0). Converting first was undefined past int64's range, which
+/// `--root-ease 1e30` reaches (u = -frequency x 1e30; UBSan stopped op_curl there while the op
+/// seeds were written).
+int64_t cycle_of(double u, int64_t count)
+{
+    const double f = std::floor(u);
+    return f > 0.0 ? int64_t(std::min(f, double(std::max<int64_t>(count - 1, 0)))) : 0;
+}
+
 /// The curl offset in the cross-section plane at cycle coordinate u (u = 0 where the curl starts),
 /// before the root envelope. Sec. 3.1: each cycle takes its own shape; around each join the two
 /// neighbouring cycles' closed curves are cross-faded with a C1 smoothstep, so position and tangent
@@ -73,7 +83,7 @@ struct Resolved {
 ShapePoint curl_offset(std::span<const Cycle> cycles, const ShapeParams& sp, float cos_phase, float sin_phase, float blend, double u)
 {
     const int64_t last = int64_t(cycles.size()) - 1;
-    const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, last);
+    const int64_t k = cycle_of(u, int64_t(cycles.size()));
     const float t = float(u - double(k));  // in [0, 1) inside the curl; negative before it, > 1 past the end
     auto eval = [&](int64_t c, float tc) {
         const Cycle& cy = cycles[size_t(c)];
@@ -574,7 +584,7 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
                 dP[o] = out[size_t(j)];
                 if (params.labels) {
                     const double u = cycle_u(draws, params, s_of[size_t(j)]);
-                    const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, ncycles - 1);
+                    const int64_t k = cycle_of(u, ncycles);
                     dcycle[o] = int32_t(k);
                     dshape[o] = draws.cycles[size_t(k)].shape;
                 }

@@ -86,7 +86,8 @@ public:
     float voxel_size() const;
     float band_voxels() const;
     Bounds3 bounds() const;
-    /// True when built from a mesh; false when the mesh was extracted from a loaded .vdb (exact to
+    /// True when built from a mesh or loaded from a .vdb that carries it (every .vdb `groom scalp`
+    /// writes); false when the mesh was extracted from a loaded .vdb's zero crossing (exact to
     /// about a voxel rather than to the original mesh).
     bool has_source_mesh() const;
     /// The repaired triangle mesh the queries fall back to (oriented outward).
@@ -123,8 +124,10 @@ void write_scalp(const ScalpField& scalp, const std::string& path);
 /// The same into `batch` (kernel/io/atomic_file.h), renamed into place with the command's other outputs.
 void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& batch);
 
-/// Reads a .vdb holding a float level set named "scalp" (groom's, vdb_tool's, Houdini's); the mesh for
-/// far queries and sampling is extracted from its zero crossing. What OpenVDB decodes is checked
+/// Reads a .vdb holding a float level set named "scalp" (groom's, vdb_tool's, Houdini's). The mesh for
+/// far queries and sampling is the repaired mesh `groom scalp` stores in the grid's metadata
+/// "groom_source_mesh" (then every answer is the mesh's, to the bit), else, for other programs' and
+/// older groom's files, one extracted from the zero crossing (adaptive, within about a voxel). What OpenVDB decodes is checked
 /// before use (a truncated or corrupt file is a ParseError naming it, never a crash): one float grid
 /// of class level set, a linear transform with uniform, finite, positive voxels, a finite positive
 /// background, a tree with active voxels whose values and index bounds are sane. Throws IoError /

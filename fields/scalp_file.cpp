@@ -335,7 +335,11 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> tris;
     std::vector<openvdb::Vec4I> quads;
-    openvdb::tools::volumeToMesh(*sdf, points, tris, quads, 0.0, getenv("GROOM_ADAPT") ? atof(getenv("GROOM_ADAPT")) : 0.0);
+    // Adaptivity 0.2 merges flat runs of cells: on Sintel's head (voxel 0.24) 15,468 triangles
+    // instead of 141,442 (the user's mesh had 5,952), `generate --count 100000` from the file 2.3 s
+    // CPU instead of 6.7 s (1.8 s from the mesh), at a median distance error outside the band of
+    // 0.23 voxel instead of 0.04 (99th percentile 1.8 against 1.7, set by the rims).
+    openvdb::tools::volumeToMesh(*sdf, points, tris, quads, 0.0, 0.2);
     PolygonSoup soup;
     soup.points.reserve(points.size());
     for (const auto& p : points) soup.points.emplace_back(p.x(), p.y(), p.z());
@@ -365,7 +369,6 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     const TriMesh mesh = detail::repair_soup(soup, options, report, nullptr);
     im.geometry.compute(mesh);
     im.mesh_exact = false;
-    if (getenv("GROOM_ADAPT_DEBUG")) fprintf(stderr, "extracted %zu faces from %zu tris %zu quads\n", im.geometry.tris.size(), tris.size(), quads.size());
     im.query = std::make_unique<detail::MeshQuery>(im.geometry);
     step.advance(1);
     return field;

@@ -33,6 +33,9 @@ struct ScalpBuildParams {
     /// (kernel/memory_budget.h: --memory, else half the machine's memory).
     uint64_t memory_budget = 0;
     bool remove_enclosed_shells = true;   ///< drop shells lying inside a larger one (eyes, teeth)
+    /// The field will be queried (every command but `groom scalp`, which only writes it): its query
+    /// bricks, built on the first query, count in the memory estimate.
+    bool for_queries = true;
     std::string source = "scalp";         ///< names the mesh (its file) in messages
     /// An OBJ mesh: only the faces of the object (`o`) or group (`g`) of this name (the head, not
     /// its eyes, teeth or hair proxies); empty = every face. Not for a .vdb (already one surface).

@@ -271,13 +271,14 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
 {
     detail::init_openvdb();
     if (!std::filesystem::exists(path)) throw IoError(path + ": no such file");
-    const DecodedVdb decoded = decode_isolated(path);
+    DecodedVdb decoded = decode_isolated(path);
     openvdb::GridBase::Ptr base;
     if (!decoded.grid_stream.empty()) {
         // A stream OpenVDB itself wrote a moment ago, with sizes that agree with its contents: safe to
-        // decode here. What it holds (the values, the transform) is checked below.
+        // decode here. What it holds (the values, the transform) is checked below. Moved into the
+        // stream, not copied, and gone once decoded: it is as large as the grid.
         try {
-            std::istringstream in(decoded.grid_stream);
+            std::istringstream in(std::move(decoded.grid_stream));
             openvdb::io::Stream stream(in, /*delayLoad=*/false);
             const openvdb::GridPtrVecPtr grids = stream.getGrids();
             if (grids && !grids->empty()) base = grids->front();
@@ -311,7 +312,31 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     sdf->removeMeta(kUvMeta);
     sdf->removeMeta(kMeshMeta);
 
-    ProgressStep step(progress, "load scalp", 2);
+    // Without a stored mesh (another program's file, an older groom's), the mesh for far queries and
+    // sampling is the zero crossing. Adaptivity 0.2 merges flat runs of cells: on Sintel's head
+    // (voxel 0.24) 15,468 triangles instead of 141,442 (the user's mesh had 5,952), `generate
+    // --count 100000` from the file 2.3 s CPU instead of 6.7 s (1.8 s from the mesh), at a median
+    // distance error outside the band of 0.23 voxel instead of 0.04 (99th percentile 1.8 against
+    // 1.7, set by the rims). Extracted first: its size is what the estimate below needs.
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> tris;
+    std::vector<openvdb::Vec4I> quads;
+    if (!source) openvdb::tools::volumeToMesh(*sdf, points, tris, quads, 0.0, 0.2);
+
+    // Memory estimate before the large allocations (the decoded grid is already held): the query
+    // bricks (9^3 distance + gradient values per leaf, built on the first query), and the mesh's
+    // geometry, AABB tree and far-field certificates, about 400 bytes a triangle, or, for an
+    // extracted mesh, 500 bytes a triangle of the extraction, which the repair also goes through.
+    const double leaves = double(sdf->tree().leafCount());
+    const double bricks = leaves * 729.0 * double(sizeof(detail::BandValue));
+    const double mesh_bytes = source ? double(source->tris.size()) * 400.0 : double(tris.size() + 2 * quads.size()) * 500.0;
+    const uint64_t held = resident_bytes();
+    const double estimate = double(held ? held : 40ull << 20) + bricks + mesh_bytes;
+    check_memory(path + ": the scalp's query bricks and mesh (" + format_number(leaves) + " leaves of the level set)", estimate,
+                 "make the scalp with a larger `voxel` (groom scalp --voxel)");
+
+    const std::string label = "load scalp (estimated " + format_bytes(estimate) + ")";
+    ProgressStep step(progress, label, 2);
     ScalpField field;
     ScalpField::Impl& im = field.impl();
     im.sdf = sdf;
@@ -327,19 +352,10 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
         return field;
     }
 
-    // Another program's file (or an older groom's): the mesh for far queries and sampling is the zero crossing, each face turned to agree with the
-    // distance's increase across it. A sign flip with large |d| on both sides is the seam an open
-    // surface's sign makes beyond its rim, not surface: such faces (a rise of more than 1.5 voxels
-    // over one voxel across them) are dropped. Read from the grid itself: the query bricks leave
-    // voxels beside such seams out.
-    std::vector<openvdb::Vec3s> points;
-    std::vector<openvdb::Vec3I> tris;
-    std::vector<openvdb::Vec4I> quads;
-    // Adaptivity 0.2 merges flat runs of cells: on Sintel's head (voxel 0.24) 15,468 triangles
-    // instead of 141,442 (the user's mesh had 5,952), `generate --count 100000` from the file 2.3 s
-    // CPU instead of 6.7 s (1.8 s from the mesh), at a median distance error outside the band of
-    // 0.23 voxel instead of 0.04 (99th percentile 1.8 against 1.7, set by the rims).
-    openvdb::tools::volumeToMesh(*sdf, points, tris, quads, 0.0, 0.2);
+    // The zero crossing, each face turned to agree with the distance's increase across it. A sign
+    // flip with large |d| on both sides is the seam an open surface's sign makes beyond its rim, not
+    // surface: such faces (a rise of more than 1.5 voxels over one voxel across them) are dropped.
+    // Read from the grid itself: the query bricks leave voxels beside such seams out.
     PolygonSoup soup;
     soup.points.reserve(points.size());
     for (const auto& p : points) soup.points.emplace_back(p.x(), p.y(), p.z());

@@ -191,8 +191,11 @@ DecodedVdb decode_isolated(const std::string& path)
         throw IoError(path + ": cannot read (the reading process failed)");
     }
     if (reply[0] == 'E') throw ParseError(path + ": not a readable .vdb file (" + reply.substr(1) + ")");
+    // The grid's stream is most of the reply: kept in place (the names cut from its front), not copied.
     const size_t eol = reply.find('\n');
-    return {reply.substr(1, eol - 1), reply.substr(eol + 1)};
+    std::string names = reply.substr(1, eol - 1);
+    reply.erase(0, eol + 1);
+    return {std::move(names), std::move(reply)};
 }
 
 /// Everything the queries rely on, checked on what OpenVDB decoded from `path`: a corrupt file that

@@ -1,6 +1,7 @@
 #include "kernel/curve_set.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <string>
 
@@ -108,7 +109,14 @@ void CurveSet::validate(std::string_view what) const
     const Attribute* p = attributes(Domain::Point).find(attr::P);
     if (!p || p->type() != AttrType::Float3) throw InvalidGeometry(where + "point attribute 'P' (float3) is missing");
     auto pos = p->values<float3>();
-    for (size_t i = 0; i < pos.size(); ++i) {
+    // A branch-free pass finds whether any coordinate is not finite (it vectorises: the per-point
+    // test below was 4% of `groom curl` on 3.2 M points, perf); only a file that fails is searched
+    // for the point to name.
+    static_assert(sizeof(float3) == 3 * sizeof(float));
+    const float* xyz = reinterpret_cast<const float*>(pos.data());
+    bool all_finite = true;
+    for (size_t i = 0; i < pos.size() * 3; ++i) all_finite &= std::fabs(xyz[i]) <= std::numeric_limits<float>::max();
+    for (size_t i = 0; !all_finite && i < pos.size(); ++i) {
         if (!isfinite(pos[i])) {
             const auto c = std::upper_bound(offsets_.begin(), offsets_.end(), static_cast<int64_t>(i)) - offsets_.begin() - 1;
             throw InvalidGeometry(where + "point " + std::to_string(i) + " (curve " + std::to_string(c) +

@@ -141,9 +141,11 @@ struct Centreline {
         float f = 0.0f;
         spot(s, j, j1, f);
         c = lerp(points[size_t(j)], points[size_t(j1)], f);
-        const float3 t = normalize(lerp(frames[size_t(j)].t, frames[size_t(j1)].t, f), frames[size_t(j)].t);
+        // Neighbouring frames differ by a small turn, so their blends are within 1e-3 of unit
+        // length and renormalize needs no square root (the frames of a sharp bend take the exact path).
+        const float3 t = renormalize(lerp(frames[size_t(j)].t, frames[size_t(j1)].t, f), frames[size_t(j)].t);
         float3 nn = lerp(frames[size_t(j)].n, frames[size_t(j1)].n, f);
-        nn = normalize(nn - t * dot(nn, t), frames[size_t(j)].n);
+        nn = renormalize(nn - t * dot(nn, t), frames[size_t(j)].n);
         n = nn;
         b = cross(t, nn);
     }
@@ -263,38 +265,83 @@ void curl_prefix(const Centreline& cl, const CurveDraws& d, const CurlParams& p,
     }
 }
 
+/// Where the curled polyline of pass 2 (n points evenly over centreline arc lengths [0, s_end])
+/// will reach the input's length, predicted from pass 1, which sampled the curl on the centreline's
+/// own grid, k = length / s_end times coarser. A chord c whose ends bend by the second difference D
+/// falls short of its arc by about |D|^2 / (24 c) (the arc's a^3 kappa^2 / 24 with |D| = kappa a^2);
+/// split into k chords it falls short by 1/k^2 of that. Predicting pass 2's length this way, rather
+/// than taking pass 1's cut, spares the one or two corrective passes that cut needed (pass 2 then
+/// measured 0.3-0.6% longer than pass 1 on tight curls: curl_bench, 2.6 evaluations a point -> 1.7).
+double predicted_cut(std::span<const double> chord, std::span<const double> short_by, double in_len, double ds, double length)
+{
+    double s_end = -1.0;
+    // k depends on the cut it predicts: start from the chords' own cut, refine once.
+    double k2 = 0.0;
+    for (int round = 0; round < 3; ++round) {
+        const double keep = k2 > 0.0 ? 1.0 - 1.0 / k2 : 0.0;
+        double acc = 0.0, cut = -1.0;
+        for (size_t j = 0; j < chord.size(); ++j) {
+            const double seg = chord[j] + keep * short_by[j];
+            if (acc + seg >= in_len) {
+                cut = (double(j) + (seg > 0.0 ? (in_len - acc) / seg : 0.0)) * ds;
+                break;
+            }
+            acc += seg;
+        }
+        if (cut <= 0.0) return s_end;
+        s_end = cut;
+        const double k = length / s_end;
+        k2 = k * k;
+    }
+    return s_end;
+}
+
 /// The curled curve: as many points as the centreline into `out`, their centreline arc lengths into
-/// `s_of` (`grid` is scratch). Pass 1 curls the centreline on its own grid, and (Sec. 3.1 says nothing
-/// of length; real curls shrink, the curl index) finds where the curled hair reaches the input's
-/// length `in_len`: it then covers only that part of its centreline, which pass 2 re-samples with all
-/// the points. Without length preservation pass 1 is the result.
+/// `s_of` (`grid`, `chord` and `short_by` are scratch). Pass 1 curls the centreline on its own grid,
+/// and (Sec. 3.1 says nothing of length; real curls shrink, the curl index) predicts where the curled
+/// hair reaches the input's length `in_len`: it then covers only that part of its centreline, which
+/// pass 2 re-samples with all the points. Without length preservation pass 1 is the result.
 void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double in_len, std::vector<float3>& grid,
-                std::vector<float3>& out, std::vector<double>& s_of)
+                std::vector<double>& chord, std::vector<double>& short_by, std::vector<float3>& out, std::vector<double>& s_of)
 {
     const int64_t n = int64_t(cl.points.size());
     grid.resize(size_t(n));
-    double s_end = cl.length, acc = 0.0;
+    chord.clear();
+    short_by.clear();
+    double acc = 0.0;
+    int64_t evaluated = n;
     for (int64_t j = 0; j < n; ++j) {
         grid[size_t(j)] = curled_point(d, p, cl.points[size_t(j)], cl.frames[size_t(j)].n, cl.frames[size_t(j)].b, double(j) * cl.ds);
         if (!p.preserve_length || j == 0) continue;
-        const double seg = distance(grid[size_t(j - 1)], grid[size_t(j)]);
-        if (acc + seg >= in_len) {
-            s_end = (double(j - 1) + (seg > 0.0 ? (in_len - acc) / seg : 0.0)) * cl.ds;
+        chord.push_back(distance(grid[size_t(j - 1)], grid[size_t(j)]));
+        acc += chord.back();
+        // Past the chords' own cut pass 2 cannot reach: its chords are longer.
+        if (acc >= in_len) {
+            evaluated = j + 1;
             break;
         }
-        acc += seg;
+    }
+    // Each chord's bend: the mean of the second differences at its two ends, where they exist.
+    auto bend = [&](int64_t m) { return double(length_squared(grid[size_t(m - 1)] - grid[size_t(m)] * 2.0f + grid[size_t(m + 1)])); };
+    short_by.resize(chord.size());
+    for (size_t i = 0; i < chord.size(); ++i) {
+        double sum = 0.0;
+        int count = 0;
+        for (int64_t m : {int64_t(i), int64_t(i) + 1}) {
+            if (m >= 1 && m + 1 < evaluated) sum += bend(m), ++count;
+        }
+        short_by[i] = count > 0 && chord[i] > 0.0 ? sum / double(count) / (24.0 * chord[i]) : 0.0;
     }
     out.resize(size_t(n));
     s_of.resize(size_t(n));
-    if (!(s_end < cl.length)) {
+    double s_end = p.preserve_length ? predicted_cut(chord, short_by, in_len, cl.ds, cl.length) : -1.0;
+    if (!(s_end > 0.0 && s_end < cl.length)) {
         out = grid;
         for (int64_t j = 0; j < n; ++j) s_of[size_t(j)] = double(j) * cl.ds;
         return;
     }
     curl_prefix(cl, d, p, s_end, out, s_of);
-    // Pass 2 samples each cycle more densely than pass 1 did (by the curl index), so its polyline
-    // measures longer; for tight curls correct the cut on pass 2's own polyline (at most twice) until
-    // the length is within 0.2%.
+    // Correct the cut on pass 2's own polyline (at most twice) until the length is within 0.2%.
     for (int iter = 0; iter < 2; ++iter) {
         double len = 0.0, cut = -1.0;
         for (int64_t j = 1; j < n; ++j) {
@@ -453,14 +500,22 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     int64_t largest = 0;
     for (const CurveSetup& s : setup) largest = std::max(largest, s.points);
     check_memory("curl: " + std::to_string(total) + " output points (curve length x `frequency` x `samples`)",
-                 double(total) * (bytes_per_point(src) + 12.0) + double(largest) * 64.0, "lower `frequency` or `samples`");
+                 double(total) * (bytes_per_point(src) + (params.labels ? 12.0 : 4.0)) + double(largest) * 64.0, "lower `frequency` or `samples`");
 
     std::vector<int64_t> counts(nc);
-    for (size_t c = 0; c < nc; ++c) counts[c] = setup[c].points;
+    std::vector<float> frequency(nc);
+    for (size_t c = 0; c < nc; ++c) counts[c] = setup[c].points, frequency[c] = setup[c].frequency;
+    // Bookkeeping freed as soon as it is spent: a million hairs' curl peaks while the input and the
+    // output are both held, and each of these is a few percent of that.
+    setup = {};
     CurveSet dst = CurveSet::from_counts(counts);
+    counts = {};
     auto dP = dst.positions_for_write();
-    auto dshape = dst.add<int32_t>(Domain::Point, "shape");
-    auto dcycle = dst.add<int32_t>(Domain::Point, "cycle");
+    std::span<int32_t> dshape, dcycle;
+    if (params.labels) {
+        dshape = dst.add<int32_t>(Domain::Point, "shape");
+        dcycle = dst.add<int32_t>(Domain::Point, "cycle");
+    }
     std::span<float> dwidth;
     if (!src_width.empty()) dwidth = dst.add<float>(Domain::Point, attr::width);
     // Other point attributes are gathered from the nearest input point; only built when needed.
@@ -474,7 +529,7 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
         Centreline cl;
         CurveDraws draws;
         std::vector<float3> grid, out;
-        std::vector<double> in_cum, s_of;
+        std::vector<double> in_cum, s_of, chord, short_by;
         for (int64_t c = b; c < e; ++c) {
             const IndexRange r = src.points_of(size_t(c));
             const IndexRange d = dst.points_of(size_t(c));
@@ -485,8 +540,10 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
                 // Nothing to curl: the curve passes through unchanged.
                 for (int64_t i = 0; i < d.size(); ++i) {
                     dP[size_t(d.begin + i)] = in[size_t(i)];
-                    dshape[size_t(d.begin + i)] = res.tiers.dominant;
-                    dcycle[size_t(d.begin + i)] = 0;
+                    if (params.labels) {
+                        dshape[size_t(d.begin + i)] = res.tiers.dominant;
+                        dcycle[size_t(d.begin + i)] = 0;
+                    }
                     if (!dwidth.empty()) dwidth[size_t(d.begin + i)] = src_width[size_t(r.begin + i)];
                     if (gather) src_point[size_t(d.begin + i)] = r.begin + i;
                 }
@@ -496,8 +553,8 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
 
             const int64_t n = d.size();
             build_centreline(in, n, cl);
-            draw_curve(params, res, uint64_t(ids[size_t(c)]), setup[size_t(c)].frequency, cl.length, draws);
-            curl_curve(cl, draws, params, in_len, grid, out, s_of);
+            draw_curve(params, res, uint64_t(ids[size_t(c)]), frequency[size_t(c)], cl.length, draws);
+            curl_curve(cl, draws, params, in_len, grid, chord, short_by, out, s_of);
 
             if (scalp) {
                 // No curled point inside the scalp (fields/keep_outside.h): pulled back toward its
@@ -515,10 +572,12 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
             for (int64_t j = 0; j < n; ++j) {
                 const size_t o = size_t(d.begin + j);
                 dP[o] = out[size_t(j)];
-                const double u = cycle_u(draws, params, s_of[size_t(j)]);
-                const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, ncycles - 1);
-                dcycle[o] = int32_t(k);
-                dshape[o] = draws.cycles[size_t(k)].shape;
+                if (params.labels) {
+                    const double u = cycle_u(draws, params, s_of[size_t(j)]);
+                    const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, ncycles - 1);
+                    dcycle[o] = int32_t(k);
+                    dshape[o] = draws.cycles[size_t(k)].shape;
+                }
                 if (!dwidth.empty() || gather) {
                     // Where this point's centreline position falls on the input curve, by arc length.
                     const ArcSpot a = locate_at_length(in_cum, s_of[size_t(j)] * to_input);
@@ -533,8 +592,9 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     });
 
     dst.set_detail_string("hair_type", res.preset->name);
-    std::vector<int64_t> identity(nc);
-    for (size_t c = 0; c < nc; ++c) identity[c] = int64_t(c);
+    frequency = {};
+    std::vector<int64_t> identity(src.attributes(Domain::Curve).count() > 0 ? nc : 0);  // read only for curve columns
+    for (size_t c = 0; c < identity.size(); ++c) identity[c] = int64_t(c);
     carry_curve_attributes(src, dst, identity);
     if (gather) carry_point_attributes(src, dst, src_point, {attr::P, attr::width, "shape", "cycle"});
     apply_hair_widths(dst, params.widths, params.units_per_cm);

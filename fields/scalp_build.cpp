@@ -194,19 +194,27 @@ VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::ar
     const double diag = check_extent(points, params);
     const double h = params.voxel_size > 0.0f ? params.voxel_size : diag / 256.0;
 
-    // Memory estimate before allocating anything: the band holds about area / h^2 * 2 * band voxels,
-    // each costing the distance, its polygon index, meshToVolume's temporaries and, once queried, the
-    // query bricks (distance and gradient, 9^3 per leaf). Measured peak of a query command, per voxel
-    // of this estimate: 78 bytes on nefertiti at h = 0.5, 76 on Lee Perry-Smith at h = 0.01.
+    // Memory estimate before allocating anything: the band holds about area / h^2 * 2 * band voxels
+    // (+ 8 per triangle for small triangles' leaves), each costing the distance, its polygon index
+    // and meshToVolume's temporaries, and, once queried, the query bricks (distance and gradient,
+    // 9^3 per leaf). On top: what the process already holds (libraries, the mesh just read) and
+    // 16 MiB of threads' and the repair's working memory. Measured peaks per voxel of this count
+    // over the nine meshes of ../shared/datasets at their default voxel and a quarter of it (README,
+    // `groom scalp`): 20-35 bytes for `groom scalp`, 51-88 for a command that queries the field.
     double area = 0.0;
     for (const auto& t : tris) area += 0.5 * double(length(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]])));
     const double band = params.band_voxels;
     const double voxels = area / (h * h) * 2.0 * (band + 0.5) + 512.0 * double(tris.size()) / 64.0;
-    const double bytes = voxels * 80.0;
+    const double per_voxel = params.for_queries ? 72.0 : 26.0;
+    const uint64_t held = resident_bytes();
+    const double fixed = double(held ? held : 40ull << 20) + double(16ull << 20);
+    const double bytes = fixed + voxels * per_voxel;
     const double extent_voxels = diag / h;
     const double budget = double(params.memory_budget ? params.memory_budget : memory_budget());
     if (!(bytes <= budget) || extent_voxels > 1.0e6) {
-        const double suggest = h * std::sqrt(std::max(bytes / budget, 1.0)) * 1.1;
+        // The voxels' part scales with 1 / h^2; what the process holds does not.
+        const double room = budget - fixed;
+        const double suggest = room > 0.0 ? h * std::sqrt(std::max(voxels * per_voxel / room, 1.0)) * 1.1 : h * 1e3;
         const double suggest2 = std::max(suggest, diag / 1.0e6 * 1.1);
         throw LimitExceeded("scalp: voxel size " + format_number(h) + " needs about " + format_number(bytes / double(1ull << 30)) +
                             " GiB for the level set (" + format_number(voxels) + " voxels), over the " +
@@ -394,7 +402,9 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     if (report_out) *report_out = report;
     const detail::MeshGeometry& geo = im.geometry;
 
-    ProgressStep step(progress, "signed distance", 3);
+    // The estimate in the label: `--verbose` shows it beside the time.
+    const std::string label = "signed distance (estimated " + format_bytes(early.bytes) + ")";
+    ProgressStep step(progress, label, 3);
     background.wait();
     // The repair reports its final triangles in every path; the band is of exactly those faces.
     if (!early.sdf || early.tris.size() != geo.tris.size()) {

@@ -207,16 +207,21 @@ VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::ar
     const double voxels = area / (h * h) * 2.0 * (band + 0.5) + 512.0 * double(tris.size()) / 64.0;
     const double per_voxel = params.for_queries ? 72.0 : 26.0;
     const uint64_t held = resident_bytes();
-    const double fixed = double(held ? held : 40ull << 20) + double(16ull << 20);
-    const double bytes = fixed + voxels * per_voxel;
+    // The budget bounds what the level set allocates, as every op's check_memory bounds its output
+    // (kernel/memory_budget.h); what the process already holds and the threads' working memory are
+    // part of the estimate shown, not of what is compared (they were, and then no voxel fitted a
+    // small budget: the advice read "--voxel 2000" for a 35-unit head).
+    const double working = double(16ull << 20);
+    const double bytes = double(held ? held : 40ull << 20) + working + voxels * per_voxel;
+    const double adds = voxels * per_voxel;  // the level set's own share, which the voxel size sets
     const double extent_voxels = diag / h;
     const double budget = double(params.memory_budget ? params.memory_budget : memory_budget());
-    if (!(bytes <= budget) || extent_voxels > 1.0e6) {
-        // The voxels' part scales with 1 / h^2; what the process holds does not.
-        const double room = budget - fixed;
+    if (!(adds <= budget) || extent_voxels > 1.0e6) {
+        // The voxels' part scales with 1 / h^2.
+        const double room = budget;
         const double suggest = room > 0.0 ? h * std::sqrt(std::max(voxels * per_voxel / room, 1.0)) * 1.1 : h * 1e3;
         const double suggest2 = std::max(suggest, diag / 1.0e6 * 1.1);
-        throw LimitExceeded("scalp: voxel size " + format_number(h) + " needs about " + format_number(bytes / double(1ull << 30)) +
+        throw LimitExceeded("scalp: voxel size " + format_number(h) + " needs about " + format_number(adds / double(1ull << 30)) +
                             " GiB for the level set (" + format_number(voxels) + " voxels), over the " +
                             format_number(budget / double(1ull << 30)) + " GiB budget (`memory`); use `voxel` " +
                             format_number(suggest2) + " or larger (the mesh is " + format_number(diag) + " units across)");

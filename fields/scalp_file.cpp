@@ -335,7 +335,7 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     const double mesh_bytes = source ? double(source->tris.size()) * 400.0 : double(tris.size() + 2 * quads.size()) * 500.0;
     const uint64_t held = resident_bytes();
     const double estimate = double(held ? held : 40ull << 20) + bricks + mesh_bytes;
-    check_memory(path + ": the scalp's query bricks and mesh (" + format_number(leaves) + " leaves of the level set)", estimate,
+    check_memory(path + ": the scalp's query bricks and mesh (" + format_number(leaves) + " leaves of the level set)", bricks + mesh_bytes,
                  "make the scalp with a larger `voxel` (groom scalp --voxel)");
 
     const std::string label = "load scalp (estimated " + format_bytes(estimate) + ")";

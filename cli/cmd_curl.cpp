@@ -9,6 +9,16 @@
 namespace groom::cli {
 namespace {
 
+/// Whether the output's format keeps curl's point `shape` and `cycle` columns: .hair does not, and
+/// then they are not made (on a million hairs they were a quarter of the process's memory).
+bool keeps_point_labels(const std::string& output)
+{
+    CurveSet probe = CurveSet::from_counts(std::vector<int64_t>{1});
+    probe.add<int32_t>(Domain::Point, "shape");
+    probe.add<int32_t>(Domain::Point, "cycle");
+    return attributes_dropped(probe, output).empty();
+}
+
 struct Args {
     std::string input, output, scalp;
     ScalpBuildParams scalp_params;
@@ -28,7 +38,8 @@ void setup(CommandContext& ctx)
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         check_output(args->output, {args->input}, common);
-        const CurlParams params = curl_params_from(args->curl);
+        CurlParams params = curl_params_from(args->curl);
+        params.labels = keeps_point_labels(args->output);
         const CurveSet in = read_curve_input(args->input, common);
         const auto progress = make_progress(common);
         std::shared_ptr<const ScalpField> scalp;

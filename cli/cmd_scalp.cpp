@@ -88,6 +88,7 @@ void setup(CommandContext& ctx)
             throw InvalidParam("scalp: --voxel must be > 0 (got " + std::to_string(a.voxel) + "); omit it for an automatic size");
         }
         a.params.voxel_size = a.voxel;
+        a.params.for_queries = false;  // written, never queried: no query bricks in the estimate
         a.params.remove_enclosed_shells = !a.keep_enclosed;
         a.params.source = a.input;
         a.params.validate();

@@ -58,30 +58,44 @@ float3 closest_on_triangle(const float3& p, const float3& a, const float3& b, co
 
 void MeshGeometry::compute(const TriMesh& mesh)
 {
-    const size_t nv = mesh.n_vertices(), nf = mesh.n_faces();
-    points.resize(nv);
-    Bounds3 box;
-    for (size_t v = 0; v < nv; ++v) {
+    // The mesh's points and faces (each face's corners from its halfedge, as OpenMesh lists them),
+    // then the one computation from arrays that a mesh stored in a .vdb also goes through: a field
+    // built from the mesh and one loaded from its file hold the same geometry to the bit. (Reading
+    // boundary vertices from OpenMesh's is_boundary(vertex) instead missed rim vertices whose
+    // outgoing halfedge, as CGAL's graph traits left it, was not the boundary one: all 32 of a
+    // cap's rim vertices, 148 of Sintel's head, 1,196 of ICT's face; those were signed by a
+    // pseudo-normal whose fan stops at the rim, where the winding number should decide.)
+    std::vector<float3> pts(mesh.n_vertices());
+    for (size_t v = 0; v < pts.size(); ++v) {
         const auto& q = mesh.point(TriMesh::VertexHandle{int(v)});
-        points[v] = float3(q[0], q[1], q[2]);
-        box.extend(points[v]);
+        pts[v] = float3(q[0], q[1], q[2]);
     }
+    std::vector<std::array<int32_t, 3>> faces(mesh.n_faces());
+    for (size_t f = 0; f < faces.size(); ++f) {
+        int k = 0;
+        for (auto fv : mesh.fv_range(TriMesh::FaceHandle{int(f)})) faces[f][k++] = fv.idx();
+    }
+    compute(std::move(pts), std::move(faces));
+}
+
+void MeshGeometry::compute(std::vector<float3> points_in, std::vector<std::array<int32_t, 3>> tris_in)
+{
+    points = std::move(points_in);
+    tris = std::move(tris_in);
+    const size_t nv = points.size(), nf = tris.size();
+    Bounds3 box;
+    for (const float3& p : points) box.extend(p);
     bounds_lo = box.lo;
     bounds_hi = box.hi;
-    tris.resize(nf);
     face_normals.resize(nf);
     face_areas.resize(nf);
     edge_normals.assign(nf * 3, float3());
     vertex_normals.assign(nv, float3());
     for (size_t f = 0; f < nf; ++f) {
-        const TriMesh::FaceHandle fh{int(f)};
-        int k = 0;
-        for (auto fv : mesh.fv_range(fh)) tris[f][k++] = fv.idx();
         const float3 &a = points[tris[f][0]], &b = points[tris[f][1]], &c = points[tris[f][2]];
         const float3 n = cross(b - a, c - a);
         face_areas[f] = 0.5 * double(length(n));
         face_normals[f] = normalize(n);
-        // Angle-weighted vertex pseudo-normals: the weight is the face's angle at the vertex.
         for (int j = 0; j < 3; ++j) {
             const float3& p = points[tris[f][j]];
             const float3 e1 = normalize(points[tris[f][(j + 1) % 3]] - p), e2 = normalize(points[tris[f][(j + 2) % 3]] - p);
@@ -100,18 +114,22 @@ void MeshGeometry::compute(const TriMesh& mesh)
         for (int32_t v : tris[f]) vertex_faces[fill[v]++] = int32_t(f);
     boundary_edge.assign(nf * 3, 0);
     boundary_vertex.assign(nv, 0);
-    for (size_t v = 0; v < nv; ++v) boundary_vertex[v] = mesh.is_boundary(TriMesh::VertexHandle{int(v)});
-    // Edge pseudo-normals: the sum of the two faces' normals (one face on a boundary edge).
-    // Walked along each face's own halfedges (find_halfedge per edge searched vertex rings).
+    for (size_t v = 0; v < nv; ++v) boundary_vertex[v] = vertex_face_offsets[v] == vertex_face_offsets[v + 1];
+    // Edge k runs v_k -> v_k+1; its other side is the face around v_k+1 holding v_k+1 -> v_k.
     for (size_t f = 0; f < nf; ++f) {
-        for (const auto he : mesh.fh_range(TriMesh::FaceHandle{int(f)})) {
-            const int32_t from = mesh.from_vertex_handle(he).idx();
-            const int k = from == tris[f][0] ? 0 : from == tris[f][1] ? 1 : 2;
-            const auto opp = mesh.opposite_face_handle(he);
+        for (int k = 0; k < 3; ++k) {
+            const int32_t from = tris[f][k], to = tris[f][(k + 1) % 3];
+            int32_t opp = -1;
+            for (int32_t i = vertex_face_offsets[to]; i < vertex_face_offsets[to + 1] && opp < 0; ++i) {
+                const auto& t = tris[vertex_faces[i]];
+                for (int j = 0; j < 3; ++j)
+                    if (t[j] == to && t[(j + 1) % 3] == from) opp = vertex_faces[i];
+            }
             float3 n = face_normals[f];
-            if (opp.is_valid()) n += face_normals[opp.idx()];
-            boundary_edge[f * 3 + k] = !opp.is_valid();
+            if (opp >= 0) n += face_normals[opp];
+            boundary_edge[f * 3 + k] = opp < 0;
             edge_normals[f * 3 + k] = normalize(n, face_normals[f]);
+            if (opp < 0) boundary_vertex[from] = boundary_vertex[to] = 1;
         }
     }
 }

@@ -194,21 +194,34 @@ VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::ar
     const double diag = check_extent(points, params);
     const double h = params.voxel_size > 0.0f ? params.voxel_size : diag / 256.0;
 
-    // Memory estimate before allocating anything: the band holds about area / h^2 * 2 * band voxels,
-    // each costing the distance, its polygon index, meshToVolume's temporaries and, once queried, the
-    // query bricks (distance and gradient, 9^3 per leaf). Measured peak of a query command, per voxel
-    // of this estimate: 78 bytes on nefertiti at h = 0.5, 76 on Lee Perry-Smith at h = 0.01.
+    // Memory estimate before allocating anything: the band holds about area / h^2 * 2 * band voxels
+    // (+ 8 per triangle for small triangles' leaves), each costing the distance, its polygon index
+    // and meshToVolume's temporaries, and, once queried, the query bricks (distance and gradient,
+    // 9^3 per leaf). On top: what the process already holds (libraries, the mesh just read) and
+    // 16 MiB of threads' and the repair's working memory. Measured peaks per voxel of this count
+    // over the nine meshes of ../shared/datasets at their default voxel and a quarter of it (README,
+    // `groom scalp`): 20-35 bytes for `groom scalp`, 51-88 for a command that queries the field.
     double area = 0.0;
     for (const auto& t : tris) area += 0.5 * double(length(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]])));
     const double band = params.band_voxels;
     const double voxels = area / (h * h) * 2.0 * (band + 0.5) + 512.0 * double(tris.size()) / 64.0;
-    const double bytes = voxels * 80.0;
+    const double per_voxel = params.for_queries ? 72.0 : 26.0;
+    const uint64_t held = resident_bytes();
+    // The budget bounds what the level set allocates, as every op's check_memory bounds its output
+    // (kernel/memory_budget.h); what the process already holds and the threads' working memory are
+    // part of the estimate shown, not of what is compared (they were, and then no voxel fitted a
+    // small budget: the advice read "--voxel 2000" for a 35-unit head).
+    const double working = double(16ull << 20);
+    const double bytes = double(held ? held : 40ull << 20) + working + voxels * per_voxel;
+    const double adds = voxels * per_voxel;  // the level set's own share, which the voxel size sets
     const double extent_voxels = diag / h;
     const double budget = double(params.memory_budget ? params.memory_budget : memory_budget());
-    if (!(bytes <= budget) || extent_voxels > 1.0e6) {
-        const double suggest = h * std::sqrt(std::max(bytes / budget, 1.0)) * 1.1;
+    if (!(adds <= budget) || extent_voxels > 1.0e6) {
+        // The voxels' part scales with 1 / h^2.
+        const double room = budget;
+        const double suggest = room > 0.0 ? h * std::sqrt(std::max(voxels * per_voxel / room, 1.0)) * 1.1 : h * 1e3;
         const double suggest2 = std::max(suggest, diag / 1.0e6 * 1.1);
-        throw LimitExceeded("scalp: voxel size " + format_number(h) + " needs about " + format_number(bytes / double(1ull << 30)) +
+        throw LimitExceeded("scalp: voxel size " + format_number(h) + " needs about " + format_number(adds / double(1ull << 30)) +
                             " GiB for the level set (" + format_number(voxels) + " voxels), over the " +
                             format_number(budget / double(1ull << 30)) + " GiB budget (`memory`); use `voxel` " +
                             format_number(suggest2) + " or larger (the mesh is " + format_number(diag) + " units across)");
@@ -224,6 +237,65 @@ VoxelChoice choose_voxel(std::span<const float3> points, std::span<const std::ar
                               (params.voxel_size > 0.0f ? " or use a larger `voxel`" : ""));
     }
     return {h, bytes};
+}
+
+/// The automatic voxel (the whole mesh's diagonal / 256) refused when a part far from the head makes
+/// it too coarse for the head. Refused rather than warned about: inside and outside then flip near
+/// the head's thin parts (the default head plus one triangle 400 units away, 10x the head: 23 of
+/// 4,000 points in its box change sign; 3,000 away: 1,183), a wrong answer every command would give
+/// silently, and a warning raised here would not reach a command that converts `--scalp MESH` on
+/// the fly. The fix is one option (any given `voxel` skips this check).
+/// "The head" is the kept shell of the largest area; it must span at least kMinHeadVoxels voxels
+/// along its diagonal, a quarter of what it would get alone: the real heads in ../shared/datasets
+/// span 212 to 256 (the largest shell at least 1/1.21 of the mesh's diagonal; 1/2.4 for Sintel's
+/// eyelash cards, which are no head).
+void check_automatic_voxel(const RepairReport& report, double h, const ScalpBuildParams& params)
+{
+    constexpr double kMinHeadVoxels = 64.0;
+    if (params.voxel_size > 0.0f) return;
+    std::vector<const RepairReport::Shell*> kept;
+    for (const RepairReport::Shell& s : report.shell_list)
+        if (!s.removed) kept.push_back(&s);
+    if (kept.size() < 2) return;
+    const RepairReport::Shell& head = *kept.front();  // the list is largest area first
+    auto diagonal = [](const RepairReport::Shell& s) {
+        const double dx = double(s.hi[0]) - s.lo[0], dy = double(s.hi[1]) - s.lo[1], dz = double(s.hi[2]) - s.lo[2];
+        return std::sqrt(dx * dx + dy * dy + dz * dz);
+    };
+    const double head_diag = diagonal(head);
+    if (head_diag / h >= kMinHeadVoxels) return;
+    // The shells reaching out of the head's box, and the one reaching farthest from its centre.
+    double centre[3];
+    for (int i = 0; i < 3; ++i) centre[i] = 0.5 * (double(head.lo[i]) + head.hi[i]);
+    int64_t outside = 0, outside_faces = 0;
+    const RepairReport::Shell* farthest = nullptr;
+    double farthest_reach = -1.0;
+    for (size_t k = 1; k < kept.size(); ++k) {
+        const RepairReport::Shell& s = *kept[k];
+        bool inside = true;
+        double reach2 = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            inside &= s.lo[i] >= head.lo[i] && s.hi[i] <= head.hi[i];
+            const double r = std::max(std::fabs(s.lo[i] - centre[i]), std::fabs(s.hi[i] - centre[i]));
+            reach2 += r * r;
+        }
+        if (inside) continue;
+        ++outside;
+        outside_faces += s.faces;
+        if (std::sqrt(reach2) > farthest_reach) farthest_reach = std::sqrt(reach2), farthest = &s;
+    }
+    if (!farthest) return;  // every other shell lies within the head's box: the head sets the voxel
+    auto point = [](const float* v) { return format_number(v[0]) + ", " + format_number(v[1]) + ", " + format_number(v[2]); };
+    throw InvalidGeometry(
+        params.source + ": the automatic voxel size " + format_number(h) + " (the mesh's diagonal / 256) is too coarse for the head: its "
+        "largest shell (" + std::to_string(head.faces) + " faces, " + format_number(head_diag) + " units across) spans only " +
+        format_number(head_diag / h) + " voxels, under the " + format_number(kMinHeadVoxels) +
+        " that keep inside and outside right at its thin parts, because " + std::to_string(outside) + " other shell" +
+        (outside == 1 ? "" : "s") + " (" + std::to_string(outside_faces) + " face" + (outside_faces == 1 ? "" : "s") +
+        ") " + (outside == 1 ? "reaches" : "reach") + " out of its box, the farthest (" + std::to_string(farthest->faces) + " face" + (farthest->faces == 1 ? "" : "s") +
+        ", bounds " + point(farthest->lo) + " to " + point(farthest->hi) + ") " + format_number(farthest_reach) +
+        " units from the head's centre; give `voxel` " + format_number(head_diag / 256.0) +
+        " (the head's own diagonal / 256), keep only the head's faces with `group` (OBJ), or delete that part from the mesh");
 }
 
 /// meshToVolume's unsigned narrow band (world units) and, in `index_grid`, each voxel's closest
@@ -317,6 +389,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     ScalpField::Impl& im = field.impl();
     try {
         const TriMesh mesh = detail::repair_soup(soup, options, report, progress);
+        check_automatic_voxel(report, early.h, params);
         im.geometry.compute(mesh);
         im.query = std::make_unique<detail::MeshQuery>(im.geometry);
         // Open rims are signed by the winding number: built here, it too runs beside meshToVolume.
@@ -334,7 +407,9 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     if (report_out) *report_out = report;
     const detail::MeshGeometry& geo = im.geometry;
 
-    ProgressStep step(progress, "signed distance", 3);
+    // The estimate in the label: `--verbose` shows it beside the time.
+    const std::string label = "signed distance (estimated " + format_bytes(early.bytes) + ")";
+    ProgressStep step(progress, label, 3);
     background.wait();
     // The repair reports its final triangles in every path; the band is of exactly those faces.
     if (!early.sdf || early.tris.size() != geo.tris.size()) {

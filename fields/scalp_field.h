@@ -33,6 +33,9 @@ struct ScalpBuildParams {
     /// (kernel/memory_budget.h: --memory, else half the machine's memory).
     uint64_t memory_budget = 0;
     bool remove_enclosed_shells = true;   ///< drop shells lying inside a larger one (eyes, teeth)
+    /// The field will be queried (every command but `groom scalp`, which only writes it): its query
+    /// bricks, built on the first query, count in the memory estimate.
+    bool for_queries = true;
     std::string source = "scalp";         ///< names the mesh (its file) in messages
     /// An OBJ mesh: only the faces of the object (`o`) or group (`g`) of this name (the head, not
     /// its eyes, teeth or hair proxies); empty = every face. Not for a .vdb (already one surface).
@@ -96,7 +99,8 @@ public:
     float voxel_size() const;
     float band_voxels() const;
     Bounds3 bounds() const;
-    /// True when built from a mesh; false when the mesh was extracted from a loaded .vdb (exact to
+    /// True when built from a mesh or loaded from a .vdb that carries it (every .vdb `groom scalp`
+    /// writes); false when the mesh was extracted from a loaded .vdb's zero crossing (exact to
     /// about a voxel rather than to the original mesh).
     bool has_source_mesh() const;
     /// The repaired triangle mesh the queries fall back to (oriented outward).
@@ -133,8 +137,10 @@ void write_scalp(const ScalpField& scalp, const std::string& path);
 /// The same into `batch` (kernel/io/atomic_file.h), renamed into place with the command's other outputs.
 void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& batch);
 
-/// Reads a .vdb holding a float level set named "scalp" (groom's, vdb_tool's, Houdini's); the mesh for
-/// far queries and sampling is extracted from its zero crossing. What OpenVDB decodes is checked
+/// Reads a .vdb holding a float level set named "scalp" (groom's, vdb_tool's, Houdini's). The mesh for
+/// far queries and sampling is the repaired mesh `groom scalp` stores in the grid's metadata
+/// "groom_source_mesh" (then every answer is the mesh's, to the bit), else, for other programs' and
+/// older groom's files, one extracted from the zero crossing (adaptive, within about a voxel). What OpenVDB decodes is checked
 /// before use (a truncated or corrupt file is a ParseError naming it, never a crash): one float grid
 /// of class level set, a linear transform with uniform, finite, positive voxels, a finite positive
 /// background, a tree with active voxels whose values and index bounds are sane. Throws IoError /

@@ -48,6 +48,12 @@ struct MeshGeometry {
     float3 bounds_lo, bounds_hi;
 
     void compute(const TriMesh& mesh);
+    /// The same from bare arrays (a mesh stored in a .vdb, fields/source_mesh.h; compute(TriMesh)
+    /// goes through it too): a face's corners in the order given, each edge side's opposite face the
+    /// one holding the reversed edge, a vertex on the boundary when an edge at it has no second face
+    /// or it has no face at all. `tris` must be an oriented manifold (each directed edge once), as
+    /// decode_source_mesh() checks.
+    void compute(std::vector<float3> points, std::vector<std::array<int32_t, 3>> tris);
     std::vector<int32_t> vertex_face_offsets;  ///< #vertices+1: faces around vertex v are
     std::vector<int32_t> vertex_faces;         ///< vertex_faces[vertex_face_offsets[v] .. [v+1])
 

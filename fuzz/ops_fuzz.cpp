@@ -24,7 +24,8 @@
 // Work is bounded by --memory 0.0625 (64 MiB of output estimates) and --threads 1.
 //
 // GROOM_FUZZ_OP=<command> fuzzes one command (scripts/fuzz.sh runs target op_<command> that way,
-// each with its own corpus); unset, the first byte picks the command.
+// each with its own corpus); unset, the last byte picks the command (the provider reads integers
+// from the end). GROOM_FUZZ_WRITE_SEEDS=DIR writes the checked-in seeds (fuzz/seeds/) and exits.
 #include "cli/command.h"
 #include "fields/scalp_field.h"
 #include "kernel/curve_set.h"
@@ -35,13 +36,17 @@
 #include <fuzzer/FuzzedDataProvider.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
+#include <random>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -440,6 +445,11 @@ const Command* only = nullptr;
 /// GROOM_FUZZ_PRINT, to check the fuzzer reaches the ops rather than only their refusals.
 int64_t seen[4] = {};
 
+/// Option names of the last run (for write_seeds).
+std::vector<std::string> last_options;
+int run_one(const uint8_t* data, size_t size, const Command* forced);
+void write_seeds(const std::filesystem::path& dir);
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***)
@@ -473,13 +483,20 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
         std::atexit([] { std::fprintf(stderr, "ops_fuzz: exit 0: %lld, 1: %lld, 2: %lld; inputs refused: %lld\n", (long long)seen[0], (long long)seen[1], (long long)seen[2], (long long)seen[3]); });
     std::cout.rdbuf(discard.rdbuf());
     std::cerr.rdbuf(discard.rdbuf());
+    if (const char* dir = std::getenv("GROOM_FUZZ_WRITE_SEEDS")) {
+        write_seeds(dir);
+        std::exit(0);
+    }
     return 0;
 }
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
+namespace {
+
+/// One fuzz input: the exit code of the command it ran, or -1 when its input was refused before.
+int run_one(const uint8_t* data, size_t size, const Command* forced)
 {
     FuzzedDataProvider fdp(data, size);
-    const Command& cmd = only ? *only : commands[fdp.ConsumeIntegralInRange<size_t>(0, commands.size() - 1)];
+    const Command& cmd = forced ? *forced : commands[fdp.ConsumeIntegralInRange<size_t>(0, commands.size() - 1)];
     const int head = fdp.ConsumeIntegralInRange(0, int(std::size(kHeadScales)));  // == size: a mesh from the bytes
     const float scale = head < int(std::size(kHeadScales)) ? kHeadScales[head] : 1.0f;
 
@@ -569,6 +586,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         }
         args.insert(args.end(), {l.option, value});
     }
+    last_options.clear();
+    for (const Option* o : chosen) last_options.push_back(o->name);
     for (const Option* option : chosen) {
         const Option& o = *option;
         args.push_back(o.name);
@@ -601,7 +620,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     if (refused) {
         ++seen[3];
         clean_up();
-        return 0;
+        return -1;
     }
 
     std::string error;
@@ -621,5 +640,54 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     }
     for (const std::string& o : outputs) check_output(o);
     clean_up();
+    return code;
+}
+
+/// GROOM_FUZZ_WRITE_SEEDS=DIR (`scripts/fuzz.sh --write-op-seeds`): writes the op targets' seed
+/// corpus instead of fuzzing, so short runs (CI's 40 s) start from inputs that reach each op rather
+/// than from libFuzzer's first inputs of a few bytes, which leave nearly every choice at its
+/// default. Per command (or GROOM_FUZZ_OP's), byte strings from a fixed random stream of its own are
+/// run as fuzz inputs; one is kept when its command exits 0 and it is the first to, or it sets an
+/// option no kept seed set, up to kSeeds per command or kSeconds of tries. Written as
+/// DIR/op_<command>/<n> and, with the byte that picks the command appended (the provider reads
+/// integers from the end, the command's first), DIR/ops/<command>-<n>. The bytes mean what this
+/// harness makes of them: regenerate after changing how it reads them.
+void write_seeds(const std::filesystem::path& dir)
+{
+    constexpr int kSeeds = 6;
+    constexpr double kSeconds = 30.0;
+    constexpr size_t kBytes = 256;
+    for (size_t ci = 0; ci < commands.size(); ++ci) {
+        const Command& c = commands[ci];
+        if (only && &c != only) continue;
+        std::mt19937_64 random(20 + ci);  // per command: its candidates do not depend on the others' time
+        std::filesystem::create_directories(dir / ("op_" + c.name));
+        std::filesystem::create_directories(dir / "ops");
+        std::set<std::string> covered;
+        int kept = 0, tried = 0;
+        const auto start = std::chrono::steady_clock::now();
+        while (kept < kSeeds && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < kSeconds) {
+            std::vector<uint8_t> bytes(kBytes);
+            for (uint8_t& b : bytes) b = uint8_t(random() >> 56);
+            ++tried;
+            if (run_one(bytes.data(), bytes.size(), &c) != 0) continue;
+            bool adds = kept == 0;
+            for (const std::string& o : last_options) adds |= covered.insert(o).second;
+            if (!adds) continue;
+            const std::string name = std::to_string(kept);
+            std::ofstream(dir / ("op_" + c.name) / name, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+            bytes.push_back(uint8_t(ci));
+            std::ofstream(dir / "ops" / (c.name + "-" + name), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+            ++kept;
+        }
+        std::fprintf(stderr, "ops_fuzz: %-15s %d seeds from %d tries (%zu options covered)\n", c.name.c_str(), kept, tried, covered.size());
+    }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
+{
+    run_one(data, size, only);
     return 0;
 }

@@ -103,6 +103,17 @@ MemoryLimit::~MemoryLimit()
     g_budget.store(previous_);
 }
 
+uint64_t resident_bytes()
+{
+    uint64_t bytes = 0;
+    if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
+        unsigned long long size = 0, resident = 0;
+        if (std::fscanf(f, "%llu %llu", &size, &resident) == 2) bytes = uint64_t(resident) * uint64_t(::sysconf(_SC_PAGESIZE));
+        std::fclose(f);
+    }
+    return bytes;
+}
+
 std::string format_bytes(double bytes)
 {
     char buf[48];

@@ -56,6 +56,12 @@ private:
 /// thread is changing it: safe to call from a terminate handler.
 std::string memory_note();
 
+/// What this process holds in memory now (resident set, /proc/self/statm), or 0 where that cannot
+/// be read. Estimates add it to what they are about to allocate: a command's peak is what it
+/// already holds (libraries, inputs) plus the new allocation, and at the sizes of a default scalp
+/// the first is the larger part.
+uint64_t resident_bytes();
+
 /// "12.5 GiB", "300 MiB": a byte count as messages show it.
 std::string format_bytes(double bytes);
 

@@ -27,7 +27,9 @@ float3 initial_normal(const BraidContext& ctx, const float3& root, const float3&
 float amplitude_scale(const BraidParams& p, const GuidePlan& plan, float t)
 {
     const float blend = p.root_amplitude + (p.tip_amplitude - p.root_amplitude) * t;
-    float s = p.taper.empty() ? blend : blend * sample_uniform_spline(p.taper, t);
+    // The taper's Catmull-Rom overshoots between values (1,0,0 dips to -0.07 past its middle): held
+    // at 0, as the values themselves are, else strand widths go negative (op_braid, --taper 1,0,0).
+    float s = p.taper.empty() ? blend : blend * std::max(0.0f, sample_uniform_spline(p.taper, t));
     if (p.tie) {
         // A tie gathers the braid: the cross-section narrows to 60% within half a knot of it.
         const double knot = plan.frequency > 0.0 ? plan.woven * plan.length / plan.frequency : plan.length;

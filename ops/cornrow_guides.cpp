@@ -4,7 +4,10 @@
 #include "fields/keep_outside.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
+
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -111,6 +114,18 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     params.validate();
     if (region != nullptr && !region->has_hairline()) region = nullptr;
     const int n = params.count;
+    // Before allocating: the guides (position, root UV; id and guide per curve), the tails (position;
+    // id and guide), and on each worker one dense path of 4 x `samples` points (position) and its
+    // re-spaced copy (one per worker thread at a time). Bounded by the ranges (256 x 2 x 100,000 points, about 0.6 GB), but
+    // estimated like every op's output.
+    const double guide_points = double(n) * double(params.samples);
+    const double tail_points = params.tail_length > 0.0f ? double(n) * double(params.tail_samples) : 0.0;
+    const double dense_points = double(std::max(4 * params.samples, 64)) * 2.0 * double(std::min<size_t>(size_t(n), tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+    check_memory("cornrow-guides: " + std::to_string(n) + " guides (`count`) x " + std::to_string(params.samples) + " `samples`" +
+                     (tail_points > 0.0 ? " + " + std::to_string(n) + " tails x " + std::to_string(params.tail_samples) + " `tail_samples`"
+                                        : std::string()),
+                 guide_points * (12.0 + 8.0) + tail_points * 12.0 + double(n) * 2.0 * (8.0 + 4.0 + 8.0) + dense_points * 12.0,
+                 "lower `count`, `samples` or `tail_samples`");
     CornrowGuides out;
     std::vector<int64_t> counts(size_t(n), params.samples);
     out.guides = CurveSet::from_counts(counts);

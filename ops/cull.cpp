@@ -3,6 +3,7 @@
 #include "fields/keep_outside.h"
 #include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 
 #include <algorithm>
@@ -64,6 +65,12 @@ CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& param
     const auto P = src.positions();
     const int64_t nc = static_cast<int64_t>(src.num_curves());
     const float D = params.clearance;
+    // The output is at most the input: a copy of every column (push; trim and delete keep a subset,
+    // with each kept point's source index and an id per curve) and per curve its kept count, cut and
+    // flag. Bounded by the input, but a copy all the same: estimated like every op's output.
+    check_memory("cull: up to " + std::to_string(src.num_points()) + " points in " + std::to_string(nc) + " curves (the input)",
+                 double(src.num_points()) * (bytes_per_point(src) + 8.0) + double(nc) * (bytes_per_curve(src) + 8.0 + 4.0 + 1.0 + 8.0 + 8.0),
+                 "cull fewer curves at a time, e.g. parts chosen with groom select --ids");
 
     if (params.mode == CullMode::Push) {
         CurveSet dst = src;

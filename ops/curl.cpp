@@ -66,6 +66,16 @@ struct Resolved {
     float amplitude_mid = 0.0f;
 };
 
+/// The cycle that cycle coordinate u falls in, of `count`: floor(u) clamped to [0, count - 1] in
+/// double before converting (NaN gives 0). Converting first was undefined past int64's range, which
+/// `--root-ease 1e30` reaches (u = -frequency x 1e30; UBSan stopped op_curl there while the op
+/// seeds were written).
+int64_t cycle_of(double u, int64_t count)
+{
+    const double f = std::floor(u);
+    return f > 0.0 ? int64_t(std::min(f, double(std::max<int64_t>(count - 1, 0)))) : 0;
+}
+
 /// The curl offset in the cross-section plane at cycle coordinate u (u = 0 where the curl starts),
 /// before the root envelope. Sec. 3.1: each cycle takes its own shape; around each join the two
 /// neighbouring cycles' closed curves are cross-faded with a C1 smoothstep, so position and tangent
@@ -73,7 +83,7 @@ struct Resolved {
 ShapePoint curl_offset(std::span<const Cycle> cycles, const ShapeParams& sp, float cos_phase, float sin_phase, float blend, double u)
 {
     const int64_t last = int64_t(cycles.size()) - 1;
-    const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, last);
+    const int64_t k = cycle_of(u, int64_t(cycles.size()));
     const float t = float(u - double(k));  // in [0, 1) inside the curl; negative before it, > 1 past the end
     auto eval = [&](int64_t c, float tc) {
         const Cycle& cy = cycles[size_t(c)];
@@ -500,14 +510,22 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     int64_t largest = 0;
     for (const CurveSetup& s : setup) largest = std::max(largest, s.points);
     check_memory("curl: " + std::to_string(total) + " output points (curve length x `frequency` x `samples`)",
-                 double(total) * (bytes_per_point(src) + 12.0) + double(largest) * 64.0, "lower `frequency` or `samples`");
+                 double(total) * (bytes_per_point(src) + (params.labels ? 12.0 : 4.0)) + double(largest) * 64.0, "lower `frequency` or `samples`");
 
     std::vector<int64_t> counts(nc);
-    for (size_t c = 0; c < nc; ++c) counts[c] = setup[c].points;
+    std::vector<float> frequency(nc);
+    for (size_t c = 0; c < nc; ++c) counts[c] = setup[c].points, frequency[c] = setup[c].frequency;
+    // Bookkeeping freed as soon as it is spent: a million hairs' curl peaks while the input and the
+    // output are both held, and each of these is a few percent of that.
+    setup = {};
     CurveSet dst = CurveSet::from_counts(counts);
+    counts = {};
     auto dP = dst.positions_for_write();
-    auto dshape = dst.add<int32_t>(Domain::Point, "shape");
-    auto dcycle = dst.add<int32_t>(Domain::Point, "cycle");
+    std::span<int32_t> dshape, dcycle;
+    if (params.labels) {
+        dshape = dst.add<int32_t>(Domain::Point, "shape");
+        dcycle = dst.add<int32_t>(Domain::Point, "cycle");
+    }
     std::span<float> dwidth;
     if (!src_width.empty()) dwidth = dst.add<float>(Domain::Point, attr::width);
     // Other point attributes are gathered from the nearest input point; only built when needed.
@@ -532,8 +550,10 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
                 // Nothing to curl: the curve passes through unchanged.
                 for (int64_t i = 0; i < d.size(); ++i) {
                     dP[size_t(d.begin + i)] = in[size_t(i)];
-                    dshape[size_t(d.begin + i)] = res.tiers.dominant;
-                    dcycle[size_t(d.begin + i)] = 0;
+                    if (params.labels) {
+                        dshape[size_t(d.begin + i)] = res.tiers.dominant;
+                        dcycle[size_t(d.begin + i)] = 0;
+                    }
                     if (!dwidth.empty()) dwidth[size_t(d.begin + i)] = src_width[size_t(r.begin + i)];
                     if (gather) src_point[size_t(d.begin + i)] = r.begin + i;
                 }
@@ -543,7 +563,7 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
 
             const int64_t n = d.size();
             build_centreline(in, n, cl);
-            draw_curve(params, res, uint64_t(ids[size_t(c)]), setup[size_t(c)].frequency, cl.length, draws);
+            draw_curve(params, res, uint64_t(ids[size_t(c)]), frequency[size_t(c)], cl.length, draws);
             curl_curve(cl, draws, params, in_len, grid, chord, short_by, out, s_of);
 
             if (scalp) {
@@ -562,10 +582,12 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
             for (int64_t j = 0; j < n; ++j) {
                 const size_t o = size_t(d.begin + j);
                 dP[o] = out[size_t(j)];
-                const double u = cycle_u(draws, params, s_of[size_t(j)]);
-                const int64_t k = std::clamp<int64_t>(int64_t(std::floor(u)), 0, ncycles - 1);
-                dcycle[o] = int32_t(k);
-                dshape[o] = draws.cycles[size_t(k)].shape;
+                if (params.labels) {
+                    const double u = cycle_u(draws, params, s_of[size_t(j)]);
+                    const int64_t k = cycle_of(u, ncycles);
+                    dcycle[o] = int32_t(k);
+                    dshape[o] = draws.cycles[size_t(k)].shape;
+                }
                 if (!dwidth.empty() || gather) {
                     // Where this point's centreline position falls on the input curve, by arc length.
                     const ArcSpot a = locate_at_length(in_cum, s_of[size_t(j)] * to_input);
@@ -580,8 +602,9 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     });
 
     dst.set_detail_string("hair_type", res.preset->name);
-    std::vector<int64_t> identity(nc);
-    for (size_t c = 0; c < nc; ++c) identity[c] = int64_t(c);
+    frequency = {};
+    std::vector<int64_t> identity(src.attributes(Domain::Curve).count() > 0 ? nc : 0);  // read only for curve columns
+    for (size_t c = 0; c < identity.size(); ++c) identity[c] = int64_t(c);
     carry_curve_attributes(src, dst, identity);
     if (gather) carry_point_attributes(src, dst, src_point, {attr::P, attr::width, "shape", "cycle"});
     apply_hair_widths(dst, params.widths, params.units_per_cm);

@@ -61,6 +61,9 @@ struct CurlParams {
     /// true: the curled hair keeps the input's length (it covers less of the centreline, as real
     /// curls shrink); false: the whole centreline is curled and the hair gets longer.
     bool preserve_length = true;
+    /// false: no point `shape` and `cycle` columns (a caller writing a format that cannot hold them,
+    /// .hair, spares their memory: a million hairs' curl then fits in twice its output).
+    bool labels = true;
     /// Lame exponent, polygon sides, ellipse aspect, rose petals.
     ShapeParams shape;
     /// Point `width` of the output (--root-width, --tip-width): unset keeps the input's widths

@@ -26,6 +26,18 @@ void HairWidths::validate(std::string_view op) const
     }
 }
 
+namespace {
+
+/// |a - b| in double: in float it overflows to inf past 1.8e19 apart (fibers of a guide 1e30 wide,
+/// op_populate), and the arc-length fractions then came out inf / inf = NaN widths.
+double segment_length(const float3& a, const float3& b)
+{
+    const double dx = double(a.x) - b.x, dy = double(a.y) - b.y, dz = double(a.z) - b.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+}  // namespace
+
 void taper_widths(CurveSet& curves, float root, float tip)
 {
     AttributeSet& points = curves.attributes(Domain::Point);
@@ -36,7 +48,7 @@ void taper_widths(CurveSet& curves, float root, float tip)
     auto W = curves.add<float>(Domain::Point, attr::width);
     const double r = root, t = tip;
     parallel_for(int64_t(curves.num_curves()), 1024, [&](int64_t b, int64_t e) {
-        std::vector<float> seg;  // each segment's length, measured once (the square roots were half the time)
+        std::vector<double> seg;  // each segment's length, measured once (the square roots were half the time)
         for (int64_t c = b; c < e; ++c) {
             const IndexRange pr = curves.points_of(size_t(c));
             const int64_t n = pr.size();
@@ -44,14 +56,14 @@ void taper_widths(CurveSet& curves, float root, float tip)
             seg.resize(size_t(n));
             double total = 0.0;
             for (int64_t i = 1; i < n; ++i) {
-                seg[size_t(i)] = distance(P[pr.begin + i], P[pr.begin + i - 1]);
-                total += double(seg[size_t(i)]);
+                seg[size_t(i)] = segment_length(P[pr.begin + i], P[pr.begin + i - 1]);
+                total += seg[size_t(i)];
             }
             // Fractions in double: (1 - f) r + f t is then monotone in f to double rounding, and the
             // one rounding to float keeps that order (rounding is monotone).
             double s = 0.0;
             for (int64_t i = 0; i < n; ++i) {
-                if (i > 0) s += double(seg[size_t(i)]);
+                if (i > 0) s += seg[size_t(i)];
                 double f = total > 0.0 ? s / total : (n > 1 ? double(i) / double(n - 1) : 0.0);
                 if (i == n - 1 && n > 1) f = 1.0;  // the sum of the segments need not land on total exactly
                 W[pr.begin + i] = i == 0 ? root : f == 1.0 ? tip : float((1.0 - f) * r + f * t);

@@ -5,6 +5,7 @@
 #include "fields/surface.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 #include "kernel/rng.h"
 
@@ -30,7 +31,8 @@ struct Plan {
     float3 root, end;
 };
 
-constexpr double kMaxOutputPoints = 2e9;   // output points refused beyond this (about 24 GB of positions)
+// Output points refused beyond this even within a large `memory` budget: station counts are int.
+constexpr double kMaxOutputPoints = 2e9;
 constexpr uint64_t kJitterStream = 0x9a27;  // Rng stream for station jitter (per side: + side)
 
 }  // namespace
@@ -138,9 +140,16 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
         const double length = polyline_length(P.subspan(r.begin, r.size()));
         planned += station_count(length) * ((adjacent[c].left >= 0) + (adjacent[c].right >= 0));
     }
+    // Per segment: its plan, its points (position, width) and its curve columns (guide, side, group,
+    // id, source curve, root UV, and every curve column of the guides, carried).
+    const std::string segments = planned < 9e18 ? std::to_string(int64_t(planned)) : format_number(planned);
+    check_memory("partition: " + segments + " segments (`count` or `spacing` per side of each guide) x " +
+                     std::to_string(params.samples) + " `samples`",
+                 planned * (double(params.samples) * (12.0 + 4.0) + double(sizeof(Plan)) + 4.0 * 3.0 + 8.0 + 8.0 + 8.0 + bytes_per_curve(guides)),
+                 "raise `spacing` or lower `count` / `samples`");
     if (planned * params.samples > kMaxOutputPoints) {
-        throw LimitExceeded("partition: the options ask for " + num(float(planned)) + " segments of " + std::to_string(params.samples) +
-                            " points, more than " + num(float(kMaxOutputPoints)) +
+        throw LimitExceeded("partition: the options ask for " + segments + " segments of " + std::to_string(params.samples) +
+                            " points, more than " + std::to_string(int64_t(kMaxOutputPoints)) +
                             " points in all; raise `spacing` or lower `count` / `samples`");
     }
 

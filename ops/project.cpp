@@ -2,6 +2,7 @@
 #include "ops/root_uv.h"
 
 #include "kernel/error.h"
+#include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 
 #include <algorithm>
@@ -17,6 +18,13 @@ void ProjectParams::validate() const
 CurveSet project(const CurveSet& src, const Surface& scalp, const ProjectParams& params, ProjectStats* stats)
 {
     params.validate();
+    // The output is a copy of the input (every column) plus root UVs, and per curve a distance and a
+    // count; bounded by the input, but a copy all the same: estimated like every op's output.
+    const double curves = double(src.num_curves()), points = double(src.num_points());
+    check_memory("project: a copy of " + std::to_string(src.num_points()) + " points in " + std::to_string(src.num_curves()) +
+                     " curves (the input)",
+                 points * bytes_per_point(src) + curves * (bytes_per_curve(src) + 8.0 + 4.0 + 8.0),
+                 "project fewer curves at a time, e.g. parts chosen with groom select --ids");
     CurveSet dst = src;
     const auto P = dst.positions_for_write();
     const int64_t nc = static_cast<int64_t>(dst.num_curves());

@@ -164,11 +164,16 @@ struct Rect {
     int x0, y0, x1, y1;  // half-open, samples
 };
 
-/// Sample index range [lo, hi] whose centres (i + 0.5) fall in [a, b], clipped to [clip0, clip1).
+/// v clipped to [lo, hi] in float, then converted: a point of width 1e30 puts sample coordinates far
+/// past int's range, where converting is undefined (found by the op fuzzer). NaN gives lo.
+inline int clipped_int(float v, int lo, int hi) { return static_cast<int>(std::fmin(std::fmax(v, float(lo)), float(hi))); }
+
+/// Sample index range [lo, hi] whose centres (i + 0.5) fall in [a, b], clipped to [clip0, clip1)
+/// (empty, lo > hi, when none does).
 inline void sample_range(float a, float b, int clip0, int clip1, int& lo, int& hi)
 {
-    lo = std::max(clip0, static_cast<int>(std::ceil(a - 0.5f)));
-    hi = std::min(clip1 - 1, static_cast<int>(std::floor(b - 0.5f)));
+    lo = clipped_int(std::ceil(a - 0.5f), clip0, clip1);
+    hi = clipped_int(std::floor(b - 0.5f), clip0 - 1, clip1 - 1);
 }
 
 struct Buffers {
@@ -253,8 +258,8 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
         int xa = x0, xb = x1;
         if (steep) {
             const float xc = ax + (sy - ay) * slope;
-            xa = std::max(x0, static_cast<int>(std::ceil(xc - half_band - 0.5f)));
-            xb = std::min(x1, static_cast<int>(std::floor(xc + half_band - 0.5f)));
+            xa = clipped_int(std::ceil(xc - half_band - 0.5f), x0, x1 + 1);
+            xb = clipped_int(std::floor(xc + half_band - 0.5f), x0 - 1, x1);
         }
         const float dy = sy - ay;
         float* depth_row = buf.depth.data() + size_t(y) * size_t(buf.ws);
@@ -355,10 +360,10 @@ RgbImage render(const RenderScene& scene, const Camera& camera_in, const RenderP
             yhi = std::max(A.y, B.y) + r;
         }
         if (!(xhi >= 0.0f && yhi >= 0.0f && xlo < float(p.ws) && ylo < float(p.hs))) return false;
-        tx0 = std::max(0, int(xlo) / kTile);
-        tx1 = std::min(tiles_x - 1, int(std::min(xhi, float(p.ws - 1))) / kTile);
-        ty0 = std::max(0, int(ylo) / kTile);
-        ty1 = std::min(tiles_y - 1, int(std::min(yhi, float(p.hs - 1))) / kTile);
+        tx0 = clipped_int(xlo, 0, p.ws - 1) / kTile;
+        tx1 = std::min(tiles_x - 1, clipped_int(xhi, 0, p.ws - 1) / kTile);
+        ty0 = clipped_int(ylo, 0, p.hs - 1) / kTile;
+        ty1 = std::min(tiles_y - 1, clipped_int(yhi, 0, p.hs - 1) / kTile);
         return true;
     };
     std::vector<uint64_t> tile_offsets(num_tiles + 1, 0);

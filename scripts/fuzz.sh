@@ -6,16 +6,20 @@
 #   bash scripts/fuzz.sh --seconds 600 usda  # one target for ten minutes
 #   bash scripts/fuzz.sh --op-seconds 40     # target `ops` (every op command, drawn per input) 40 s
 #   bash scripts/fuzz.sh --seconds 300 op_braid   # one op command for five minutes
+#   bash scripts/fuzz.sh --write-op-seeds    # regenerate fuzz/seeds/ (the op targets' checked-in seeds)
 #
 # `ops` and op_<command> run fuzz/ops_fuzz.cpp (one binary for every op command); op_<command> sets
 # GROOM_FUZZ_OP=<command> and keeps its own corpus. The default list has `ops` (one start-up for
 # all commands, so CI pays it once); --op-seconds sets the time of `ops` and op_* targets.
-# The working corpus grows in $GROOM_SANITIZE_BUILD_DIR/fuzz-corpus/<target> across runs; a crash
-# leaves its input in .../fuzz-artifacts/ and the script exits 1. Make every crash a test in
-# tests/kernel/regression_test.cpp (input under tests/data/regressions/<target>/).
+# The op targets also start from fuzz/seeds/<target> (checked in; inputs that reach each command and
+# exit 0, written by the harness itself: --write-op-seeds, to redo whenever ops_fuzz.cpp changes how
+# it reads its bytes). The working corpus grows in $GROOM_SANITIZE_BUILD_DIR/fuzz-corpus/<target>
+# across runs; a crash leaves its input in .../fuzz-artifacts/ and the script exits 1. Make every
+# crash a test in tests/kernel/regression_test.cpp (input under tests/data/regressions/<target>/).
 set -euo pipefail
 seconds=5
 op_seconds=
+write_seeds=0
 targets=()
 while (($#)); do
   case "$1" in
@@ -23,7 +27,8 @@ while (($#)); do
     --seconds=*) seconds=${1#*=}; shift ;;
     --op-seconds) op_seconds=$2; shift 2 ;;
     --op-seconds=*) op_seconds=${1#*=}; shift ;;
-    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    --write-op-seeds) write_seeds=1; shift ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
     *) targets+=("$1"); shift ;;
   esac
 done
@@ -42,10 +47,17 @@ for t in "${targets[@]}"; do
     exit 2
   fi
 done
+((write_seeds)) && targets=(ops)
 for t in "${targets[@]}"; do build_targets+=("$(binary_of "$t")"); done
 mapfile -t build_targets < <(printf '%s\n' "${build_targets[@]}" | sort -u)
 cmake --build "$sbuild" -j "$jobs" --target "${build_targets[@]}" 2>&1 | grep -E 'error|warning: unused' || true
 cmake --build "$sbuild" -j "$jobs" --target "${build_targets[@]}" >/dev/null
+
+if ((write_seeds)); then
+  rm -rf "$root/fuzz/seeds"
+  GROOM_FUZZ_WRITE_SEEDS=$root/fuzz/seeds "$sbuild/fuzz/ops_fuzz"
+  exit 0
+fi
 
 seeds=$sbuild/fuzz-seeds
 rm -rf "$seeds"
@@ -60,6 +72,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$work" "$seeds/$t"
   dirs=("$work" "$seeds/$t")
   [[ -d $root/tests/data/regressions/$t ]] && dirs+=("$root/tests/data/regressions/$t")
+  [[ -d $root/fuzz/seeds/$t ]] && dirs+=("$root/fuzz/seeds/$t")
   extra=()
   [[ -f $seeds/$t.dict ]] && extra+=(-dict="$seeds/$t.dict")
   log=$sbuild/fuzz-artifacts/$t.log

@@ -41,6 +41,11 @@ void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& 
     }
     const io::Format& fmt = io::format_for(path, io::kWriteCurves, "curve", {}, /*error_is_param=*/true);
     curves.validate("writing " + path);
+    if (fmt.stream_curves) {
+        // Straight into the batch's temporary, which an error part-way removes (nothing lands).
+        fmt.stream_curves(curves, options, batch.open(path));
+        return;
+    }
     // Encode fully before opening the output, so an encoding error leaves no file behind.
     const std::string bytes = fmt.write_curves(curves, options);
     batch.open(path).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

@@ -25,6 +25,7 @@ std::string write_usda_row(const CurveSet& c, const CurveWriteOptions&) { return
 std::string write_obj_curves_row(const CurveSet& c, const CurveWriteOptions&) { return write_obj_curves(c); }
 std::string write_ply_curves_row(const CurveSet& c, const CurveWriteOptions& o) { return write_ply_curves(c, o.ply_encoding); }
 std::string write_hair_row(const CurveSet& c, const CurveWriteOptions&) { return write_hair(c); }
+void stream_hair_row(const CurveSet& c, const CurveWriteOptions&, std::ostream& out) { write_hair(c, out); }
 
 /// `.usd` is either encoding of USD: the text one is read as .usda, the binary crate refused.
 CurveSet read_usd_row(const FileBytes& f, const CurveReadOptions& options)
@@ -87,7 +88,7 @@ const std::array<Format, 10> kFormats = [] {
     ply.keeps = ply_keeps_column;
 
     Format hair = row("hair", "Cem Yuksel's .hair");
-    hair.sniff = sniff_hair, hair.read_curves = read_hair_row, hair.write_curves = write_hair_row, hair.keeps = hair_keeps;
+    hair.sniff = sniff_hair, hair.read_curves = read_hair_row, hair.write_curves = write_hair_row, hair.stream_curves = stream_hair_row, hair.keeps = hair_keeps;
 
     Format off = row("off", "OFF mesh");
     off.read_mesh = read_off;

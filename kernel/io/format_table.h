@@ -6,6 +6,8 @@
 // exists in Debian, so such a file is refused by name with the command that converts it.
 #pragma once
 
+#include <iosfwd>
+
 #include "kernel/curve_set.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/polygon_soup.h"
@@ -34,6 +36,9 @@ struct Format {
     bool (*sniff)(std::string_view head) = nullptr;
     CurveSet (*read_curves)(const FileBytes& file, const CurveReadOptions& options) = nullptr;
     std::string (*write_curves)(const CurveSet& curves, const CurveWriteOptions& options) = nullptr;
+    /// The same written straight to a stream, for formats that can (no second copy of a large output
+    /// in memory); null = write_curves' string is written.
+    void (*stream_curves)(const CurveSet& curves, const CurveWriteOptions& options, std::ostream& out) = nullptr;
     PolygonSoup (*read_mesh)(const FileBytes& file) = nullptr;
     std::string (*write_mesh)(const PolygonSoup& soup) = nullptr;
     /// For a format that holds either (.obj, .ply): whether this file's content is curves.

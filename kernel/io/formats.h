@@ -3,6 +3,8 @@
 // the table in format_table.cpp (one row per format). Each reader takes the whole file in memory plus the name to put in messages.
 #pragma once
 
+#include <iosfwd>
+
 #include "kernel/curve_set.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/io_util.h"
@@ -53,6 +55,8 @@ std::string write_ply_mesh(const PolygonSoup& soup);
 // --- Cem Yuksel's .hair ------------------------------------------------------------------------------
 CurveSet read_hair(const FileBytes& file);
 std::string write_hair(const CurveSet& curves);
+/// The same written to `stream` a block at a time (no copy of the file in memory); checks before writing anything.
+void write_hair(const CurveSet& curves, std::ostream& stream);
 
 // --- OFF, STL (meshes only) --------------------------------------------------------------------------
 PolygonSoup read_off(const FileBytes& file);

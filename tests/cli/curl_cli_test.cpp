@@ -160,3 +160,19 @@ TEST(CurlCli, NoCurledPointInsideTheScalpMesh)
     // Outside the mesh means outside the sphere less the mesh's chordal error (and float slack).
     EXPECT_GE(min_radius(dir.file("scalp.usda")), radius - chord - 1e-3f * radius);
 }
+
+// A .hair output cannot hold the point `shape` and `cycle` columns, so curl does not make them
+// there (memory): the curled points are the same bits as in a file that keeps them.
+TEST(CurlCli, HairOutputHasTheSamePointsWithoutTheLabelColumns)
+{
+    TempDir dir;
+    const std::string in = guides_obj(dir), ply = dir.file("c.ply"), hair = dir.file("c.hair");
+    ASSERT_EQ(run_groom({"curl", in, "-o", ply, "--type", "3b", "--seed", "4"}).exit_code, 0);
+    const auto r = run_groom({"curl", in, "-o", hair, "--type", "3b", "--seed", "4"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("shape"), std::string::npos) << "no warning about columns nobody asked for: " << r.err;
+    const CurveSet a = read_curves(ply), b = read_curves(hair);
+    ASSERT_FALSE(a.find<int32_t>(Domain::Point, "shape").empty());
+    ASSERT_EQ(a.num_points(), b.num_points());
+    for (size_t i = 0; i < a.num_points(); ++i) ASSERT_EQ(a.positions()[i], b.positions()[i]) << "point " << i;
+}

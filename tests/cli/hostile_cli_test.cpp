@@ -300,16 +300,76 @@ TEST(Hostile, PartingStepTooFineForTheBudgetIsRefusedBeforeWalking)
 {
     // `--step 1e-6` across the head walked 12 million points (970 MB) past `--memory 0.0625` (found
     // after the op fuzzer's op_sections hang). The legs' bound (4 |a - b| / step + 16 points, as
-    // surface_path caps them) is checked first: here 4 * ~31 / 1e-6 points, about 4.5 GB.
+    // surface_path caps them) is checked first: here 4 * ~31 / 1e-6 points, about 4.5 GB. The budget
+    // holds the sphere's field (about 90 MB with what the process holds, as the scalp's estimate now
+    // counts it; 64 MiB did before it did).
     test::TempDir dir;
     const std::string mesh = sphere_mesh(dir), out = dir.file("p.usda");
     const auto bad = run_groom({"parting", "--scalp", mesh, "-o", out, "--through", "0,10,0/10,0,0/0,0,10", "--step", "1e-6", "--memory",
-                                "0.0625", "--quiet"});
+                                "0.125", "--quiet"});
     EXPECT_EQ(bad.exit_code, 1) << bad.err;
     EXPECT_TRUE(contains(bad.err, "--step")) << bad.err;
     EXPECT_TRUE(contains(bad.err, "memory budget")) << bad.err;
     EXPECT_FALSE(fs::exists(out));
-    const auto ok = run_groom({"parting", "--scalp", mesh, "-o", out, "--through", "0,10,0/10,0,0/0,0,10", "--memory", "0.0625", "--quiet"});
+    const auto ok = run_groom({"parting", "--scalp", mesh, "-o", out, "--through", "0,10,0/10,0,0/0,0,10", "--memory", "0.125", "--quiet"});
     EXPECT_EQ(ok.exit_code, 0) << ok.err;
     EXPECT_TRUE(fs::exists(out));
+}
+
+TEST(Hostile, BoundedOpsEstimateTheirOutputBeforeAllocating)
+{
+    // partition, cull, project and cornrow-guides make outputs bounded by their input or by closed
+    // ranges, but each still estimates its output against --memory before allocating, like every op:
+    // under a 2 MiB budget (the sphere scalp at --scalp-voxel 2 fits: about 1 MB of level set) each
+    // is refused naming its options and the estimate, and writes nothing; the same command at its
+    // defaults fits the same budget.
+    test::TempDir dir;
+    const std::string mesh = sphere_mesh(dir);
+    const std::vector<std::string> scalp = {"--scalp", mesh, "--scalp-voxel", "2", "--memory", "0.002", "--quiet"};
+    auto with = [&](std::vector<std::string> args) {
+        args.insert(args.end(), scalp.begin(), scalp.end());
+        return args;
+    };
+    auto refused = [&](const test::RunResult& r, const std::string& out, const std::vector<std::string>& parts) {
+        EXPECT_EQ(r.exit_code, 1) << r.err;
+        for (const std::string& p : parts) EXPECT_TRUE(contains(r.err, p)) << "missing '" << p << "' in: " << r.err;
+        EXPECT_TRUE(contains(r.err, "needs about ")) << r.err;
+        EXPECT_TRUE(contains(r.err, "over the 2.05 MiB memory budget")) << r.err;
+        EXPECT_TRUE(contains(r.err, "raise the budget with --memory GiB")) << r.err;
+        EXPECT_FALSE(fs::exists(out)) << out;
+    };
+
+    // cornrow-guides: 8 rows of 100,000 points, 16 MB of positions and root UVs.
+    const std::string rows = dir.file("rows.usda");
+    refused(run_groom(with({"cornrow-guides", "-o", rows, "--samples", "100000"})), rows,
+            {"cornrow-guides: 8 guides (--count) x 100000 --samples", "lower --count, --samples or --tail-samples"});
+    ASSERT_EQ(run_groom(with({"cornrow-guides", "-o", rows})).exit_code, 0);
+
+    // partition of those 8 rows: 100,000 segments per side of each, 1.6e6 x 8 points.
+    const std::string edges = dir.file("edges.usda");
+    refused(run_groom(with({"partition", rows, "-o", edges, "--count", "100000"})), edges,
+            {"segments (--count or --spacing per side of each guide) x 8 --samples", "raise --spacing or lower --count / --samples"});
+    const auto fits = run_groom(with({"partition", rows, "-o", edges}));
+    ASSERT_EQ(fits.exit_code, 0) << fits.err;
+    EXPECT_GT(read_curves(edges).num_curves(), 0u);
+
+    // project and cull copy their input: 20,000 curves x 16 points, 3.8 MB of positions.
+    // Straight hairs standing on the sphere's pole.
+    auto hairs = [&](size_t n, const std::string& name) {
+        CurveSet cs = CurveSet::from_counts(std::vector<int64_t>(n, 16));
+        auto P = cs.positions_for_write();
+        for (size_t i = 0; i < P.size(); ++i) P[i] = float3(0.0f, 10.5f + 0.1f * float(i % 16), 0.0f);
+        write_curves(cs, dir.file(name));
+        return dir.file(name);
+    };
+    const std::string big = hairs(20000, "many.ply");
+    const std::string moved = dir.file("moved.usda"), culled = dir.file("culled.usda");
+    refused(run_groom(with({"project", big, "-o", moved})), moved,
+            {"project: a copy of 320000 points in 20000 curves (the input)", "project fewer curves at a time"});
+    refused(run_groom(with({"cull", big, "-o", culled, "--mode", "trim"})), culled,
+            {"cull: up to 320000 points in 20000 curves (the input)", "cull fewer curves at a time"});
+    // The first 1,000 of them fit.
+    const std::string few = hairs(1000, "few.ply");
+    EXPECT_EQ(run_groom(with({"project", few, "-o", moved})).exit_code, 0);
+    EXPECT_EQ(run_groom(with({"cull", few, "-o", culled})).exit_code, 0);
 }

@@ -4,6 +4,7 @@
 
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
+#include "ops/head.h"
 #include "support/sphere_mesh.h"
 
 #include <cmath>
@@ -121,3 +122,82 @@ TEST(ScalpCli, BadInputFailsCleanlyWithoutOutput)
 }
 
 }  // namespace
+
+namespace {
+
+/// The default head (`groom head`: about 44 units across, centimetres) as OBJ object `head`, and
+/// one triangle (1 x 1) at x = `far` as object `stray`.
+std::string head_with_stray_triangle(const TempDir& dir, float far, const std::string& name)
+{
+    const PolygonSoup head = make_head(HeadParams{});
+    std::ostringstream obj;
+    obj << "o head\n";
+    for (const float3& p : head.points) obj << "v " << p.x << " " << p.y << " " << p.z << "\n";
+    for (size_t f = 0; f < head.num_faces(); ++f) {
+        obj << "f";
+        for (const int32_t i : head.face(f)) obj << " " << i + 1;
+        obj << "\n";
+    }
+    const size_t n = head.points.size();
+    obj << "o stray\nv " << far << " 0 0\nv " << far << " 1 0\nv " << far << " 0 1\nf " << n + 1 << " " << n + 2 << " " << n + 3 << "\n";
+    const std::string path = dir.file(name);
+    write_text(path, obj.str());
+    return path;
+}
+
+}  // namespace
+
+TEST(ScalpCli, AutomaticVoxelMadeCoarseByAStrayPartIsRefusedNamingIt)
+{
+    // One triangle 1000 units from the default head: the automatic voxel (diagonal / 256) is 4.1,
+    // the head spans 11 voxels and a probe through that grid flips inside and outside at 3% of the
+    // points in the head's box. Refused, naming the file, the stray triangle and the two fixes.
+    TempDir dir;
+    const std::string mesh = head_with_stray_triangle(dir, 1000.0f, "stray.obj"), out = dir.file("s.vdb");
+    const auto r = run_groom({"scalp", mesh, "-o", out, "--quiet"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    for (const std::string& part : std::vector<std::string>{mesh + ": the automatic voxel size ", "is too coarse for the head: its largest shell (16128 faces, 43.8",
+          "because 1 other shell (1 face) reaches out of its box, the farthest (1 face, bounds 1000, 0, 0 to 1000, 1, 1)",
+          "give --voxel 0.17", "keep only the head's faces with --group (OBJ)"})
+        EXPECT_NE(r.err.find(part), std::string::npos) << "missing '" << part << "' in: " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+
+    // The head's own automatic voxel spans it 256 times along its diagonal; the message says how few here.
+    const size_t spans = r.err.find("spans only ");
+    ASSERT_NE(spans, std::string::npos) << r.err;
+    const double voxels = std::stod(r.err.substr(spans + 11));
+    EXPECT_GT(voxels, 8.0);
+    EXPECT_LT(voxels, 16.0);
+
+    // Each fix converts it, and the head's centre is then inside by its cranium's radius or so.
+    write_text(dir.file("centre.txt"), "0 3 -1\n");
+    for (const std::vector<std::string>& fix : {std::vector<std::string>{"--voxel", "0.25"}, std::vector<std::string>{"--group", "head"}}) {
+        std::vector<std::string> args = {"scalp", mesh, "-o", out, "--quiet"};
+        args.insert(args.end(), fix.begin(), fix.end());
+        const auto ok = run_groom(args);
+        ASSERT_EQ(ok.exit_code, 0) << fix[0] << ": " << ok.err;
+        const auto p = run_groom({"probe", "--scalp", out, dir.file("centre.txt"), "-o", dir.file("c.csv"), "--quiet"});
+        ASSERT_EQ(p.exit_code, 0) << p.err;
+        std::istringstream csv(read_bytes(dir.file("c.csv")));
+        std::string line;
+        while (std::getline(csv, line) && !(line.size() && (std::isdigit(static_cast<unsigned char>(line[0])) || line[0] == '-'))) {
+        }
+        std::vector<double> v;
+        std::stringstream cells(line);
+        for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+        ASSERT_GE(v.size(), 4u) << line;
+        EXPECT_LT(v[3], -5.0) << fix[0] << ": " << line;
+    }
+
+    // A command converting the mesh on the fly names its own options.
+    const auto probe = run_groom({"probe", "--scalp", mesh, dir.file("centre.txt"), "-o", dir.file("c2.csv"), "--quiet"});
+    EXPECT_EQ(probe.exit_code, 1) << probe.err;
+    EXPECT_NE(probe.err.find("give --scalp-voxel 0.17"), std::string::npos) << probe.err;
+    EXPECT_NE(probe.err.find("with --scalp-group (OBJ)"), std::string::npos) << probe.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("c2.csv")));
+
+    // A part near the head (100 units away: the head still spans 92 voxels) is no reason to refuse.
+    const std::string near = head_with_stray_triangle(dir, 100.0f, "near.obj");
+    const auto n = run_groom({"scalp", near, "-o", dir.file("near.vdb"), "--quiet"});
+    EXPECT_EQ(n.exit_code, 0) << n.err;
+}

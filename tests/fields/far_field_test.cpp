@@ -99,8 +99,9 @@ TEST(FarField, ComparisonsAgreeWithTheExactDistanceOnAClosedAndAnOpenSurface)
         }
         // Nearly all of the closed sphere's space is certified. Around the 60-degree cap, every
         // point whose closest point is on the rim (most of the space away from the cap's cone) is
-        // signed by the winding number and left to the exact query.
-        EXPECT_GT(certified_points, off_band * (field == &sphere ? 97 : 25) / 100);
+        // signed by the winding number and left to the exact query. (24.8% since every rim vertex
+        // counts as one: OpenMesh's is_boundary(vertex), used before, missed most of them.)
+        EXPECT_GT(certified_points, off_band * (field == &sphere ? 97 : 22) / 100);
     }
 }
 
@@ -176,8 +177,10 @@ TEST(FarFieldReal, SintelsOpenHeadAnswersAsTheExactQuery)
     }
     EXPECT_GT(inside, 500);
     // The rest lie nearest the rims (the neck and arm cuts leave the bust open below), at folds,
-    // or straddle the surface between the band's voxels.
-    EXPECT_GT(certified_points, off_band * 80 / 100);
+    // or straddle the surface between the band's voxels. 63% since all 148 rim vertices count as
+    // rims (OpenMesh's is_boundary(vertex) had missed them: over 80% were certified, signed by a
+    // pseudo-normal whose fan stops at the rim); the hair of `generate` on this head is as fast.
+    EXPECT_GT(certified_points, off_band * 60 / 100);
 }
 
 }  // namespace

@@ -1,12 +1,15 @@
 // The Cem Yuksel .hair curve format (kernel/io/hair.cpp): round trips of points, width, colour and
 // opacity, header defaults and malformed input checked for the error text.
+#include "kernel/error.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/formats.h"
 #include "test_support.h"
 #include "tests/kernel/curve_samples.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 
@@ -77,4 +80,36 @@ TEST(CurveIoHair, RejectsMalformedInput)
     counts.append("\x02\x00", 2);  // 2 segments = 3 points, but the header says 5
     counts += std::string(60, '\0');
     expect_parse_error(dir.file("count.hair"), counts, "strand segment counts add up to 3 points but the header says 5");
+}
+
+// Written straight to the file a block at a time: the same bytes as the in-memory encoder, and a
+// curve .hair cannot hold (over 65,536 points) refused before anything lands, old file untouched.
+TEST(CurveIoHair, StreamedFileEqualsTheEncodedBytesAndRefusalsLeaveNothing)
+{
+    TempDir dir;
+    const CurveSet src = sample_curves();
+    write_curves(src, dir.file("a.hair"));
+    EXPECT_EQ(groom::test::read_bytes(dir.file("a.hair")), io::write_hair(src));
+
+    CurveSet big = CurveSet::from_counts(std::vector<int64_t>{3, 70000});
+    auto P = big.positions_for_write();
+    for (size_t i = 0; i < P.size(); ++i) P[i] = float3(float(i), 0.0f, 0.0f);
+    write_text(dir.file("old.hair"), "previous");
+    try {
+        write_curves(big, dir.file("old.hair"));
+        FAIL() << "a 70,000-point curve was written to .hair";
+    }
+    catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("curve 1 has 70000 points"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(groom::test::read_bytes(dir.file("old.hair")), "previous");
+    try {
+        write_curves(big, dir.file("new.hair"));
+    }
+    catch (const InvalidParam&) {
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("new.hair")));
+    size_t files = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+    EXPECT_EQ(files, 2u) << "a temporary was left behind";
 }

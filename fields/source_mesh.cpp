@@ -1,0 +1,91 @@
+#include "fields/source_mesh.h"
+
+#include "kernel/error.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+namespace groom::detail {
+
+std::string encode_source_mesh(std::span<const float3> points, std::span<const std::array<int32_t, 3>> tris)
+{
+    std::string out = "groom-source-mesh 1 " + std::to_string(points.size()) + " " + std::to_string(tris.size()) + "\n";
+    out.reserve(out.size() + points.size() * 36 + tris.size() * 21);
+    char buf[32];
+    auto num = [&](auto x, char sep) {
+        const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
+        out.append(buf, end);
+        out += sep;
+    };
+    for (const float3& p : points) num(p.x, ' '), num(p.y, ' '), num(p.z, '\n');
+    for (const auto& t : tris) num(t[0], ' '), num(t[1], ' '), num(t[2], '\n');
+    return out;
+}
+
+SourceMesh decode_source_mesh(std::string_view text, const std::string& what)
+{
+    size_t pos = 0;
+    auto fail = [&](const std::string& why) -> void {
+        throw ParseError(what + ": source mesh (grid metadata 'groom_source_mesh'): " + why + " (is the file corrupt?)");
+    };
+    auto token = [&]() {
+        while (pos < text.size() && (text[pos] == ' ' || text[pos] == '\n')) ++pos;
+        const size_t b = pos;
+        while (pos < text.size() && text[pos] != ' ' && text[pos] != '\n') ++pos;
+        return text.substr(b, pos - b);
+    };
+    auto integer = [&](int64_t lo, int64_t hi, const char* name) {
+        const std::string_view t = token();
+        int64_t v = 0;
+        const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+        if (t.empty() || ec != std::errc() || end != t.data() + t.size() || v < lo || v > hi) {
+            fail(std::string("expected ") + name + " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], found '" +
+                 std::string(t.substr(0, 32)) + "'");
+        }
+        return v;
+    };
+    auto real = [&]() {
+        const std::string_view t = token();
+        float v = 0;
+        const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+        if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v)) {
+            fail("expected a finite number, found '" + std::string(t.substr(0, 32)) + "'");
+        }
+        return v;
+    };
+    if (token() != "groom-source-mesh") fail("expected the header 'groom-source-mesh'");
+    if (integer(0, 1000000, "a version") != 1) fail("unknown version (this groom reads version 1)");
+    // Counts cannot exceed what the text could hold: a flipped digit must not allocate gigabytes.
+    const int64_t cap = int64_t(text.size() / 2 + 1);
+    const int64_t np = integer(3, std::min<int64_t>(cap, std::numeric_limits<int32_t>::max()), "a point count");
+    const int64_t nt = integer(1, std::min<int64_t>(cap, std::numeric_limits<int32_t>::max()), "a triangle count");
+    if (np * 3 + nt * 3 > cap) fail("the counts need more numbers than the text holds");
+    SourceMesh mesh;
+    mesh.points.resize(size_t(np));
+    for (float3& p : mesh.points) p.x = real(), p.y = real(), p.z = real();
+    mesh.tris.resize(size_t(nt));
+    for (auto& t : mesh.tris) {
+        for (int k = 0; k < 3; ++k) t[k] = int32_t(integer(0, np - 1, "a vertex index"));
+        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
+            fail("triangle " + std::to_string(&t - mesh.tris.data()) + " repeats a corner (" + std::to_string(t[0]) + " " +
+                 std::to_string(t[1]) + " " + std::to_string(t[2]) + ")");
+        }
+    }
+    if (!token().empty()) fail("unexpected text after the last triangle");
+    // Each directed edge once: the pseudo-normals pair every edge side with one face.
+    std::vector<std::pair<int32_t, int32_t>> edges;
+    edges.reserve(mesh.tris.size() * 3);
+    for (const auto& t : mesh.tris)
+        for (int k = 0; k < 3; ++k) edges.emplace_back(t[k], t[(k + 1) % 3]);
+    std::sort(edges.begin(), edges.end());
+    const auto dup = std::adjacent_find(edges.begin(), edges.end());
+    if (dup != edges.end()) {
+        fail("the edge " + std::to_string(dup->first) + " -> " + std::to_string(dup->second) +
+             " belongs to two triangles; expected an oriented manifold mesh");
+    }
+    return mesh;
+}
+
+}  // namespace groom::detail

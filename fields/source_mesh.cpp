@@ -1,5 +1,6 @@
 #include "fields/source_mesh.h"
 
+#include "fields/metadata_text.h"
 #include "kernel/error.h"
 
 #include <algorithm>
@@ -26,35 +27,11 @@ std::string encode_source_mesh(std::span<const float3> points, std::span<const s
 
 SourceMesh decode_source_mesh(std::string_view text, const std::string& what)
 {
-    size_t pos = 0;
-    auto fail = [&](const std::string& why) -> void {
-        throw ParseError(what + ": source mesh (grid metadata 'groom_source_mesh'): " + why + " (is the file corrupt?)");
-    };
-    auto token = [&]() {
-        while (pos < text.size() && (text[pos] == ' ' || text[pos] == '\n')) ++pos;
-        const size_t b = pos;
-        while (pos < text.size() && text[pos] != ' ' && text[pos] != '\n') ++pos;
-        return text.substr(b, pos - b);
-    };
-    auto integer = [&](int64_t lo, int64_t hi, const char* name) {
-        const std::string_view t = token();
-        int64_t v = 0;
-        const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-        if (t.empty() || ec != std::errc() || end != t.data() + t.size() || v < lo || v > hi) {
-            fail(std::string("expected ") + name + " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], found '" +
-                 std::string(t.substr(0, 32)) + "'");
-        }
-        return v;
-    };
-    auto real = [&]() {
-        const std::string_view t = token();
-        float v = 0;
-        const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-        if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v)) {
-            fail("expected a finite number, found '" + std::string(t.substr(0, 32)) + "'");
-        }
-        return v;
-    };
+    MetadataText in(text, what + ": source mesh (grid metadata 'groom_source_mesh')");
+    auto fail = [&](const std::string& why) { in.fail(why); };
+    auto token = [&]() { return in.token(); };
+    auto integer = [&](int64_t lo, int64_t hi, const char* name) { return in.integer(lo, hi, name); };
+    auto real = [&]() { return in.real(); };
     if (token() != "groom-source-mesh") fail("expected the header 'groom-source-mesh'");
     if (integer(0, 1000000, "a version") != 1) fail("unknown version (this groom reads version 1)");
     // Counts cannot exceed what the text could hold: a flipped digit must not allocate gigabytes.

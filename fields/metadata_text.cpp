@@ -1,0 +1,43 @@
+#include "fields/metadata_text.h"
+
+#include "kernel/error.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace groom::detail {
+
+void MetadataText::fail(const std::string& why) const { throw ParseError(context_ + ": " + why + " (is the file corrupt?)"); }
+
+std::string_view MetadataText::token()
+{
+    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\n')) ++pos_;
+    const size_t b = pos_;
+    while (pos_ < text_.size() && text_[pos_] != ' ' && text_[pos_] != '\n') ++pos_;
+    return text_.substr(b, pos_ - b);
+}
+
+int64_t MetadataText::integer(int64_t lo, int64_t hi, const char* name)
+{
+    const std::string_view t = token();
+    int64_t v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || end != t.data() + t.size() || v < lo || v > hi) {
+        fail(std::string("expected ") + name + " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], found '" +
+             std::string(t.substr(0, 32)) + "'");
+    }
+    return v;
+}
+
+float MetadataText::real()
+{
+    const std::string_view t = token();
+    float v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v)) {
+        fail("expected a finite number, found '" + std::string(t.substr(0, 32)) + "'");
+    }
+    return v;
+}
+
+}  // namespace groom::detail

@@ -85,13 +85,13 @@ constexpr std::array<ShapeEntry, 5> kShapes{{
 void ShapeParams::validate() const
 {
     if (!(lame_exponent > 0.0f) || !std::isfinite(lame_exponent) || lame_exponent > 100.0f) {
-        throw InvalidParam("curl: `lame_exponent` must be in (0, 100] (got " + std::to_string(lame_exponent) + ")");
+        throw InvalidParam("curl: `lame_exponent` must be in (0, 100] (got " + format_number(lame_exponent) + ")");
     }
     if (polygon_sides < 3 || polygon_sides > 64) {
         throw InvalidParam("curl: `polygon_sides` must be in 3..64 (got " + std::to_string(polygon_sides) + ")");
     }
     if (!(ellipse_aspect > 0.0f) || !(ellipse_aspect <= 1.0f)) {
-        throw InvalidParam("curl: `ellipse_aspect` must be in (0, 1] (got " + std::to_string(ellipse_aspect) + ")");
+        throw InvalidParam("curl: `ellipse_aspect` must be in (0, 1] (got " + format_number(ellipse_aspect) + ")");
     }
     if (rose_petals < 1 || rose_petals > 32) {
         throw InvalidParam("curl: `rose_petals` must be in 1..32 (got " + std::to_string(rose_petals) + ")");

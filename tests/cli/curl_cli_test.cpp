@@ -99,6 +99,10 @@ TEST(CurlCli, RejectsInvalidOptionsClearlyAndWritesNothing)
         EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
         EXPECT_FALSE(std::filesystem::exists(out)) << option;
     }
+    // The value found is printed as given, not as 31 digits of float expansion.
+    const auto huge = run_groom({"curl", in, "-o", out, "--lame-exponent", "1e30"});
+    EXPECT_EQ(huge.exit_code, 2) << huge.err;
+    EXPECT_NE(huge.err.find("(got 1e+30)"), std::string::npos) << huge.err;
 }
 
 TEST(CurlCli, RefusesToOverwriteItsInputAndReportsMissingFiles)

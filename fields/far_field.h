@@ -29,6 +29,7 @@
 // of its cell, so answers do not depend on the order or the thread that computed them.
 #pragma once
 
+#include "fields/cell_key_hash.h"
 #include "kernel/math/vec.h"
 
 #include <tbb/concurrent_unordered_map.h>
@@ -106,17 +107,7 @@ private:
         Certificate certificate;
         std::unique_ptr<Faces> faces;  ///< of a cell that failed and has children
     };
-    struct Hash {  // the keys pack coordinates into bit fields: std::hash's identity would chain them
-        size_t operator()(uint64_t k) const
-        {
-            k ^= k >> 33;
-            k *= 0xff51afd7ed558ccdull;
-            k ^= k >> 33;
-            k *= 0xc4ceb9fe1a85ec53ull;
-            return size_t(k ^ (k >> 33));
-        }
-    };
-    mutable tbb::concurrent_unordered_map<uint64_t, Entry, Hash> table_;
+    mutable tbb::concurrent_unordered_map<uint64_t, Entry, CellKeyHash> table_;
 };
 
 }  // namespace groom::detail

@@ -23,6 +23,7 @@
 // there the lists ran to hundreds of faces, and 2M hair points took 10% longer than the tree alone.
 #pragma once
 
+#include "fields/cell_key_hash.h"
 #include "kernel/math/vec.h"
 
 #include <tbb/concurrent_unordered_map.h>
@@ -73,17 +74,7 @@ private:
     const MeshGeometry& geometry_;
     const MeshQuery& query_;
     double ox_, oy_, oz_, side_, inv_side_;
-    struct Hash {
-        size_t operator()(uint64_t k) const
-        {
-            k ^= k >> 33;
-            k *= 0xff51afd7ed558ccdull;
-            k ^= k >> 33;
-            k *= 0xc4ceb9fe1a85ec53ull;
-            return size_t(k ^ (k >> 33));
-        }
-    };
-    mutable tbb::concurrent_unordered_map<uint64_t, std::unique_ptr<Cell>, Hash> table_;
+    mutable tbb::concurrent_unordered_map<uint64_t, std::unique_ptr<Cell>, CellKeyHash> table_;
 };
 
 }  // namespace groom::detail

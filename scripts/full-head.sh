@@ -18,7 +18,8 @@ step() {  # step NAME command...: prints NAME wall CPU peak
     local name=$1; shift
     /usr/bin/time -f "%e %U %S %M" -o "$out/time.txt" "$@" --threads "$threads" --force --quiet
     read -r wall user sys kb < "$out/time.txt"
-    printf '%-10s wall %6.2f s  CPU %6.2f s  peak %5d MB\n' "$name" "$wall" "$(echo "$user + $sys" | bc)" $((kb / 1024))
+    awk -v n="$name" -v w="$wall" -v u="$user" -v s="$sys" -v k="$kb" \
+        'BEGIN { printf "%-10s wall %6.2f s  CPU %6.2f s  peak %5d MiB\n", n, w, u + s, k / 1024 }' 
     echo "$kb" > "$out/$name.kb"
 }
 step scalp "$groom" scalp "$data/sintel.obj" -o "$out/sintel.vdb"
@@ -30,5 +31,5 @@ field_kb=$(cat "$out/scalp.kb")
 aim_kb=$((2 * bytes / 1024 + field_kb))
 worst=0
 for s in generate curl floor; do k=$(cat "$out/$s.kb"); [ "$k" -gt "$worst" ] && worst=$k; done
-echo "output $((bytes / 1048576)) MB; aim 2 x output + field = $((aim_kb / 1024)) MB; worst step $((worst / 1024)) MB"
+echo "output $((bytes / 1048576)) MiB; aim 2 x output + field = $((aim_kb / 1024)) MiB; worst step $((worst / 1024)) MiB"
 [ "$worst" -le "$aim_kb" ] && echo "full-head: within the memory aim" || echo "full-head: OVER the memory aim"

@@ -46,8 +46,10 @@ struct KeepOutside {
 
 /// @brief The rule on one point.
 /// With `anchor` (a point the caller expects to be clear, e.g. the curl's centreline under a curled
-/// point): a point that is not clear is first pulled back along the segment toward the anchor to the
-/// last place that is clear (24 bisections), which keeps the direction of its offset; only when the
+/// point): a point that is not clear is first pulled back along the segment toward the anchor to a
+/// place that is clear and within rule.margin / 16 of not being so along the segment (2^-24 of the
+/// segment for a zero margin), which keeps the direction of its offset. Where the segment crosses
+/// the scalp more than once any of those crossings may be the one found. Only when the
 /// anchor itself is not clear does the normal move apply.
 /// @param extra  added to rule.clearance for this point, scene units
 /// @return true when p moved

@@ -166,6 +166,33 @@ TEST(KeepOutside, CurvesKeepRootsAndSkipPointsProvablyClear)
     EXPECT_EQ(sphere.queries.load(), 3 + 1);
 }
 
+// With a margin the pull-back stops once the crossing is bracketed to a sixteenth of it: the point
+// ends clear, short of the crossing (the closed form of a line meeting the sphere) by no more than
+// that, and a smooth distance gets there in a few queries (regula falsi), not 24 halvings.
+TEST(KeepOutside, AnchorPullBackStopsWithinASixteenthOfTheMargin)
+{
+    const CountingSphere sphere;
+    const float margin = 1e-3f;
+    for (const float3 tip : {float3(0.1f, 0.3f, 0.2f), float3(0.9f, 0.2f, -0.1f), float3(-0.05f, 0.97f, 0.0f)}) {
+        const float3 anchor(0.2f, 1.4f, 0.1f);
+        float3 p = tip;
+        sphere.queries = 0;
+        ASSERT_TRUE(keep_outside(p, sphere, KeepOutside{0.0f, margin, 4}, 0.0f, &anchor));
+        EXPECT_LE(sphere.queries.load(), 2 + 10);  // the point and the anchor, then the bracket's steps
+        // |anchor + t off| = 1: the crossing t* nearest the anchor, and where the point ended.
+        const double ax = anchor.x, ay = anchor.y, az = anchor.z;
+        const double ox = double(tip.x) - ax, oy = double(tip.y) - ay, oz = double(tip.z) - az;
+        const double qa = ox * ox + oy * oy + oz * oz, qb = 2.0 * (ax * ox + ay * oy + az * oz), qc = ax * ax + ay * ay + az * az - 1.0;
+        const double crossing = (-qb - std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa);
+        const double t = std::sqrt(double(length_squared(p - anchor)) / qa), len = std::sqrt(qa);
+        EXPECT_GE(sphere.distance(p), 0.0f);
+        EXPECT_LE(crossing - t, margin / 16.0 / len + 1e-6) << tip.x;
+        EXPECT_GE(crossing - t, -1e-6) << tip.x;
+        const float3 along = normalize(p - anchor), want = normalize(tip - anchor);
+        EXPECT_NEAR(dot(along, want), 1.0f, kTol);
+    }
+}
+
 TEST(KeepOutside, GroupLiftsByTheMissingDistanceAndRestsWhenAsked)
 {
     const AnalyticPlane floor({0, 0, 0}, {0, 1, 0});

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <new>
 #include <vector>
 
 namespace groom::detail {
@@ -21,18 +23,37 @@ constexpr double kLimit = double(1 << 19);
 constexpr float kSplit = -1.0f;  ///< Certificate::m of a cell that failed and has smaller cells
 constexpr float kExact = -2.0f;  ///< Certificate::m of a smallest cell that failed
 
-uint32_t bits_of(float f)
+// The first level's dense block: the mesh's box in cells of that level and this many more each way
+// (hair hangs beyond the head: on Sintel every curled point of 100,000 hairs lies within 4), unless
+// that makes more than kDenseMax cells (32 MiB of slots at most, only the ones reached in memory).
+constexpr int64_t kDenseMargin = 8;
+constexpr int64_t kDenseMax = int64_t(1) << 22;
+
+// A slot: 0 until its cell is examined; then bits of Certificate::dc above bits of
+// Certificate::m, except for a split cell, whose m is kSplit and whose upper half is the index of
+// its Split (its dc is its faces' distance).
+uint64_t pack(float dc, float m)
 {
-    uint32_t u;
-    std::memcpy(&u, &f, sizeof u);
-    return u;
+    uint32_t lo, hi;
+    std::memcpy(&lo, &m, sizeof lo);
+    std::memcpy(&hi, &dc, sizeof hi);
+    return uint64_t(hi) << 32 | lo;
 }
 
-float float_of(uint32_t u)
+float slot_m(uint64_t slot)
 {
-    float f;
-    std::memcpy(&f, &u, sizeof f);
-    return f;
+    const uint32_t lo = uint32_t(slot);
+    float m;
+    std::memcpy(&m, &lo, sizeof m);
+    return m;
+}
+
+float slot_dc(uint64_t slot)
+{
+    const uint32_t hi = uint32_t(slot >> 32);
+    float dc;
+    std::memcpy(&dc, &hi, sizeof dc);
+    return dc;
 }
 
 uint64_t pack_key(int level, int64_t ix, int64_t iy, int64_t iz)
@@ -113,7 +134,26 @@ FarField::FarField(const MeshGeometry& geometry, const MeshQuery& query, const f
         for (const int32_t b : ring) ring_dirs_.push_back(unit(int32_t(a), b));
         ring_offsets_[a + 1] = int32_t(ring_dirs_.size());
     }
+    if (nv > 0) {
+        const double side = voxel_ * double(1 << kStartLevel);
+        const float3 lo = geometry.bounds_lo, hi = geometry.bounds_hi;
+        const double los[3] = {(lo.x - ox_) / side, (lo.y - oy_) / side, (lo.z - oz_) / side};
+        const double his[3] = {(hi.x - ox_) / side, (hi.y - oy_) / side, (hi.z - oz_) / side};
+        double cells = 1.0;
+        for (int k = 0; k < 3; ++k) {
+            const double a = std::floor(los[k]) - double(kDenseMargin), b = std::floor(his[k]) + double(kDenseMargin);
+            cells *= std::isfinite(a) && std::isfinite(b) ? b - a + 1.0 : 1e30;
+            dense_lo_[k] = std::isfinite(a) ? int64_t(std::clamp(a, -kLimit, kLimit)) : 0;
+            dense_n_[k] = std::isfinite(a) && std::isfinite(b) ? int64_t(std::clamp(b - a + 1.0, 0.0, kLimit)) : 0;
+        }
+        if (cells <= double(kDenseMax)) {
+            dense_.reset(static_cast<uint64_t*>(std::calloc(size_t(cells), sizeof(uint64_t))));
+            if (!dense_) throw std::bad_alloc();
+        }
+    }
 }
+
+void FarField::FreeDense::operator()(uint64_t* p) const { std::free(p); }
 
 FarField::~FarField() = default;
 
@@ -329,66 +369,102 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
     return Certificate{float(sign < 0 ? -distance : distance), float(least)};
 }
 
-FarField::Found FarField::lookup(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent) const
+uint64_t FarField::slot_value(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent, std::unique_ptr<Faces>& kept) const
 {
-    const uint64_t key = pack_key(level, ix, iy, iz);
-    if (const auto it = table_.find(key); it != table_.end()) return {it->second.certificate, it->second.faces.get()};
-    // Not there: computed here, and the first thread to store its (identical) answer wins.
-    std::unique_ptr<Faces> kept;
     const Certificate c = certify(level, ix, iy, iz, parent, &kept);
-    if (c.m != kSplit) kept.reset();
-    const auto [it, inserted] = table_.emplace(key, Entry{c, std::move(kept)});
-    return {it->second.certificate, it->second.faces.get()};
+    if (c.m != kSplit) {
+        kept.reset();
+        // All-zero bits mean "not examined": a certificate {0, 0} bounds nothing, as kExact does.
+        const uint64_t v = pack(c.dc, c.m);
+        return v != 0 ? v : pack(0.0f, kExact);
+    }
+    const auto it = splits_.emplace_back();
+    it->faces = std::move(*kept);
+    kept.reset();
+    return uint64_t(it - splits_.begin()) << 32 | (pack(0.0f, kSplit) & 0xffffffffu);
+}
+
+uint64_t FarField::resolve(uint64_t& slot, int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent) const
+{
+    const uint64_t seen = __atomic_load_n(&slot, __ATOMIC_ACQUIRE);
+    if (seen != 0) return seen;
+    std::unique_ptr<Faces> kept;
+    const uint64_t mine = slot_value(level, ix, iy, iz, parent, kept);
+    uint64_t expected = 0;
+    // The Split (if any) is complete before the release makes its index visible.
+    if (__atomic_compare_exchange_n(&slot, &expected, mine, false, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) return mine;
+    // Another thread stored the same answer first; a Split made here is left unused, emptied.
+    if (slot_m(mine) == kSplit) std::vector<int32_t>().swap(splits_[size_t(mine >> 32)].faces.faces);
+    return expected;
+}
+
+uint64_t FarField::first_level(int64_t ix, int64_t iy, int64_t iz) const
+{
+    const uint64_t dx = uint64_t(ix - dense_lo_[0]), dy = uint64_t(iy - dense_lo_[1]), dz = uint64_t(iz - dense_lo_[2]);
+    if (dense_ && dx < uint64_t(dense_n_[0]) && dy < uint64_t(dense_n_[1]) && dz < uint64_t(dense_n_[2])) {
+        return resolve(dense_[(dx * uint64_t(dense_n_[1]) + dy) * uint64_t(dense_n_[2]) + dz], kStartLevel, ix, iy, iz, nullptr);
+    }
+    const uint64_t key = pack_key(kStartLevel, ix, iy, iz);
+    if (const auto it = table_.find(key); it != table_.end()) return it->second;
+    std::unique_ptr<Faces> kept;
+    const uint64_t mine = slot_value(kStartLevel, ix, iy, iz, nullptr, kept);
+    const auto [it, inserted] = table_.emplace(key, mine);
+    if (!inserted && slot_m(mine) == kSplit) std::vector<int32_t>().swap(splits_[size_t(mine >> 32)].faces.faces);
+    return it->second;
 }
 
 float FarField::bound(const float3& p) const
 {
     const double x = (double(p.x) - ox_) * inv_voxel_, y = (double(p.y) - oy_) * inv_voxel_, z = (double(p.z) - oz_) * inv_voxel_;
     if (!(std::fabs(x) < kLimit && std::fabs(y) < kLimit && std::fabs(z) < kLimit)) return 0.0f;  // also NaN
+    // The voxel; a cell of level L is the voxel's coordinates shifted right by L (floor(x / 2^L)).
+    const int64_t vx = int64_t(std::floor(x)), vy = int64_t(std::floor(y)), vz = int64_t(std::floor(z));
     // The cell this thread answered from last: consecutive queries walk along a curve, mostly
-    // within one cell, and the table's walk down the levels is then skipped.
+    // within one cell, and the walk down the levels is then skipped.
     thread_local Last last;
     int level = last.level;
-    int64_t ix = 0, iy = 0, iz = 0;
-    Certificate c{0.0f, kExact};
-    bool found_last = false;
-    if (last.owner == id_) {
-        const double cells = 1.0 / double(1 << level);
-        ix = int64_t(std::floor(x * cells)), iy = int64_t(std::floor(y * cells)), iz = int64_t(std::floor(z * cells));
-        found_last = ix == last.ix && iy == last.iy && iz == last.iz;
-        c = last.certificate;
-    }
-    if (!found_last) {
-        const Faces* parent = nullptr;
-        for (level = kStartLevel; level >= kMinLevel; --level) {
-            const double cells = 1.0 / double(1 << level);
-            ix = int64_t(std::floor(x * cells)), iy = int64_t(std::floor(y * cells)), iz = int64_t(std::floor(z * cells));
-            const Found found = lookup(level, ix, iy, iz, parent);
-            c = found.certificate;
-            if (c.m != kSplit) break;
-            parent = found.faces;
+    uint64_t slot = last.slot;
+    if (!(last.owner == id_ && (vx >> level) == last.ix && (vy >> level) == last.iy && (vz >> level) == last.iz)) {
+        level = kStartLevel;
+        slot = first_level(vx >> level, vy >> level, vz >> level);
+        while (slot_m(slot) == kSplit && level > kMinLevel) {
+            Split& split = splits_[size_t(slot >> 32)];
+            --level;
+            const int child = int((vx >> level) & 1) | int((vy >> level) & 1) << 1 | int((vz >> level) & 1) << 2;
+            slot = resolve(split.children[child], level, vx >> level, vy >> level, vz >> level, &split.faces);
         }
-        if (level < kMinLevel) return 0.0f;
-        last = Last{id_, level, ix, iy, iz, c};
+        last = Last{id_, level, vx >> level, vy >> level, vz >> level, slot};
     }
-    if (c.m < 0.0f) return 0.0f;
+    const float m = slot_m(slot), dc = slot_dc(slot);
+    if (m < 0.0f) return 0.0f;
+    const int64_t ix = vx >> level, iy = vy >> level, iz = vz >> level;
     const double side = voxel_ * double(int64_t(1) << level);
     const float3 cf(float(ox_ + side * (double(ix) + 0.5)), float(oy_ + side * (double(iy) + 0.5)), float(oz_ + side * (double(iz) + 0.5)));
     const double dx = double(p.x) - cf.x, dy = double(p.y) - cf.y, dz = double(p.z) - cf.z;
-    double lower = std::max(std::fabs(double(c.dc)) - std::sqrt(dx * dx + dy * dy + dz * dz), double(c.m));
+    double lower = std::max(std::fabs(double(dc)) - std::sqrt(dx * dx + dy * dy + dz * dz), double(m));
     // Stay clear of the float rounding of the distance the exact query would return.
-    lower -= 1e-5 * (max_abs(p.x, p.y, p.z) + std::fabs(double(c.dc)) + side);
+    lower -= 1e-5 * (max_abs(p.x, p.y, p.z) + std::fabs(double(dc)) + side);
     if (!(lower > 0.0)) return 0.0f;
-    return float(c.dc < 0.0f ? -lower : lower);
+    return float(dc < 0.0f ? -lower : lower);
 }
 
 FarField::Counts FarField::counts() const
 {
     Counts c;
-    for (const auto& [key, entry] : table_) {
-        if (entry.certificate.m == kSplit) ++c.split;
-        else if (entry.certificate.m == kExact) ++c.exact;
+    const auto count = [&c](uint64_t slot) {
+        if (slot == 0) return;
+        const float m = slot_m(slot);
+        if (m == kSplit) ++c.split;
+        else if (m == kExact) ++c.exact;
         else ++c.certified;
+    };
+    if (dense_) {
+        const int64_t n = dense_n_[0] * dense_n_[1] * dense_n_[2];
+        for (int64_t i = 0; i < n; ++i) count(__atomic_load_n(&dense_[i], __ATOMIC_ACQUIRE));
+    }
+    for (const auto& [key, slot] : table_) count(slot);
+    for (const Split& split : splits_) {
+        for (const uint64_t& child : split.children) count(__atomic_load_n(&child, __ATOMIC_ACQUIRE));
     }
     return c;
 }

@@ -25,14 +25,17 @@
 // A cell of the first level starts from an exact query at its centre and the tree's faces near
 // it; a smaller cell starts from its parent's distance and faces, with no tree search.
 //
-// Certificates are computed on first use and kept in a lock-free hash table; each is a pure function
-// of its cell, so answers do not depend on the order or the thread that computed them.
+// Certificates are computed on first use and kept lock-free: the first level's in a block indexed
+// by cell coordinates around the mesh (a hash table beyond it), smaller cells' in their parent's
+// eight children; each is a pure function of its cell, so answers do not depend on the order or
+// the thread that computed them.
 #pragma once
 
 #include "fields/cell_key_hash.h"
 #include "kernel/math/vec.h"
 
 #include <tbb/concurrent_unordered_map.h>
+#include <tbb/concurrent_vector.h>
 
 #include <atomic>
 #include <cstdint>
@@ -76,21 +79,27 @@ private:
         double radius;
         std::vector<int32_t> faces;
     };
-    struct Found {
-        Certificate certificate;
-        const Faces* faces;  ///< of a cell that failed and has children, else null
+    /// A cell that failed and is split into eight: its faces, and its children's slots.
+    struct Split {
+        Faces faces;
+        uint64_t children[8] = {};  ///< slots (see .cpp), read and written atomically
     };
     struct Last {
         uint64_t owner = 0;  ///< id_ of the field
         int level = 0;
         int64_t ix = 0, iy = 0, iz = 0;
-        Certificate certificate{0.0f, 0.0f};
+        uint64_t slot = 0;
     };
     /// `parent`: the faces near the enclosing cell (which failed), or null for the first level.
     /// `kept`, when given: receives this cell's faces for its children.
     Certificate certify(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent, std::unique_ptr<Faces>* kept) const;
-    /// The certificate from the table, computed and stored on first use.
-    Found lookup(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent) const;
+    /// The slot's value for the cell: a certificate, or a split cell's Split. Computed on first use.
+    uint64_t slot_value(int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent, std::unique_ptr<Faces>& kept) const;
+    /// The cell's slot, filled on first use by a compare-exchange (the first thread's answer is kept;
+    /// every thread computes the same one).
+    uint64_t resolve(uint64_t& slot, int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent) const;
+    /// The slot of a first-level cell: in the dense block around the mesh, else in the hash table.
+    uint64_t first_level(int64_t ix, int64_t iy, int64_t iz) const;
 
     uint64_t id_;
     const MeshGeometry& geometry_;
@@ -101,13 +110,19 @@ private:
     std::vector<float> face_radius_;                             ///< per face: reach of its vertices from the centroid
     std::vector<int32_t> ring_offsets_;                          ///< per vertex + 1
     std::vector<float3> ring_dirs_;                              ///< unit directions of each vertex's edges
-    // Insert-only and growing with what the queries reach (an open-addressing table of fixed size
-    // overflowed on 200,000 points spread over nefertiti's head); lookups take no lock.
-    struct Entry {
-        Certificate certificate;
-        std::unique_ptr<Faces> faces;  ///< of a cell that failed and has children
+    // The first level's slots over the mesh's box and a margin, indexed without hashing (the hash
+    // table's find was 12% of `groom curl --scalp` on Sintel, perf): zero pages from calloc, so only
+    // the cells queries reach take memory. Cells outside it go to the hash table, insert-only and
+    // growing with what the queries reach (an open-addressing table of fixed size overflowed on
+    // 200,000 points spread over nefertiti's head); lookups take no lock.
+    struct FreeDense {
+        void operator()(uint64_t* p) const;
     };
-    mutable tbb::concurrent_unordered_map<uint64_t, Entry, CellKeyHash> table_;
+    std::unique_ptr<uint64_t[], FreeDense> dense_;
+    int64_t dense_lo_[3] = {0, 0, 0}, dense_n_[3] = {0, 0, 0};
+    mutable tbb::concurrent_unordered_map<uint64_t, uint64_t, CellKeyHash> table_;
+    /// Split cells' faces and children, never moved once made (slots hold their index).
+    mutable tbb::concurrent_vector<Split> splits_;
 };
 
 }  // namespace groom::detail

@@ -35,6 +35,7 @@ BrickMap& BrickMap::operator=(BrickMap&& o) noexcept
         slots_ = std::move(o.slots_);
         mask_ = o.mask_;
         origins_ = std::move(o.origins_);
+        whole_ = std::move(o.whole_);
         values_ = std::exchange(o.values_, nullptr);
         mapped_bytes_ = std::exchange(o.mapped_bytes_, 0);
     }
@@ -54,6 +55,7 @@ void BrickMap::allocate(const std::vector<openvdb::Coord>& leaf_origins)
 {
     release();
     origins_ = leaf_origins;
+    whole_.assign(leaf_origins.size() * 8, 0);
     const size_t n = origins_.size();
     size_t capacity = 16;
     while (capacity < 2 * n) capacity *= 2;
@@ -118,11 +120,24 @@ void BrickMap::fill_borders()
                     }
                 }
             }
+            // Which cells have every corner in the band (a NaN distance marks a voxel outside it).
+            uint64_t* bits = &whole_[size_t(b) * 8];
+            for (int x = 0; x < kLeaf; ++x) {
+                uint64_t word = 0;
+                for (int y = 0; y < kLeaf; ++y) {
+                    for (int z = 0; z < kLeaf; ++z) {
+                        bool in = true;
+                        for (int k = 0; k < 8; ++k) in = in && !std::isnan(v[index(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1))].d);
+                        if (in) word |= uint64_t(1) << (y * kLeaf + z);
+                    }
+                }
+                bits[x] = word;
+            }
         }
     });
 }
 
-bool BrickMap::interpolate(float x, float y, float z, float r[4]) const
+bool BrickMap::interpolate(float x, float y, float z, float r[4], bool whole) const
 {
     if (!values_) return false;  // no band at all
     if (!(std::fabs(x) < 1e9f && std::fabs(y) < 1e9f && std::fabs(z) < 1e9f)) return false;  // also NaN
@@ -130,6 +145,7 @@ bool BrickMap::interpolate(float x, float y, float z, float r[4]) const
     const int32_t ix = int32_t(fx), iy = int32_t(fy), iz = int32_t(fz);
     const int32_t b = find(ix >> 3, iy >> 3, iz >> 3);
     if (b < 0) return false;
+    if (whole && !((whole_[size_t(b) * 8 + size_t(ix & 7)] >> ((iy & 7) * kLeaf + (iz & 7))) & 1)) return false;
     const float* c = &values_[size_t(b) * kVolume + size_t(index(ix & 7, iy & 7, iz & 7))].d;
     const float tx = x - fx, ty = y - fy, tz = z - fz;
     constexpr int kY = kSide * 4, kX = kSide * kSide * 4;  // strides in floats; z neighbours are adjacent
@@ -147,10 +163,9 @@ bool BrickMap::interpolate(float x, float y, float z, float r[4]) const
 bool BrickMap::sample(float x, float y, float z, BandValue& out) const
 {
     float r[4];
-    if (!interpolate(x, y, z, r)) return false;
-    // Interpolation weights can be exactly 0, and 0 * NaN is NaN: a corner outside the band fails
-    // the sample even where it has no weight, which keeps the band's edge where it was.
-    if (!(r[0] == r[0])) return false;
+    // A corner outside the band fails the sample even where it has no weight (as 0 * NaN = NaN did
+    // when the corners were interpolated first), which keeps the band's edge where it was.
+    if (!interpolate(x, y, z, r, true)) return false;
     out = BandValue{r[0], r[1], r[2], r[3]};
     return true;
 }
@@ -158,7 +173,7 @@ bool BrickMap::sample(float x, float y, float z, BandValue& out) const
 bool BrickMap::gradient(float x, float y, float z, float& gx, float& gy, float& gz) const
 {
     float r[4];
-    if (!interpolate(x, y, z, r)) return false;
+    if (!interpolate(x, y, z, r, false)) return false;
     gx = r[1], gy = r[2], gz = r[3];
     return true;
 }

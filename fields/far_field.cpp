@@ -190,9 +190,14 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
     // Every point's closest point is within |d_c| + 2 r of the centre. Gathered a little wider:
     // the cell's children look for theirs among these.
     const double gather = (upper + 2.0 * r) * (1.0 + 1e-3) + 8.0 * margin;
-    std::vector<int32_t> faces;
-    std::vector<double> face_distance;
+    // Per-thread scratch (certify does not nest): a certificate is a few microseconds, and four
+    // vectors' allocations were a visible share of it.
+    thread_local std::vector<int32_t> faces;
+    thread_local std::vector<double> face_distance;
+    faces.clear();
+    face_distance.clear();
     if (parent && offset + gather <= parent->radius) {
+        const double gather2 = gather * gather * (1.0 + 1e-12);
         for (const int32_t f : parent->faces) {
             const float3& m = face_centre_[f];
             const double mx = double(m.x) - cf.x, my = double(m.y) - cf.y, mz = double(m.z) - cf.z;
@@ -202,7 +207,9 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
             Feature feature;
             const float3 q = closest_on_triangle(cf, geometry_.points[t[0]], geometry_.points[t[1]], geometry_.points[t[2]], feature);
             const double qx = double(q.x) - cf.x, qy = double(q.y) - cf.y, qz = double(q.z) - cf.z;
-            const double d = std::sqrt(qx * qx + qy * qy + qz * qz);
+            const double d2 = qx * qx + qy * qy + qz * qz;
+            if (d2 > gather2) continue;  // certainly sqrt(d2) > gather, decided without the root
+            const double d = std::sqrt(d2);
             if (d > gather) continue;
             faces.push_back(f);
             face_distance.push_back(d);
@@ -273,7 +280,8 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
         int side;
         double least;
     };
-    std::vector<Vote> votes;
+    thread_local std::vector<Vote> votes;
+    votes.clear();
     int seen_sides = 0;  // bit 0: a feature says outside, bit 1: inside
     // One feature that may be the closest to some point of the cell: the cell must lie on one side
     // of its plane (through q, normal n), and it must not be an open rim, unless it is dominated.
@@ -307,8 +315,8 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
         stamp.assign(std::max(stamp.size(), geometry_.points.size()), 0);
         generation = 1;
     }
-    std::vector<int32_t> vertices;
-    vertices.reserve(faces.size() * 3);
+    thread_local std::vector<int32_t> vertices;
+    vertices.clear();
     for (size_t i = 0; i < faces.size(); ++i) {
         if (face_distance[i] > radius) continue;
         const int32_t f = faces[i];

@@ -9,6 +9,10 @@
 namespace groom::cli {
 namespace {
 
+/// Output points a block holds when the output is written as it is made: large enough that every
+/// thread has curves to share (a few thousand hairs), small beside any groom worth streaming.
+constexpr int64_t kBlockPoints = int64_t(1) << 20;
+
 /// Whether the output's format keeps curl's point `shape` and `cycle` columns: .hair does not, and
 /// then they are not made (on a million hairs they were a quarter of the process's memory).
 bool keeps_point_labels(const std::string& output)
@@ -44,10 +48,30 @@ void setup(CommandContext& ctx)
         const auto progress = make_progress(common);
         std::shared_ptr<const ScalpField> scalp;
         if (!args->scalp.empty()) scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
-        const CurveSet out = curl(in, params, scalp.get(), progress.get());
-        write_curves(out, args->output);
-        note(common, "curl: " + std::to_string(out.num_curves()) + " curves, " + std::to_string(out.num_points()) + " points (type " +
-                         params.hair_type + ") -> " + args->output);
+        int64_t curves = 0, points = 0;
+        if (writes_curve_blocks(args->output)) {
+            // Written as it is made: the output is never whole in memory (a million hairs' curl
+            // held its input and its output, twice the file; now the input and one block).
+            OutputBatch batch;
+            std::unique_ptr<CurveBlockWriter> writer;
+            curl_blocks(
+                in, params, scalp.get(), progress.get(), kBlockPoints,
+                [&](std::span<const int64_t> counts) {
+                    writer = std::make_unique<CurveBlockWriter>(args->output, batch, counts);
+                    curves = int64_t(counts.size());
+                    for (const int64_t n : counts) points += n;
+                },
+                [&](const CurveSet& block) { writer->write(block); });
+            writer->finish();
+            batch.commit();
+        }
+        else {
+            const CurveSet out = curl(in, params, scalp.get(), progress.get());
+            write_curves(out, args->output);
+            curves = int64_t(out.num_curves()), points = int64_t(out.num_points());
+        }
+        note(common, "curl: " + std::to_string(curves) + " curves, " + std::to_string(points) + " points (type " + params.hair_type + ") -> " +
+                         args->output);
     };
 }
 

@@ -10,9 +10,13 @@
 #include "kernel/rng.h"
 #include "ops/hair_types.h"
 
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <future>
+#include <memory>
 #include <numbers>
 #include <sstream>
 
@@ -658,11 +662,19 @@ void curl_blocks(const CurveSet& src, const CurlParams& params, const Surface* s
     });
     start(plan.counts);
     const ProgressStep step(progress, "curl", int64_t(src.num_curves()));
+    // With more than one thread, a block is handed over while the next is curled: writing the
+    // file was the serial part of `groom curl` (about its whole I/O floor), now hidden behind the op.
+    const bool overlap = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
+    std::future<void> handing;
     int64_t c0 = 0;
     for (const int64_t c1 : ends) {
-        emit(curl_range(src, params, plan, c0, c1, scalp, step));
+        auto block = std::make_shared<CurveSet>(curl_range(src, params, plan, c0, c1, scalp, step));
+        if (handing.valid()) handing.get();  // in order, one at a time; its error is thrown here
+        if (overlap) handing = std::async(std::launch::async, [&emit, block] { emit(*block); });
+        else emit(*block);
         c0 = c1;
     }
+    if (handing.valid()) handing.get();
 }
 
 }  // namespace groom

@@ -3,15 +3,12 @@
 #include "cli/scalp_options.h"
 #include "cli/curl_options.h"
 #include "fields/scalp_field.h"
+#include "kernel/curve_blocks.h"
 #include "kernel/io/curve_io.h"
 #include "ops/curl.h"
 
 namespace groom::cli {
 namespace {
-
-/// Output points a block holds when the output is written as it is made: large enough that every
-/// thread has curves to share (a few thousand hairs), small beside any groom worth streaming.
-constexpr int64_t kBlockPoints = int64_t(1) << 20;
 
 /// Whether the output's format keeps curl's point `shape` and `cycle` columns: .hair does not, and
 /// then they are not made (on a million hairs they were a quarter of the process's memory).
@@ -55,7 +52,7 @@ void setup(CommandContext& ctx)
             OutputBatch batch;
             std::unique_ptr<CurveBlockWriter> writer;
             curl_blocks(
-                in, params, scalp.get(), progress.get(), kBlockPoints,
+                in, params, scalp.get(), progress.get(), kCurveBlockPoints,
                 [&](std::span<const int64_t> counts) {
                     writer = std::make_unique<CurveBlockWriter>(args->output, batch, counts);
                     curves = int64_t(counts.size());

@@ -1,6 +1,7 @@
 #include "ops/curl.h"
 
 #include "fields/keep_outside.h"
+#include "kernel/curve_blocks.h"
 #include "kernel/error.h"
 #include "kernel/math/frames.h"
 #include "kernel/math/polyline.h"
@@ -10,13 +11,9 @@
 #include "kernel/rng.h"
 #include "ops/hair_types.h"
 
-#include <tbb/global_control.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <future>
-#include <memory>
 #include <numbers>
 #include <sstream>
 
@@ -646,35 +643,14 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
 void curl_blocks(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress, int64_t block_points,
                  const std::function<void(std::span<const int64_t> counts)>& start, const std::function<void(const CurveSet& block)>& emit)
 {
-    // Blocks end where they first reach block_points output points (a curve is never split).
     std::vector<int64_t> ends;
     const CurlPlan plan = plan_curl(src, params, [&](std::span<const int64_t> counts) {
-        int64_t largest = 0, held = 0;
-        for (size_t c = 0; c < counts.size(); ++c) {
-            held += counts[c];
-            if (held >= block_points || c + 1 == counts.size()) {
-                ends.push_back(int64_t(c) + 1);
-                largest = std::max(largest, held);
-                held = 0;
-            }
-        }
-        return largest;
+        ends = curve_block_ends(counts, block_points);
+        return largest_curve_block(counts, ends);
     });
     start(plan.counts);
     const ProgressStep step(progress, "curl", int64_t(src.num_curves()));
-    // With more than one thread, a block is handed over while the next is curled: writing the
-    // file was the serial part of `groom curl` (about its whole I/O floor), now hidden behind the op.
-    const bool overlap = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
-    std::future<void> handing;
-    int64_t c0 = 0;
-    for (const int64_t c1 : ends) {
-        auto block = std::make_shared<CurveSet>(curl_range(src, params, plan, c0, c1, scalp, step));
-        if (handing.valid()) handing.get();  // in order, one at a time; its error is thrown here
-        if (overlap) handing = std::async(std::launch::async, [&emit, block] { emit(*block); });
-        else emit(*block);
-        c0 = c1;
-    }
-    if (handing.valid()) handing.get();
+    hand_over_curve_blocks(ends, [&](int64_t c0, int64_t c1) { return curl_range(src, params, plan, c0, c1, scalp, step); }, emit);
 }
 
 }  // namespace groom

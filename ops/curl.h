@@ -123,8 +123,8 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
 /// @param block_points  a block ends at the first curve that brings it to this many output points
 /// @param start  called once, before the first block, with every output curve's point count
 /// @param emit   called with each block in order (curves [c0, c1) of the output, nothing else),
-///               one call at a time; with more than one thread allowed, from another thread while
-///               the next block is curled (an exception it throws ends the run, rethrown here)
+///               one call at a time, possibly from another thread while the next block is curled
+///               (kernel/curve_blocks.h; an exception it throws ends the run, rethrown here)
 /// Throws as curl() does, before `start` is called; the memory check counts the largest block.
 void curl_blocks(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress, int64_t block_points,
                  const std::function<void(std::span<const int64_t> counts)>& start, const std::function<void(const CurveSet& block)>& emit);

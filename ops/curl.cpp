@@ -595,6 +595,7 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
 
             const double to_input = cl.length > 0.0 ? in_len / cl.length : 0.0;
             const int64_t ncycles = int64_t(draws.cycles.size());
+            size_t cursor = 0;  // the points walk up the curve: each lookup goes on from the last
             for (int64_t j = 0; j < n; ++j) {
                 const size_t o = size_t(d.begin + j);
                 dP[o] = out[size_t(j)];
@@ -606,7 +607,7 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
                 }
                 if (!dwidth.empty() || gather) {
                     // Where this point's centreline position falls on the input curve, by arc length.
-                    const ArcSpot a = locate_at_length(in_cum, s_of[size_t(j)] * to_input);
+                    const ArcSpot a = locate_at_length(in_cum, s_of[size_t(j)] * to_input, cursor);
                     if (!dwidth.empty()) {
                         dwidth[o] = float((1.0 - a.t) * src_width[size_t(r.begin) + a.lo] + a.t * src_width[size_t(r.begin) + a.hi]);
                     }

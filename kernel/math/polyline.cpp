@@ -23,18 +23,42 @@ std::vector<double> cumulative_lengths(std::span<const float3> pts)
     return out;
 }
 
-ArcSpot locate_at_length(std::span<const double> cumulative, double s)
+namespace {
+
+/// The spot once `first` (the first point whose cumulative length exceeds s) is known.
+ArcSpot spot_at(std::span<const double> cumulative, double s, size_t first)
 {
-    s = std::clamp(s, 0.0, cumulative.back());
-    // First point whose cumulative length exceeds s; the segment before it holds s.
     ArcSpot a;
-    a.hi = std::min<size_t>(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin()),
-                            cumulative.size() - 1);
+    a.hi = std::min<size_t>(first, cumulative.size() - 1);
     a.lo = a.hi > 0 ? a.hi - 1 : 0;
     const double seg = cumulative[a.hi] - cumulative[a.lo];
     a.t = seg > 0.0 ? (s - cumulative[a.lo]) / seg : 0.0;
     a.nearest = s - cumulative[a.lo] < cumulative[a.hi] - s ? a.lo : a.hi;
     return a;
+}
+
+}  // namespace
+
+ArcSpot locate_at_length(std::span<const double> cumulative, double s)
+{
+    s = std::clamp(s, 0.0, cumulative.back());
+    // First point whose cumulative length exceeds s; the segment before it holds s.
+    return spot_at(cumulative, s, size_t(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin()));
+}
+
+ArcSpot locate_at_length(std::span<const double> cumulative, double s, size_t& cursor)
+{
+    s = std::clamp(s, 0.0, cumulative.back());
+    size_t first = cursor;
+    if (first > cumulative.size() || (first > 0 && cumulative[first - 1] > s)) {
+        first = size_t(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin());  // s went back
+    }
+    else {
+        // Every point before the cursor is at or before s: the first beyond s is at or after it.
+        while (first < cumulative.size() && cumulative[first] <= s) ++first;
+    }
+    cursor = first;
+    return spot_at(cumulative, s, first);
 }
 
 float3 point_at_length(std::span<const float3> pts, std::span<const double> cumulative, double s)
@@ -52,8 +76,15 @@ std::vector<float3> resample_by_count(std::span<const float3> pts, int count)
     if (out.empty() || pts.empty()) return out;
     const std::vector<double> cum = cumulative_lengths(pts);
     const double total = cum.back();
+    size_t cursor = 0;  // the lengths asked for only grow: each lookup walks on from the last
     for (int i = 0; i < count; ++i) {
-        out[i] = count == 1 ? pts.front() : point_at_length(pts, cum, total * i / (count - 1));
+        const double s = total * i / (count - 1);
+        if (count == 1 || pts.size() == 1 || s <= 0.0) out[i] = pts.front();
+        else if (s >= total) out[i] = pts.back();
+        else {
+            const ArcSpot a = locate_at_length(cum, s, cursor);
+            out[i] = lerp(pts[a.lo], pts[a.hi], static_cast<float>(a.t));
+        }
     }
     if (count >= 2) {
         out.front() = pts.front();

@@ -28,6 +28,10 @@ struct ArcSpot {
 /// hi of the last segment with t = 1); of points at the same arc length (a zero-length segment) the
 /// last is the nearest.
 ArcSpot locate_at_length(std::span<const double> cumulative, double s);
+/// The same for a caller walking along the curve: `cursor` (start it at 0) remembers where the last
+/// lookup ended, so lengths that only grow cost a step or two each instead of a binary search (the
+/// answer is the same; a length smaller than the last is searched for).
+ArcSpot locate_at_length(std::span<const double> cumulative, double s, size_t& cursor);
 
 /// Position at arc length `s` (clamped to [0, length]) given the cumulative lengths of `pts`.
 float3 point_at_length(std::span<const float3> pts, std::span<const double> cumulative, double s);

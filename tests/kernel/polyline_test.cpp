@@ -124,7 +124,13 @@ TEST(Polyline, LocateAtLengthOnAStraightLine)
         {-1.0, 0, 1, 0.0, 0},   // clamped
         {10.0, 3, 4, 1.0, 4},
     };
+    size_t cursor = 0;  // the walking form, asked in the table's order (up, then back down, clamped)
     for (const Want& w : cases) {
+        const ArcSpot walked = locate_at_length(cum, w.s, cursor);
+        EXPECT_EQ(walked.lo, w.lo) << w.s;
+        EXPECT_EQ(walked.hi, w.hi) << w.s;
+        EXPECT_DOUBLE_EQ(walked.t, w.t) << w.s;
+        EXPECT_EQ(walked.nearest, w.nearest) << w.s;
         const ArcSpot a = locate_at_length(cum, w.s);
         EXPECT_EQ(a.lo, w.lo) << w.s;
         EXPECT_EQ(a.hi, w.hi) << w.s;

@@ -8,9 +8,12 @@
 #include "kernel/io/point_table.h"
 #include "kernel/parallel.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace groom::cli {
@@ -41,30 +44,75 @@ QueryOrder query_order(const std::vector<float3>& points, float side)
 {
     QueryOrder out;
     if (points.size() < 16 || !(side > 0.0f) || points.size() > size_t(UINT32_MAX)) return out;
-    std::vector<std::pair<uint64_t, uint32_t>> keys(points.size());
+    const size_t n = points.size();
     const double inv = 1.0 / double(side);
-    parallel_for(int64_t(points.size()), 1 << 14, [&](int64_t b, int64_t e) {
-        for (int64_t i = b; i < e; ++i) {
-            const float3& p = points[size_t(i)];
-            // 21 bits an axis, wrapping: a collision only merges two cells, an estimate either way.
-            // (Clamped first: a float beyond int64's range does not convert.)
-            const auto cell = [&](float v) {
-                return uint64_t(int64_t(std::clamp(std::floor(double(v) * inv), -0x1p62, 0x1p62))) & 0x1fffff;
-            };
-            const uint64_t x = cell(p.x), y = cell(p.y), z = cell(p.z);
-            // The block (19 bits an axis), then the cell within it: one key per cell either way.
-            const uint64_t block = (x >> 2) | (y >> 2) << 19 | (z >> 2) << 38;
-            keys[size_t(i)] = {block << 6 | (x & 3) | (y & 3) << 2 | (z & 3) << 4, uint32_t(i)};
-        }
-    });
-    tbb::parallel_sort(keys.begin(), keys.end());
-    size_t cells = 0;
-    out.order.resize(keys.size());
-    for (size_t i = 0; i < keys.size(); ++i) {
-        cells += i == 0 || keys[i].first != keys[i - 1].first;
-        out.order[i] = keys[i].second;
+    // A point's cell along one axis (clamped first: a float beyond int64's range does not convert).
+    const auto cell = [&](float v) { return int64_t(std::clamp(std::floor(double(v) * inv), -0x1p62, 0x1p62)); };
+    using Box = std::array<int64_t, 6>;  // lowest x y z, highest x y z
+    const Box box = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, 1 << 14), Box{INT64_MAX, INT64_MAX, INT64_MAX, INT64_MIN, INT64_MIN, INT64_MIN},
+        [&](const tbb::blocked_range<size_t>& r, Box b) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const int64_t c[3] = {cell(points[i].x), cell(points[i].y), cell(points[i].z)};
+                for (int k = 0; k < 3; ++k) {
+                    b[size_t(k)] = std::min(b[size_t(k)], c[k]);
+                    b[size_t(k) + 3] = std::max(b[size_t(k) + 3], c[k]);
+                }
+            }
+            return b;
+        },
+        [](Box a, const Box& b) {
+            for (int k = 0; k < 3; ++k) {
+                a[size_t(k)] = std::min(a[size_t(k)], b[size_t(k)]);
+                a[size_t(k) + 3] = std::max(a[size_t(k) + 3], b[size_t(k) + 3]);
+            }
+            return a;
+        });
+    // Blocks of 4^3 cells over the points' box, in z, y, x order, then the cell in its block.
+    uint64_t blocks[3];
+    bool small = true;
+    for (int k = 0; k < 3; ++k) {
+        const uint64_t span = uint64_t(box[size_t(k) + 3]) - uint64_t(box[size_t(k)]);  // no overflow in unsigned
+        small &= span < (uint64_t(1) << 20);
+        blocks[k] = small ? (span >> 2) + 1 : 0;
     }
-    out.dense = points.size() >= 16 * cells;
+    size_t occupied = 0;
+    out.order.resize(n);
+    if (small && blocks[0] * blocks[1] * blocks[2] * 64 <= 4 * uint64_t(n)) {
+        // A counting sort (stable: a cell's points in the file's order), where a comparison sort
+        // of 2M keys took 0.13 s.
+        const auto key = [&](const float3& p) {
+            const uint64_t x = uint64_t(cell(p.x) - box[0]), y = uint64_t(cell(p.y) - box[1]), z = uint64_t(cell(p.z) - box[2]);
+            const uint64_t block = ((z >> 2) * blocks[1] + (y >> 2)) * blocks[0] + (x >> 2);
+            return size_t(block << 6 | (x & 3) | (y & 3) << 2 | (z & 3) << 4);
+        };
+        std::vector<uint32_t> start(size_t(blocks[0] * blocks[1] * blocks[2] * 64) + 1, 0);
+        for (const float3& p : points) ++start[key(p) + 1];
+        for (size_t k = 1; k < start.size(); ++k) {
+            occupied += start[k] != 0;
+            start[k] += start[k - 1];
+        }
+        for (size_t i = 0; i < n; ++i) out.order[start[key(points[i])]++] = uint32_t(i);
+    }
+    else {
+        // Points spread far apart: sort keys of 21 bits an axis, wrapping (a collision only merges
+        // two cells in the count, an estimate either way; within 2^20 cells, above, there is none).
+        std::vector<std::pair<uint64_t, uint32_t>> keys(n);
+        parallel_for(int64_t(n), 1 << 14, [&](int64_t b, int64_t e) {
+            for (int64_t i = b; i < e; ++i) {
+                const float3& p = points[size_t(i)];
+                const uint64_t x = uint64_t(cell(p.x)) & 0x1fffff, y = uint64_t(cell(p.y)) & 0x1fffff, z = uint64_t(cell(p.z)) & 0x1fffff;
+                const uint64_t block = (x >> 2) | (y >> 2) << 19 | (z >> 2) << 38;
+                keys[size_t(i)] = {block << 6 | (x & 3) | (y & 3) << 2 | (z & 3) << 4, uint32_t(i)};
+            }
+        });
+        tbb::parallel_sort(keys.begin(), keys.end());
+        for (size_t i = 0; i < n; ++i) {
+            occupied += i == 0 || keys[i].first != keys[i - 1].first;
+            out.order[i] = keys[i].second;
+        }
+    }
+    out.dense = n >= 16 * occupied;
     return out;
 }
 

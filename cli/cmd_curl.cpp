@@ -3,6 +3,7 @@
 #include "cli/scalp_options.h"
 #include "cli/curl_options.h"
 #include "fields/scalp_field.h"
+#include "kernel/curve_blocks.h"
 #include "kernel/io/curve_io.h"
 #include "ops/curl.h"
 
@@ -44,10 +45,30 @@ void setup(CommandContext& ctx)
         const auto progress = make_progress(common);
         std::shared_ptr<const ScalpField> scalp;
         if (!args->scalp.empty()) scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
-        const CurveSet out = curl(in, params, scalp.get(), progress.get());
-        write_curves(out, args->output);
-        note(common, "curl: " + std::to_string(out.num_curves()) + " curves, " + std::to_string(out.num_points()) + " points (type " +
-                         params.hair_type + ") -> " + args->output);
+        int64_t curves = 0, points = 0;
+        if (writes_curve_blocks(args->output)) {
+            // Written as it is made: the output is never whole in memory (a million hairs' curl
+            // held its input and its output, twice the file; now the input and one block).
+            OutputBatch batch;
+            std::unique_ptr<CurveBlockWriter> writer;
+            curl_blocks(
+                in, params, scalp.get(), progress.get(), kCurveBlockPoints,
+                [&](std::span<const int64_t> counts) {
+                    writer = std::make_unique<CurveBlockWriter>(args->output, batch, counts);
+                    curves = int64_t(counts.size());
+                    for (const int64_t n : counts) points += n;
+                },
+                [&](const CurveSet& block) { writer->write(block); });
+            writer->finish();
+            batch.commit();
+        }
+        else {
+            const CurveSet out = curl(in, params, scalp.get(), progress.get());
+            write_curves(out, args->output);
+            curves = int64_t(out.num_curves()), points = int64_t(out.num_points());
+        }
+        note(common, "curl: " + std::to_string(curves) + " curves, " + std::to_string(points) + " points (type " + params.hair_type + ") -> " +
+                         args->output);
     };
 }
 

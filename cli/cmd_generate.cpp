@@ -6,6 +6,7 @@
 #include "cli/scalp_options.h"
 #include "cli/width_options.h"
 #include "fields/scalp_field.h"
+#include "kernel/curve_blocks.h"
 #include "kernel/io/curve_io.h"
 #include "ops/generate.h"
 
@@ -77,12 +78,31 @@ void setup(CommandContext& ctx)
             params.range_end = (shard.shard + 1) * params.count / shard.shards;
             shard.claimed = true;
         }
-        const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), params, progress.get());
-        write_curves(out, args->output);
+        size_t curves = 0, points = 0;
+        if (writes_curve_blocks(args->output)) {
+            // Written as it is grown: the output is never whole in memory (kernel/curve_blocks.h).
+            OutputBatch batch;
+            std::unique_ptr<CurveBlockWriter> writer;
+            generate_blocks(
+                guides, *scalp, scalp_root_sampler(*scalp), params, progress.get(), kCurveBlockPoints,
+                [&](std::span<const int64_t> counts) {
+                    writer = std::make_unique<CurveBlockWriter>(args->output, batch, counts);
+                    curves = counts.size();
+                    for (const int64_t n : counts) points += size_t(n);
+                },
+                [&](const CurveSet& block) { writer->write(block); });
+            writer->finish();
+            batch.commit();
+        }
+        else {
+            const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), params, progress.get());
+            write_curves(out, args->output);
+            curves = out.num_curves(), points = out.num_points();
+        }
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char line[256];
-        std::snprintf(line, sizeof line, "generate: %zu curves from %zu guides, %zu points, %.2f s -> ", out.num_curves(),
-                      guides.num_curves(), out.num_points(), secs);
+        std::snprintf(line, sizeof line, "generate: %zu curves from %zu guides, %zu points, %.2f s -> ", curves, guides.num_curves(), points,
+                      secs);
         note(common, line + args->output);
     };
 }

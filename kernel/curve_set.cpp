@@ -62,17 +62,19 @@ void CurveSet::set_offsets(std::vector<int64_t> offsets)
     attributes(Domain::Detail).resize(1);
 }
 
-std::vector<int64_t> CurveSet::curve_ids() const
+std::vector<int64_t> CurveSet::curve_ids() const { return curve_ids(0, num_curves()); }
+
+std::vector<int64_t> CurveSet::curve_ids(size_t begin, size_t end) const
 {
-    std::vector<int64_t> ids(num_curves());
+    std::vector<int64_t> ids(end - begin);
     if (auto id64 = find<int64_t>(Domain::Curve, attr::id); !id64.empty()) {
-        std::copy(id64.begin(), id64.end(), ids.begin());
+        std::copy(id64.begin() + ptrdiff_t(begin), id64.begin() + ptrdiff_t(end), ids.begin());
     }
     else if (auto id32 = find<int32_t>(Domain::Curve, attr::id); !id32.empty()) {
-        std::copy(id32.begin(), id32.end(), ids.begin());
+        std::copy(id32.begin() + ptrdiff_t(begin), id32.begin() + ptrdiff_t(end), ids.begin());
     }
     else {
-        for (size_t c = 0; c < ids.size(); ++c) ids[c] = static_cast<int64_t>(c);
+        for (size_t c = 0; c < ids.size(); ++c) ids[c] = static_cast<int64_t>(begin + c);
     }
     return ids;
 }

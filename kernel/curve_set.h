@@ -80,6 +80,8 @@ public:
 
     /// Curve ids: the "id" curve attribute when present (int64 or int32), else the curve index.
     std::vector<int64_t> curve_ids() const;
+    /// The same for curves [begin, end) only (an op working a block of curves at a time).
+    std::vector<int64_t> curve_ids(size_t begin, size_t end) const;
 
     /// Detail string attribute, or `fallback` when absent.
     std::string detail_string(std::string_view name, std::string_view fallback = {}) const;

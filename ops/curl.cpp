@@ -1,6 +1,7 @@
 #include "ops/curl.h"
 
 #include "fields/keep_outside.h"
+#include "kernel/curve_blocks.h"
 #include "kernel/error.h"
 #include "kernel/math/frames.h"
 #include "kernel/math/polyline.h"
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <sstream>
 
@@ -480,26 +482,39 @@ int pick_curl_shape(const CurlShapeTiers& tiers, double x)
     return tiers.order.back();
 }
 
-CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress)
+namespace {
+
+/// What every block of one run shares: the resolved parameters and, per input curve, its output
+/// point count and frequency (a curve's draws depend only on its id, never on its block).
+struct CurlPlan {
+    Resolved res;
+    std::vector<int64_t> counts;
+    std::vector<float> frequency;
+    bool gather = false;  ///< other point attributes are taken from the nearest input point
+};
+
+/// The count pass over every curve, and the output's size checked against the limits. `held`:
+/// output points held at once (all of them, or a streamed run's largest block), for the memory check.
+CurlPlan plan_curl(const CurveSet& src, const CurlParams& params, const std::function<int64_t(std::span<const int64_t>)>& held)
 {
     params.validate();
-    const Resolved res = resolve(params);
+    CurlPlan plan;
+    plan.res = resolve(params);
     const auto P = src.positions();
     const size_t nc = src.num_curves();
-    const std::vector<int64_t> ids = src.curve_ids();
-    const auto src_width = src.find<float>(Domain::Point, attr::width);
-    ProgressStep step(progress, "curl", int64_t(nc));
-
-    // Count -> scan -> fill.
-    std::vector<CurveSetup> setup(nc);
+    plan.counts.resize(nc);
+    plan.frequency.resize(nc);
     parallel_for(int64_t(nc), 256, [&](int64_t b, int64_t e) {
+        const std::vector<int64_t> ids = src.curve_ids(size_t(b), size_t(e));
         for (int64_t c = b; c < e; ++c) {
             const IndexRange r = src.points_of(size_t(c));
-            setup[size_t(c)] = setup_curve(params, res, P.subspan(size_t(r.begin), size_t(r.size())), uint64_t(ids[size_t(c)]));
+            const CurveSetup s = setup_curve(params, plan.res, P.subspan(size_t(r.begin), size_t(r.size())), uint64_t(ids[size_t(c - b)]));
+            plan.counts[size_t(c)] = s.points;
+            plan.frequency[size_t(c)] = s.frequency;
         }
     });
-    int64_t total = 0;
-    for (const CurveSetup& s : setup) total += s.points;
+    int64_t total = 0, largest = 0;
+    for (const int64_t n : plan.counts) total += n, largest = std::max(largest, n);
     if (total >= kMaxPoints) {
         throw LimitExceeded("curl: the output would have " + std::to_string(total) + " points (limit " + std::to_string(kMaxPoints) +
                             "); lower `samples` or `frequency`");
@@ -507,19 +522,23 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     // Before allocating (a curve 1.7e7 units long asked for 5e8 points and was killed past 2 GB: op
     // fuzzer): the output copies every point column of the input and adds shape, cycle and width; a
     // worker's centreline holds a curve's points and frames.
-    int64_t largest = 0;
-    for (const CurveSetup& s : setup) largest = std::max(largest, s.points);
-    check_memory("curl: " + std::to_string(total) + " output points (curve length x `frequency` x `samples`)",
-                 double(total) * (bytes_per_point(src) + (params.labels ? 12.0 : 4.0)) + double(largest) * 64.0, "lower `frequency` or `samples`");
+    const int64_t at_once = held(plan.counts);
+    check_memory("curl: " + std::to_string(at_once) + " output points held (curve length x `frequency` x `samples`)",
+                 double(at_once) * (bytes_per_point(src) + (params.labels ? 12.0 : 4.0)) + double(largest) * 64.0, "lower `frequency` or `samples`");
+    for (const Attribute& a : src.attributes(Domain::Point).all()) {
+        if (a.name != attr::P && a.name != attr::width && a.name != "shape" && a.name != "cycle") plan.gather = true;
+    }
+    return plan;
+}
 
-    std::vector<int64_t> counts(nc);
-    std::vector<float> frequency(nc);
-    for (size_t c = 0; c < nc; ++c) counts[c] = setup[c].points, frequency[c] = setup[c].frequency;
-    // Bookkeeping freed as soon as it is spent: a million hairs' curl peaks while the input and the
-    // output are both held, and each of these is a few percent of that.
-    setup = {};
-    CurveSet dst = CurveSet::from_counts(counts);
-    counts = {};
+/// Curves [c0, c1) of `src`, curled: the output of those curves alone.
+CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPlan& plan, int64_t c0, int64_t c1, const Surface* scalp,
+                    const ProgressStep& step)
+{
+    const auto P = src.positions();
+    const auto src_width = src.find<float>(Domain::Point, attr::width);
+    const std::vector<int64_t> ids = src.curve_ids(size_t(c0), size_t(c1));
+    CurveSet dst = CurveSet::from_counts(std::span<const int64_t>(plan.counts).subspan(size_t(c0), size_t(c1 - c0)));
     auto dP = dst.positions_for_write();
     std::span<int32_t> dshape, dcycle;
     if (params.labels) {
@@ -528,21 +547,18 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
     }
     std::span<float> dwidth;
     if (!src_width.empty()) dwidth = dst.add<float>(Domain::Point, attr::width);
-    // Other point attributes are gathered from the nearest input point; only built when needed.
-    bool gather = false;
-    for (const Attribute& a : src.attributes(Domain::Point).all()) {
-        if (a.name != attr::P && a.name != attr::width && a.name != "shape" && a.name != "cycle") gather = true;
-    }
+    const bool gather = plan.gather;
     std::vector<int64_t> src_point(gather ? dst.num_points() : 0);
 
-    parallel_for(int64_t(nc), 64, [&](int64_t b, int64_t e) {
+    parallel_for(c1 - c0, 64, [&](int64_t b, int64_t e) {
         Centreline cl;
         CurveDraws draws;
         std::vector<float3> grid, out;
         std::vector<double> in_cum, s_of, chord, short_by;
-        for (int64_t c = b; c < e; ++c) {
+        for (int64_t k = b; k < e; ++k) {
+            const int64_t c = c0 + k;
             const IndexRange r = src.points_of(size_t(c));
-            const IndexRange d = dst.points_of(size_t(c));
+            const IndexRange d = dst.points_of(size_t(k));
             const auto in = P.subspan(size_t(r.begin), size_t(r.size()));
             in_cum = cumulative_lengths(in);
             const double in_len = in_cum.empty() ? 0.0 : in_cum.back();
@@ -551,7 +567,7 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
                 for (int64_t i = 0; i < d.size(); ++i) {
                     dP[size_t(d.begin + i)] = in[size_t(i)];
                     if (params.labels) {
-                        dshape[size_t(d.begin + i)] = res.tiers.dominant;
+                        dshape[size_t(d.begin + i)] = plan.res.tiers.dominant;
                         dcycle[size_t(d.begin + i)] = 0;
                     }
                     if (!dwidth.empty()) dwidth[size_t(d.begin + i)] = src_width[size_t(r.begin + i)];
@@ -563,14 +579,14 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
 
             const int64_t n = d.size();
             build_centreline(in, n, cl);
-            draw_curve(params, res, uint64_t(ids[size_t(c)]), frequency[size_t(c)], cl.length, draws);
+            draw_curve(params, plan.res, uint64_t(ids[size_t(k)]), plan.frequency[size_t(c)], cl.length, draws);
             curl_curve(cl, draws, params, in_len, grid, chord, short_by, out, s_of);
 
             if (scalp) {
                 // No curled point inside the scalp (fields/keep_outside.h): pulled back toward its
                 // centreline point while that is outside, which keeps the curl's direction, else moved
                 // out with a margin of a thousandth of the curl, doubled on each of up to four tries.
-                const KeepOutside rule{0.0f, 1e-3f * std::max(res.amplitude_mid, 1e-6f), 4};
+                const KeepOutside rule{0.0f, 1e-3f * std::max(plan.res.amplitude_mid, 1e-6f), 4};
                 for (int64_t j = 0; j < n; ++j) {
                     const float3 anchor = cl.point_at(s_of[size_t(j)]);
                     keep_outside(out[size_t(j)], *scalp, rule, 0.0f, &anchor);
@@ -601,14 +617,40 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
         }
     });
 
-    dst.set_detail_string("hair_type", res.preset->name);
-    frequency = {};
-    std::vector<int64_t> identity(src.attributes(Domain::Curve).count() > 0 ? nc : 0);  // read only for curve columns
-    for (size_t c = 0; c < identity.size(); ++c) identity[c] = int64_t(c);
-    carry_curve_attributes(src, dst, identity);
+    dst.set_detail_string("hair_type", plan.res.preset->name);
+    std::vector<int64_t> curves(src.attributes(Domain::Curve).count() > 0 ? size_t(c1 - c0) : 0);  // read only for curve columns
+    for (size_t k = 0; k < curves.size(); ++k) curves[k] = c0 + int64_t(k);
+    carry_curve_attributes(src, dst, curves);
     if (gather) carry_point_attributes(src, dst, src_point, {attr::P, attr::width, "shape", "cycle"});
     apply_hair_widths(dst, params.widths, params.units_per_cm);
     return dst;
+}
+
+}  // namespace
+
+CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress)
+{
+    const CurlPlan plan = plan_curl(src, params, [](std::span<const int64_t> counts) {
+        int64_t total = 0;
+        for (const int64_t n : counts) total += n;
+        return total;
+    });
+    const int64_t nc = int64_t(src.num_curves());
+    const ProgressStep step(progress, "curl", nc);
+    return curl_range(src, params, plan, 0, nc, scalp, step);
+}
+
+void curl_blocks(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress, int64_t block_points,
+                 const std::function<void(std::span<const int64_t> counts)>& start, const std::function<void(const CurveSet& block)>& emit)
+{
+    std::vector<int64_t> ends;
+    const CurlPlan plan = plan_curl(src, params, [&](std::span<const int64_t> counts) {
+        ends = curve_block_ends(counts, block_points);
+        return largest_curve_block(counts, ends);
+    });
+    start(plan.counts);
+    const ProgressStep step(progress, "curl", int64_t(src.num_curves()));
+    hand_over_curve_blocks(ends, [&](int64_t c0, int64_t c1) { return curl_range(src, params, plan, c0, c1, scalp, step); }, emit);
 }
 
 }  // namespace groom

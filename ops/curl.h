@@ -11,6 +11,8 @@
 #include "ops/hair_widths.h"
 
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -114,5 +116,17 @@ int pick_curl_shape(const CurlShapeTiers& tiers, double x);
 ///   point is inside the scalp.
 /// Throws InvalidParam (params), LimitExceeded (more than 2^31 output points).
 CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scalp = nullptr, Progress* progress = nullptr);
+
+/// @brief curl(), a block of curves at a time, for an output written as it is made and never held
+/// whole (a million hairs' curl held its input and its output: issue 17's memory aim). Every curve
+/// is curled exactly as curl() curls it: the blocks, concatenated, are curl()'s result.
+/// @param block_points  a block ends at the first curve that brings it to this many output points
+/// @param start  called once, before the first block, with every output curve's point count
+/// @param emit   called with each block in order (curves [c0, c1) of the output, nothing else),
+///               one call at a time, possibly from another thread while the next block is curled
+///               (kernel/curve_blocks.h; an exception it throws ends the run, rethrown here)
+/// Throws as curl() does, before `start` is called; the memory check counts the largest block.
+void curl_blocks(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress, int64_t block_points,
+                 const std::function<void(std::span<const int64_t> counts)>& start, const std::function<void(const CurveSet& block)>& emit);
 
 }  // namespace groom

@@ -3,6 +3,7 @@
 
 #include "fields/keep_outside.h"
 #include "fields/point_index.h"
+#include "kernel/curve_blocks.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/memory_budget.h"
@@ -242,7 +243,6 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
         throw InvalidParam("generate: `first_id` " + std::to_string(params.first_id) + " + " + std::to_string(roots.size()) +
                            " curves passes the largest id, 2^63 - 1 (ids would wrap to negative)");
     }
-    check_generate_memory(guides, int64_t(roots.size()), params.points);
     const PreparedGuides pg = prepare(guides, scalp, params.points);
     const PointIndex index(pg.roots);
     const int np = pg.points;
@@ -251,6 +251,7 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     const int64_t all = int64_t(roots.size());
     const int64_t r0 = std::clamp<int64_t>(params.range_begin, 0, all);
     const int64_t nc = std::clamp<int64_t>(params.range_end < 0 ? all : params.range_end, r0, all) - r0;
+    check_generate_memory(guides, nc, params.points);  // the curves made here: a shard's or a block's part
     const int k = int(std::min<int64_t>(params.neighbours, ng));
     const int query = int(std::min<int64_t>(int64_t(k) + 1, ng));
 
@@ -339,16 +340,62 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     return dst;
 }
 
+namespace {
+
+struct Roots {
+    std::vector<float3> positions, normals;
+};
+
+Roots roots_of(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params)
+{
+    const std::vector<SurfaceSample> samples = scatter_roots(guides, scalp, sample, params);
+    Roots r;
+    r.positions.resize(samples.size());
+    r.normals.resize(samples.size());
+    for (size_t i = 0; i < samples.size(); ++i) {
+        r.positions[i] = samples[i].position;
+        r.normals[i] = samples[i].normal;
+    }
+    return r;
+}
+
+}  // namespace
+
 CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
                   Progress* progress)
 {
-    const std::vector<SurfaceSample> samples = scatter_roots(guides, scalp, sample, params);
-    std::vector<float3> roots(samples.size()), normals(samples.size());
-    for (size_t i = 0; i < samples.size(); ++i) {
-        roots[i] = samples[i].position;
-        normals[i] = samples[i].normal;
-    }
-    return generate_at_roots(guides, scalp, roots, normals, params, progress);
+    const Roots roots = roots_of(guides, scalp, sample, params);
+    return generate_at_roots(guides, scalp, roots.positions, roots.normals, params, progress);
+}
+
+void generate_blocks(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
+                     Progress* progress, int64_t block_points, const std::function<void(std::span<const int64_t> counts)>& start,
+                     const std::function<void(const CurveSet& block)>& emit)
+{
+    params.validate();
+    const Roots roots = roots_of(guides, scalp, sample, params);
+    const int64_t all = int64_t(roots.positions.size());
+    const int64_t r0 = std::clamp<int64_t>(params.range_begin, 0, all);
+    const int64_t r1 = std::clamp<int64_t>(params.range_end < 0 ? all : params.range_end, r0, all);
+    // Every hair has the points prepare() gives the guides: `points`, else the most any guide has.
+    int64_t np = params.points;
+    if (np == 0)
+        for (size_t g = 0; g < guides.num_curves(); ++g) np = std::max(np, guides.points_in(g));
+    const std::vector<int64_t> counts(size_t(r1 - r0), np);
+    const std::vector<int64_t> ends = curve_block_ends(counts, block_points);
+    if (r1 > r0) check_generate_memory(guides, largest_curve_block(counts, ends) / std::max<int64_t>(np, 1), params.points);
+    start(counts);
+    const ProgressStep step(progress, "generate", r1 - r0);
+    hand_over_curve_blocks(
+        ends,
+        [&](int64_t c0, int64_t c1) {
+            GenerateParams part = params;
+            part.range_begin = r0 + c0, part.range_end = r0 + c1;
+            CurveSet block = generate_at_roots(guides, scalp, roots.positions, roots.normals, part, nullptr);
+            step.advance(c1 - c0);
+            return block;
+        },
+        emit);
 }
 
 }  // namespace groom

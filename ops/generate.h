@@ -84,6 +84,18 @@ struct GenerateParams {
 CurveSet generate(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
                   Progress* progress = nullptr);
 
+/// @brief generate(), a block of hairs at a time, for an output written as it is made and never held
+/// whole (kernel/curve_blocks.h). The roots are scattered once; each block is generate_at_roots()
+/// over its range of them, so the blocks laid end to end are generate()'s output bit for bit.
+/// @param block_points  a block ends at the first hair that brings it to this many points
+/// @param start  called once, before the first block, with every output curve's point count
+/// @param emit   called with each block in order, one call at a time, possibly from another thread
+///               while the next block is grown
+/// Throws as generate() does; the memory check counts one block.
+void generate_blocks(const CurveSet& guides, const Surface& scalp, const RootSampler& sample, const GenerateParams& params,
+                     Progress* progress, int64_t block_points, const std::function<void(std::span<const int64_t> counts)>& start,
+                     const std::function<void(const CurveSet& block)>& emit);
+
 /// The roots generate() would use: params.count samples, area-uniform inside the region (or
 /// footprint) among those within params.max_angle of their nearest guide's root normal (taken from
 /// `scalp`) and haired in params.region (when given), in a deterministic order for params.seed.

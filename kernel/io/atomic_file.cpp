@@ -96,6 +96,20 @@ protected:
         return std::streambuf::xsputn(s, n);
     }
     int sync() override { return flush_buffer() ? 0 : -1; }
+    // Seeking, for a format written out of order (.hair a block of strands at a time): what is
+    // buffered goes first; a descriptor that cannot seek (a pipe) fails with its reason kept.
+    pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode which) override
+    {
+        if (!(which & std::ios_base::out) || !flush_buffer()) return pos_type(off_type(-1));
+        const int whence = dir == std::ios_base::beg ? SEEK_SET : dir == std::ios_base::cur ? SEEK_CUR : SEEK_END;
+        const off_t at = ::lseek(fd_, off_t(off), whence);
+        if (at < 0) {
+            if (error_ == 0) error_ = errno;
+            return pos_type(off_type(-1));
+        }
+        return pos_type(off_type(at));
+    }
+    pos_type seekpos(pos_type pos, std::ios_base::openmode which) override { return seekoff(off_type(pos), std::ios_base::beg, which); }
 
 private:
     bool write_all(const char* p, size_t n)

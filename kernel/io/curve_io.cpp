@@ -1,8 +1,11 @@
 #include "kernel/io/curve_io.h"
 
 #include "kernel/io/format_table.h"
+#include "kernel/io/formats.h"
 #include "kernel/io/io_util.h"
 #include "kernel/io/memory_files.h"
+
+#include <filesystem>
 
 namespace groom {
 
@@ -16,7 +19,17 @@ bool is_curve_path(const std::string& path)
 CurveSet read_curves(const std::string& path, const CurveReadOptions& options)
 {
     if (is_memory_path(path)) return read_memory_curves(path);
-    if (path != "-") io::format_for(path, io::kReadCurves, "curve");  // refuse by name before reading
+    if (path != "-") {
+        const io::Format& fmt = io::format_for(path, io::kReadCurves, "curve");  // refuse by name before reading
+        // A file that cannot be sized, or an empty one, takes the whole-file path for its message.
+        std::error_code ec;
+        const auto bytes = std::filesystem::file_size(path, ec);
+        if (fmt.read_curves_file && !ec && bytes > 0) {
+            CurveSet cs = fmt.read_curves_file(path, options);
+            cs.validate(path);
+            return cs;
+        }
+    }
     const io::FileBytes file = io::read_all(path);
     const io::Format& fmt = io::format_for(path, io::kReadCurves, "curve", file.data);
     if (file.data.empty()) throw ParseError(file.name + ": file is empty (expected " + std::string(fmt.extension) + " curves)");
@@ -50,6 +63,29 @@ void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& 
     const std::string bytes = fmt.write_curves(curves, options);
     batch.open(path).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
+
+bool writes_curve_blocks(const std::string& path)
+{
+    if (is_memory_path(path)) return false;
+    const io::Format* f = io::format_of_path(path);
+    return f && f->extension == "hair";
+}
+
+CurveBlockWriter::CurveBlockWriter(const std::string& path, OutputBatch& batch, std::span<const int64_t> counts) : path_(path)
+{
+    if (!writes_curve_blocks(path)) throw InvalidParam(path + ": only .hair is written a block of curves at a time");
+    hair_ = std::make_unique<io::HairBlockWriter>(batch.open(path), counts);
+}
+
+CurveBlockWriter::~CurveBlockWriter() = default;
+
+void CurveBlockWriter::write(const CurveSet& block)
+{
+    block.validate("writing " + path_);
+    hair_->write(block);
+}
+
+void CurveBlockWriter::finish() { hair_->finish(); }
 
 std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path)
 {

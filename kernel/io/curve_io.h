@@ -11,10 +11,16 @@
 #include "kernel/io/atomic_file.h"
 
 #include <functional>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace groom {
+
+namespace io {
+class HairBlockWriter;
+}
 
 /// Curve formats by extension, lower-case, without dot.
 bool is_curve_path(const std::string& path);
@@ -52,6 +58,29 @@ void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& 
 /// "curve id"): .obj keeps only P; .hair keeps P and point width, opacity, Cd; .usda keeps
 /// everything; .ply everything but int64 columns with values beyond +-2^53 (stored as double,
 /// exact up to 2^53: such a column is left out, never rounded), named with that reason.
+/// Whether the format of `path` can be written a block of curves at a time (CurveBlockWriter):
+/// .hair only; the others are written from the whole set.
+bool writes_curve_blocks(const std::string& path);
+
+/// An output written a block of curves at a time, in order, for an op that never holds its whole
+/// output (`groom curl` into .hair). Each block is validated as write_curves validates the whole.
+class CurveBlockWriter {
+public:
+    /// Opens `path`'s temporary in `batch` (renamed into place by batch.commit()); `counts`: every
+    /// output curve's point count. Throws InvalidParam where !writes_curve_blocks(path) or the
+    /// format cannot hold these counts, before anything is written.
+    CurveBlockWriter(const std::string& path, OutputBatch& batch, std::span<const int64_t> counts);
+    ~CurveBlockWriter();
+    /// The next curves of the output.
+    void write(const CurveSet& block);
+    /// Throws unless every announced curve was written.
+    void finish();
+
+private:
+    std::string path_;
+    std::unique_ptr<io::HairBlockWriter> hair_;
+};
+
 std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path);
 
 /// Whether a file that could be either (.obj, .ply) holds curves rather than a mesh, by content:

@@ -21,6 +21,7 @@ bool sniff_crate(std::string_view head) { return starts_with(head, "PXR-USDC"); 
 CurveSet read_obj_curves_row(const FileBytes& f, const CurveReadOptions&) { return read_obj_curves(f); }
 CurveSet read_ply_curves_row(const FileBytes& f, const CurveReadOptions&) { return read_ply_curves(f); }
 CurveSet read_hair_row(const FileBytes& f, const CurveReadOptions&) { return read_hair(f); }
+CurveSet read_hair_file_row(const std::string& path, const CurveReadOptions&) { return read_hair_file(path); }
 std::string write_usda_row(const CurveSet& c, const CurveWriteOptions&) { return write_usda(c); }
 std::string write_obj_curves_row(const CurveSet& c, const CurveWriteOptions&) { return write_obj_curves(c); }
 std::string write_ply_curves_row(const CurveSet& c, const CurveWriteOptions& o) { return write_ply_curves(c, o.ply_encoding); }
@@ -88,7 +89,7 @@ const std::array<Format, 10> kFormats = [] {
     ply.keeps = ply_keeps_column;
 
     Format hair = row("hair", "Cem Yuksel's .hair");
-    hair.sniff = sniff_hair, hair.read_curves = read_hair_row, hair.write_curves = write_hair_row, hair.stream_curves = stream_hair_row, hair.keeps = hair_keeps;
+    hair.sniff = sniff_hair, hair.read_curves = read_hair_row, hair.read_curves_file = read_hair_file_row, hair.write_curves = write_hair_row, hair.stream_curves = stream_hair_row, hair.keeps = hair_keeps;
 
     Format off = row("off", "OFF mesh");
     off.read_mesh = read_off;

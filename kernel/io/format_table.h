@@ -35,6 +35,9 @@ struct Format {
     /// format has no signature. Used for stdin and for extensions shared by two encodings (.usd).
     bool (*sniff)(std::string_view head) = nullptr;
     CurveSet (*read_curves)(const FileBytes& file, const CurveReadOptions& options) = nullptr;
+    /// The same read straight from a file on disk, for formats that can (the whole file is never
+    /// in memory beside its curves); null = read_curves on the file's bytes.
+    CurveSet (*read_curves_file)(const std::string& path, const CurveReadOptions& options) = nullptr;
     std::string (*write_curves)(const CurveSet& curves, const CurveWriteOptions& options) = nullptr;
     /// The same written straight to a stream, for formats that can (no second copy of a large output
     /// in memory); null = write_curves' string is written.

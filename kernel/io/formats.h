@@ -10,6 +10,8 @@
 #include "kernel/io/io_util.h"
 #include "kernel/io/mesh_io.h"
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,9 +56,41 @@ std::string write_ply_mesh(const PolygonSoup& soup);
 
 // --- Cem Yuksel's .hair ------------------------------------------------------------------------------
 CurveSet read_hair(const FileBytes& file);
+/// The same read from the file a stretch at a time, straight into the curves (never the whole file in memory).
+CurveSet read_hair_file(const std::string& path);
 std::string write_hair(const CurveSet& curves);
-/// The same written to `stream` a block at a time (no copy of the file in memory); checks before writing anything.
+/// The same written to `stream` an array at a time (no copy of the file in memory); checks before writing anything.
 void write_hair(const CurveSet& curves, std::ostream& stream);
+
+/// A .hair file written a block of curves at a time, for an output that is never whole in memory
+/// (`groom curl` of a million hairs: its input and output held at once were 2x the file). The
+/// format puts every strand's segment count first, then each array whole (points, thickness, ...),
+/// so the strands' point counts come first and each block's part of every array is written at its
+/// place: the stream must be seekable (a file). A single block writes the file front to back.
+class HairBlockWriter {
+public:
+    /// `counts`: every strand's point count, checked (1 to 65536 each, < 2^32 in all) before
+    /// anything is written. Throws InvalidParam.
+    HairBlockWriter(std::ostream& stream, std::span<const int64_t> counts);
+    /// The next strands, in order. The first block's point columns (width, opacity, Cd) decide
+    /// which arrays the file holds; a later block with other columns, or whose point counts are not
+    /// those announced, is refused (InvalidParam).
+    void write(const CurveSet& block);
+    /// Throws InvalidParam unless every announced strand was written; leaves the stream at the end.
+    void finish();
+
+private:
+    void start(uint32_t flags);
+    void put_at(uint64_t at, const char* bytes, size_t size);
+    template <class T, class Each> void column(uint64_t at, std::span<const T> values, Each each);
+
+    std::ostream& stream_;
+    std::vector<uint16_t> segments_;
+    uint64_t points_ = 0, written_ = 0;
+    size_t curves_ = 0;
+    uint32_t flags_ = 0;
+    bool started_ = false;
+};
 
 // --- OFF, STL (meshes only) --------------------------------------------------------------------------
 PolygonSoup read_off(const FileBytes& file);

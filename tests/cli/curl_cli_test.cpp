@@ -179,4 +179,13 @@ TEST(CurlCli, HairOutputHasTheSamePointsWithoutTheLabelColumns)
     ASSERT_FALSE(a.find<int32_t>(Domain::Point, "shape").empty());
     ASSERT_EQ(a.num_points(), b.num_points());
     for (size_t i = 0; i < a.num_points(); ++i) ASSERT_EQ(a.positions()[i], b.positions()[i]) << "point " << i;
+    // Written as it is made (curl_blocks into a .hair block writer): the very file `convert` makes
+    // from the whole output.
+    ASSERT_EQ(run_groom({"convert", ply, "-o", dir.file("whole.hair")}).exit_code, 0);
+    EXPECT_EQ(groom::test::read_bytes(hair), groom::test::read_bytes(dir.file("whole.hair")));
+    // A curve .hair cannot hold (over 65,536 points) is refused before anything is written.
+    const auto big = run_groom({"curl", in, "-o", dir.file("big.hair"), "--frequency", "400,400", "--samples", "16"});
+    EXPECT_NE(big.exit_code, 0);
+    EXPECT_NE(big.err.find("65536 points per strand"), std::string::npos) << big.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("big.hair")));
 }

@@ -156,4 +156,16 @@ TEST(GenerateCli, GrowsCurvesFromGuidesInsideTheRegion)
     EXPECT_EQ(region.exit_code, 2);
     EXPECT_NE(region.err.find("--region"), std::string::npos) << region.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("bad.usda")));
+    // Into .hair the groom is written as it is grown (kernel/curve_blocks.h): the very file
+    // `convert` makes from the whole output.
+    const std::vector<std::string> same{"--scalp", scalp, "--count", "200", "--region", "0,10,0,2.5", "--seed", "3"};
+    auto args = [&](const std::string& o) {
+        std::vector<std::string> a{"generate", guides, "-o", o};
+        a.insert(a.end(), same.begin(), same.end());
+        return a;
+    };
+    ASSERT_EQ(run_groom(args(dir.file("g.hair"))).exit_code, 0);
+    ASSERT_EQ(run_groom(args(dir.file("g.ply"))).exit_code, 0);
+    ASSERT_EQ(run_groom({"convert", dir.file("g.ply"), "-o", dir.file("whole.hair")}).exit_code, 0);
+    EXPECT_EQ(groom::test::read_bytes(dir.file("g.hair")), groom::test::read_bytes(dir.file("whole.hair")));
 }

@@ -8,10 +8,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <limits>
 #include <span>
 #include <string>
+#include <vector>
 
 using namespace groom;
 using groom::test::TempDir;
@@ -112,4 +116,88 @@ TEST(CurveIoHair, StreamedFileEqualsTheEncodedBytesAndRefusalsLeaveNothing)
     size_t files = 0;
     for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
     EXPECT_EQ(files, 2u) << "a temporary was left behind";
+}
+
+namespace {
+
+/// Curves [c0, c1) of `src` with their point columns (P, width, opacity, Cd): a block as an op
+/// writing its output a block at a time hands it over.
+CurveSet block_of(const CurveSet& src, size_t c0, size_t c1)
+{
+    std::vector<int64_t> counts;
+    for (size_t c = c0; c < c1; ++c) counts.push_back(src.points_in(c));
+    CurveSet b = CurveSet::from_counts(counts);
+    const int64_t first = c0 < src.num_curves() ? src.points_of(c0).begin : int64_t(src.num_points());
+    const auto copy = [&](auto from, auto to) {
+        for (size_t i = 0; i < to.size(); ++i) to[i] = from[size_t(first) + i];
+    };
+    copy(src.positions(), b.positions_for_write());
+    copy(src.find<float>(Domain::Point, attr::width), b.add<float>(Domain::Point, attr::width));
+    copy(src.find<float>(Domain::Point, "opacity"), b.add<float>(Domain::Point, "opacity"));
+    copy(src.find<float3>(Domain::Point, "Cd"), b.add<float3>(Domain::Point, "Cd"));
+    return b;
+}
+
+}  // namespace
+
+// An output written a block of strands at a time (groom curl into .hair) is the file the whole set
+// makes, byte for byte, however it is cut; blocks that do not match what was announced are refused
+// and an unfinished output never lands.
+TEST(CurveIoHair, BlocksWrittenOneAfterAnotherMakeTheWholeFile)
+{
+    TempDir dir;
+    CurveSet src = sample_curves();
+    auto op = src.add<float>(Domain::Point, "opacity");
+    for (size_t i = 0; i < op.size(); ++i) op[i] = 0.5f + 0.5f / (1.0f + i);
+    std::vector<int64_t> counts;
+    for (size_t c = 0; c < src.num_curves(); ++c) counts.push_back(src.points_in(c));
+    const std::string whole = io::write_hair(src);
+    for (const std::vector<size_t>& cuts : {std::vector<size_t>{0, 4}, {0, 1, 3, 4}, {0, 1, 2, 3, 4}, {0, 0, 2, 2, 4}}) {
+        OutputBatch batch;
+        CurveBlockWriter writer(dir.file("b.hair"), batch, counts);
+        for (size_t k = 0; k + 1 < cuts.size(); ++k) writer.write(block_of(src, cuts[k], cuts[k + 1]));
+        writer.finish();
+        batch.commit();
+        EXPECT_EQ(groom::test::read_bytes(dir.file("b.hair")), whole) << "blocks cut at " << cuts.size() - 2 << " places";
+    }
+
+    OutputBatch batch;
+    CurveBlockWriter writer(dir.file("c.hair"), batch, counts);
+    writer.write(block_of(src, 0, 1));
+    CurveSet wrong = block_of(src, 2, 3);  // strand 1 announced with 5 points, this one has 2
+    EXPECT_THROW(writer.write(wrong), InvalidParam);
+    CurveSet bare = CurveSet::from_counts(std::vector<int64_t>{5});  // the right count, no width/opacity/Cd
+    EXPECT_THROW(writer.write(bare), InvalidParam);
+    EXPECT_THROW(writer.finish(), InvalidParam);  // 1 of 4 strands written
+    EXPECT_THROW(CurveBlockWriter(dir.file("d.usda"), batch, counts), InvalidParam);
+    EXPECT_FALSE(writes_curve_blocks(dir.file("d.usda")));
+    EXPECT_TRUE(writes_curve_blocks(dir.file("d.hair")));
+}
+
+// A file on disk is read a stretch at a time straight into the curves: the same curves as the
+// bytes read whole, across stretch boundaries (2^18 records a read), and a bad point past the first
+// stretch is named with its own byte offset.
+TEST(CurveIoHair, FileReadInStretchesEqualsTheWholeBytes)
+{
+    TempDir dir;
+    const std::vector<int64_t> counts(3000, 100);  // 300,000 points: two stretches of points
+    CurveSet src = CurveSet::from_counts(counts);
+    auto P = src.positions_for_write();
+    auto W = src.add<float>(Domain::Point, attr::width);
+    for (size_t i = 0; i < P.size(); ++i) P[i] = float3(float(i), std::sqrt(float(i)), -1.0f / float(i + 1)), W[i] = 1e-3f * float(i % 7);
+    write_curves(src, dir.file("big.hair"));
+    const CurveSet from_file = read_curves(dir.file("big.hair"));
+    io::FileBytes bytes{dir.file("big.hair"), groom::test::read_bytes(dir.file("big.hair"))};
+    const CurveSet from_bytes = io::read_hair(bytes);
+    expect_points_bit_exact(src, from_file);
+    expect_points_bit_exact(from_bytes, from_file);
+    const auto wf = from_file.find<float>(Domain::Point, attr::width);
+    ASSERT_EQ(wf.size(), W.size());
+    for (size_t i = 0; i < W.size(); ++i) ASSERT_TRUE(same_bits(wf[i], W[i])) << i;
+
+    const size_t bad = 262200, at = 128 + 2 * counts.size() + 12 * bad;
+    std::string d = bytes.data;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(d.data() + at + 4, &nan, 4);
+    expect_parse_error(dir.file("nan.hair"), d, "byte " + std::to_string(at) + ": point 262200 is not finite");
 }

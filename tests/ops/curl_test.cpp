@@ -439,6 +439,68 @@ TEST(Curl, SameResultForOneAndTwoThreadsAndIndependentOfCurveOrder)
                  std::memcmp(other.positions().data(), one.positions().data(), one.num_points() * sizeof(float3)) == 0);
 }
 
+// Written a block at a time (groom curl into .hair never holds its whole output), every curve is
+// curled exactly as curl() curls it: the blocks, laid end to end, are curl()'s output column for
+// column, bit for bit, however the blocks are cut, with a scalp or without.
+TEST(Curl, BlocksEndToEndAreTheWholeCurl)
+{
+    CurveSet guides = straight_guides(120, 6.0f, 9);
+    auto P = guides.positions_for_write();
+    for (size_t i = 0; i < P.size(); ++i) P[i].x += 0.2f * std::sin(0.41f * float(i));
+    auto w = guides.add<float>(Domain::Point, attr::width);
+    auto cd = guides.add<float3>(Domain::Point, "Cd");
+    auto clump = guides.add<int32_t>(Domain::Curve, "clump");
+    for (size_t i = 0; i < w.size(); ++i) w[i] = 0.01f + 0.001f * float(i % 9), cd[i] = {float(i % 9), 0.5f, 1.0f};
+    for (size_t c = 0; c < clump.size(); ++c) clump[c] = int32_t(3 * c);
+    CurlParams p;
+    p.hair_type = "3c";
+    p.seed = 11;
+    // Curves over the plane y = 0.5 above their roots: some curled points dip below it.
+    const AnalyticPlane floor({0.0f, 0.5f, 0.0f}, {0.0f, 1.0f, 0.0f});
+    for (const Surface* scalp : {static_cast<const Surface*>(nullptr), static_cast<const Surface*>(&floor)}) {
+        const CurveSet whole = curl(guides, p, scalp);
+        for (const int64_t block_points : {int64_t(1), int64_t(500), int64_t(1) << 40}) {
+            std::vector<int64_t> announced;
+            std::vector<CurveSet> blocks;
+            curl_blocks(
+                guides, p, scalp, nullptr, block_points, [&](std::span<const int64_t> counts) { announced.assign(counts.begin(), counts.end()); },
+                [&](const CurveSet& b) { blocks.push_back(b); });
+            SCOPED_TRACE("block_points " + std::to_string(block_points) + (scalp ? ", over a plane" : ""));
+            ASSERT_EQ(announced.size(), whole.num_curves());
+            if (block_points != 500) EXPECT_EQ(blocks.size(), block_points == 1 ? whole.num_curves() : 1u);
+            size_t curve = 0, point = 0;
+            for (const CurveSet& b : blocks) {
+                EXPECT_EQ(b.detail_string("hair_type"), "3c");
+                for (size_t c = 0; c < b.num_curves(); ++c, ++curve) {
+                    ASSERT_EQ(b.points_in(c), whole.points_in(curve));
+                    EXPECT_EQ(announced[curve], whole.points_in(curve));
+                    EXPECT_EQ(b.find<int32_t>(Domain::Curve, "clump")[c], whole.find<int32_t>(Domain::Curve, "clump")[curve]);
+                    EXPECT_EQ(b.find<int64_t>(Domain::Curve, attr::id)[c], whole.find<int64_t>(Domain::Curve, attr::id)[curve]);
+                }
+                const size_t n = b.num_points();
+                EXPECT_EQ(std::memcmp(b.positions().data(), whole.positions().data() + point, n * sizeof(float3)), 0);
+                EXPECT_EQ(std::memcmp(b.find<float>(Domain::Point, attr::width).data(), whole.find<float>(Domain::Point, attr::width).data() + point,
+                                      n * sizeof(float)), 0);
+                EXPECT_EQ(std::memcmp(b.find<float3>(Domain::Point, "Cd").data(), whole.find<float3>(Domain::Point, "Cd").data() + point,
+                                      n * sizeof(float3)), 0);
+                EXPECT_TRUE(std::ranges::equal(b.find<int32_t>(Domain::Point, "shape"),
+                                               whole.find<int32_t>(Domain::Point, "shape").subspan(point, n)));
+                EXPECT_TRUE(std::ranges::equal(b.find<int32_t>(Domain::Point, "cycle"),
+                                               whole.find<int32_t>(Domain::Point, "cycle").subspan(point, n)));
+                point += n;
+            }
+            EXPECT_EQ(curve, whole.num_curves());
+            EXPECT_EQ(point, whole.num_points());
+            if (block_points == 500) EXPECT_GT(blocks.size(), 3u);
+        }
+        if (scalp) {
+            int below = 0;
+            for (const float3& q : whole.positions()) below += floor.inside(q);
+            EXPECT_EQ(below, 0);
+        }
+    }
+}
+
 TEST(Curl, CarriesAttributesThrough)
 {
     CurveSet guides = straight_guides(4, 10.0f, 5);

@@ -403,6 +403,55 @@ TEST(Generate, DeterministicAcrossThreadCounts)
     EXPECT_NE(std::memcmp(a.positions().data(), c.positions().data(), a.positions().size_bytes()), 0);
 }
 
+// Grown a block at a time (groom generate into .hair never holds its whole output), the blocks laid
+// end to end are generate()'s output, every column bit for bit, for any cut, a shard's range too.
+TEST(Generate, BlocksEndToEndAreTheWholeGroom)
+{
+    const AnalyticSphere head(kC, kR);
+    CurveSet guides = pole_guides();
+    auto clump = guides.add<float>(Domain::Curve, "clump");
+    for (size_t g = 0; g < guides.num_curves(); ++g) clump[g] = 10.0f * float(g);
+    GenerateParams params;
+    params.count = 700;
+    params.points = 12;
+    params.seed = 3;
+    params.clearance = 0.05f;
+    for (const int64_t begin : {int64_t(0), int64_t(150)}) {
+        params.range_begin = begin;
+        params.range_end = begin == 0 ? -1 : 610;
+        const CurveSet whole = generate(guides, head, test::sphere_cap_sampler(kC, kR), params);
+        for (const int64_t block_points : {int64_t(1), int64_t(1000), int64_t(1) << 40}) {
+            SCOPED_TRACE("range from " + std::to_string(begin) + ", block_points " + std::to_string(block_points));
+            std::vector<int64_t> announced;
+            std::vector<CurveSet> blocks;
+            generate_blocks(
+                guides, head, test::sphere_cap_sampler(kC, kR), params, nullptr, block_points,
+                [&](std::span<const int64_t> counts) { announced.assign(counts.begin(), counts.end()); },
+                [&](const CurveSet& b) { blocks.push_back(b); });
+            ASSERT_EQ(announced.size(), whole.num_curves());
+            if (block_points == 1) EXPECT_EQ(blocks.size(), whole.num_curves());
+            if (block_points == 1000) EXPECT_EQ(blocks.size(), (whole.num_curves() * 12 + 1007) / 1008);
+            size_t curve = 0, point = 0;
+            for (const CurveSet& b : blocks) {
+                for (size_t c = 0; c < b.num_curves(); ++c, ++curve) {
+                    ASSERT_EQ(b.points_in(c), whole.points_in(curve));
+                    EXPECT_EQ(announced[curve], whole.points_in(curve));
+                    EXPECT_EQ(b.find<int64_t>(Domain::Curve, attr::id)[c], whole.find<int64_t>(Domain::Curve, attr::id)[curve]);
+                    EXPECT_EQ(b.find<int32_t>(Domain::Curve, "guide")[c], whole.find<int32_t>(Domain::Curve, "guide")[curve]);
+                    EXPECT_EQ(b.find<float>(Domain::Curve, "clump")[c], whole.find<float>(Domain::Curve, "clump")[curve]);
+                }
+                const size_t n = b.num_points();
+                EXPECT_EQ(std::memcmp(b.positions().data(), whole.positions().data() + point, n * sizeof(float3)), 0);
+                EXPECT_EQ(std::memcmp(b.find<float>(Domain::Point, attr::width).data(), whole.find<float>(Domain::Point, attr::width).data() + point,
+                                      n * sizeof(float)), 0);
+                point += n;
+            }
+            EXPECT_EQ(curve, whole.num_curves());
+            EXPECT_EQ(point, whole.num_points());
+        }
+    }
+}
+
 TEST(Generate, RejectsInvalidParams)
 {
     auto message = [](const GenerateParams& p) {

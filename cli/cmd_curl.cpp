@@ -48,19 +48,11 @@ void setup(CommandContext& ctx)
         int64_t curves = 0, points = 0;
         if (writes_curve_blocks(args->output)) {
             // Written as it is made: the output is never whole in memory (a million hairs' curl
-            // held its input and its output, twice the file; now the input and one block).
-            OutputBatch batch;
-            std::unique_ptr<CurveBlockWriter> writer;
-            curl_blocks(
-                in, params, scalp.get(), progress.get(), kCurveBlockPoints,
-                [&](std::span<const int64_t> counts) {
-                    writer = std::make_unique<CurveBlockWriter>(args->output, batch, counts);
-                    curves = int64_t(counts.size());
-                    for (const int64_t n : counts) points += n;
-                },
-                [&](const CurveSet& block) { writer->write(block); });
-            writer->finish();
-            batch.commit();
+            // held its input and its output, twice the file; now the input and two blocks).
+            const CurveBlockCounts n = write_curve_blocks(args->output, [&](const CurveBlockStart& start, const CurveBlockEmit& emit) {
+                curl_blocks(in, params, scalp.get(), progress.get(), kCurveBlockPoints, start, emit);
+            });
+            curves = int64_t(n.curves), points = int64_t(n.points);
         }
         else {
             const CurveSet out = curl(in, params, scalp.get(), progress.get());

@@ -81,18 +81,10 @@ void setup(CommandContext& ctx)
         size_t curves = 0, points = 0;
         if (writes_curve_blocks(args->output)) {
             // Written as it is grown: the output is never whole in memory (kernel/curve_blocks.h).
-            OutputBatch batch;
-            std::unique_ptr<CurveBlockWriter> writer;
-            generate_blocks(
-                guides, *scalp, scalp_root_sampler(*scalp), params, progress.get(), kCurveBlockPoints,
-                [&](std::span<const int64_t> counts) {
-                    writer = std::make_unique<CurveBlockWriter>(args->output, batch, counts);
-                    curves = counts.size();
-                    for (const int64_t n : counts) points += size_t(n);
-                },
-                [&](const CurveSet& block) { writer->write(block); });
-            writer->finish();
-            batch.commit();
+            const CurveBlockCounts n = write_curve_blocks(args->output, [&](const CurveBlockStart& start, const CurveBlockEmit& emit) {
+                generate_blocks(guides, *scalp, scalp_root_sampler(*scalp), params, progress.get(), kCurveBlockPoints, start, emit);
+            });
+            curves = n.curves, points = n.points;
         }
         else {
             const CurveSet out = generate(guides, *scalp, scalp_root_sampler(*scalp), params, progress.get());

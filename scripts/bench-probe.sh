@@ -14,7 +14,9 @@
 # (default 3), so a burst of load on the shared machine hits both; each line prints the range of
 # wall seconds, CPU seconds and peak RSS over the rounds and the range of the per-round ratios
 # (reference wall / groom wall).
-# Usage: [ROUNDS=3] [SETS="hair box"] scripts/bench-probe.sh [BUILD_DIR]   (needs /usr/bin/time and python3)
+# Usage: [ROUNDS=3] [SETS="hair box"] [KEEP=DIR] scripts/bench-probe.sh [BUILD_DIR]   (needs /usr/bin/time and python3)
+# KEEP=DIR makes the inputs in DIR once and reuses them (for profiling the same files, or comparing
+# builds); by default they go to a temporary folder, removed at the end.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${1:-$root/build}
@@ -25,7 +27,10 @@ rounds=${ROUNDS:-3}
 [ -x "$ref" ] || { echo "$ref not built (GROOM_BUILD_BENCHMARKS=ON)" >&2; exit 1; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+inputs=${KEEP:-$tmp}
+mkdir -p "$inputs"
 
+if [ ! -s "$inputs/box.npy" ]; then
 "$groom" generate "$data/sintel_guides.obj" --scalp "$data/sintel.obj" --count 62500 -o "$tmp/hair.ply" -q
 "$groom" convert "$tmp/hair.ply" -o "$tmp/hair.obj" -q
 grep '^v ' "$tmp/hair.obj" | cut -c3- >"$tmp/hair.txt"
@@ -50,6 +55,8 @@ def npy(name):  # the text's float32 values as a (N, 3) '<f4' array
         f.write(struct.pack('<%df' % len(vals), *vals))
 npy('hair'); npy('box')
 EOF
+[ "$inputs" = "$tmp" ] || cp "$tmp"/hair.txt "$tmp"/box.txt "$tmp"/hair.npy "$tmp"/box.npy "$tmp"/sintel.vdb "$inputs"/
+fi
 
 measure() {  # prints "wall cpu rss_mb" of one run
   /usr/bin/time -f "%e %U %S %M" -o "$tmp/t" "$@" >/dev/null 2>&1
@@ -70,18 +77,18 @@ for set in ${SETS:-hair box}; do
   : >"$tmp/ref1" >"$tmp/ref2"
   for v in mesh-t1 mesh-t2 npy-t2 npyout-t2 vdb-t2; do : >"$tmp/$v"; done
   for _ in $(seq "$rounds"); do
-    r1=$(measure "$ref" "$data/sintel.obj" "$tmp/$set.txt" "$tmp/ref.csv" 1); echo "$r1" >>"$tmp/ref1"
-    r2=$(measure "$ref" "$data/sintel.obj" "$tmp/$set.txt" "$tmp/ref.csv" 2); echo "$r2" >>"$tmp/ref2"
+    r1=$(measure "$ref" "$data/sintel.obj" "$inputs/$set.txt" "$tmp/ref.csv" 1); echo "$r1" >>"$tmp/ref1"
+    r2=$(measure "$ref" "$data/sintel.obj" "$inputs/$set.txt" "$tmp/ref.csv" 2); echo "$r2" >>"$tmp/ref2"
     run() {  # variant ref-line groom-args...
       local v=$1 against=$2; shift 2
       local g; g=$(measure "$groom" probe "$@" -q --force)
       echo "$g $(echo "${against%% *} ${g%% *}" | awk '{ printf "%.2f", $1 / $2 }')" >>"$tmp/$v"
     }
-    run mesh-t1 "$r1" --scalp "$data/sintel.obj" "$tmp/$set.txt" -o "$tmp/g.csv" --threads 1
-    run mesh-t2 "$r2" --scalp "$data/sintel.obj" "$tmp/$set.txt" -o "$tmp/g.csv" --threads 2
-    run npy-t2 "$r2" --scalp "$data/sintel.obj" "$tmp/$set.npy" -o "$tmp/g.csv" --threads 2
-    run npyout-t2 "$r2" --scalp "$data/sintel.obj" "$tmp/$set.npy" -o "$tmp/g.npy" --threads 2
-    run vdb-t2 "$r2" --scalp "$tmp/sintel.vdb" "$tmp/$set.txt" -o "$tmp/g.csv" --threads 2
+    run mesh-t1 "$r1" --scalp "$data/sintel.obj" "$inputs/$set.txt" -o "$tmp/g.csv" --threads 1
+    run mesh-t2 "$r2" --scalp "$data/sintel.obj" "$inputs/$set.txt" -o "$tmp/g.csv" --threads 2
+    run npy-t2 "$r2" --scalp "$data/sintel.obj" "$inputs/$set.npy" -o "$tmp/g.csv" --threads 2
+    run npyout-t2 "$r2" --scalp "$data/sintel.obj" "$inputs/$set.npy" -o "$tmp/g.npy" --threads 2
+    run vdb-t2 "$r2" --scalp "$inputs/sintel.vdb" "$inputs/$set.txt" -o "$tmp/g.csv" --threads 2
   done
   report "$set: reference, 1 thread" "$tmp/ref1"
   report "$set: reference, queries on 2 threads" "$tmp/ref2"

@@ -1,5 +1,6 @@
 #include "kernel/io/curve_io.h"
 
+#include "kernel/error.h"
 #include "kernel/io/format_table.h"
 #include "kernel/io/formats.h"
 #include "kernel/io/io_util.h"
@@ -86,6 +87,24 @@ void CurveBlockWriter::write(const CurveSet& block)
 }
 
 void CurveBlockWriter::finish() { hair_->finish(); }
+
+CurveBlockCounts write_curve_blocks(const std::string& path, const std::function<void(const CurveBlockStart&, const CurveBlockEmit&)>& run)
+{
+    OutputBatch batch;
+    std::unique_ptr<CurveBlockWriter> writer;
+    CurveBlockCounts n;
+    run(
+        [&](std::span<const int64_t> counts) {
+            writer = std::make_unique<CurveBlockWriter>(path, batch, counts);
+            n.curves = counts.size();
+            for (const int64_t c : counts) n.points += size_t(c);
+        },
+        [&](const CurveSet& block) { writer->write(block); });
+    if (!writer) throw InvalidParam(path + ": the op announced no curves to write");
+    writer->finish();
+    batch.commit();
+    return n;
+}
 
 std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path)
 {

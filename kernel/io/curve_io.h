@@ -81,6 +81,20 @@ private:
     std::unique_ptr<io::HairBlockWriter> hair_;
 };
 
+/// What write_curve_blocks wrote.
+struct CurveBlockCounts {
+    size_t curves = 0, points = 0;
+};
+
+/// The start and emit callbacks of an op's block form (curl_blocks, generate_blocks).
+using CurveBlockStart = std::function<void(std::span<const int64_t> counts)>;
+using CurveBlockEmit = std::function<void(const CurveSet& block)>;
+
+/// Writes an op's output into `path` as its blocks come: `run(start, emit)` calls the op's block form
+/// with the two callbacks; the file lands (atomically) once the op returns, or not at all if it throws.
+/// Needs writes_curve_blocks(path).
+CurveBlockCounts write_curve_blocks(const std::string& path, const std::function<void(const CurveBlockStart&, const CurveBlockEmit&)>& run);
+
 std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path);
 
 /// Whether a file that could be either (.obj, .ply) holds curves rather than a mesh, by content:

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -167,6 +168,53 @@ TEST(ProbeCli, AnswersAroundTheSphereWithinTheTessellationsBounds)
         EXPECT_LE(std::sqrt(ex * ex + ey * ey + ez * ez), chord + std::fabs(d) * std::sin(alpha) + h * h / R + 1e-4)
             << v[0] << "," << v[1] << "," << v[2];
     }
+}
+
+TEST(ProbeCli, EachRowDependsOnItsPointAloneNotOnTheOthersOrTheirOrder)
+{
+    // probe queries the points sorted by cell (a counting sort over their box, or a comparison
+    // sort when they spread over more than 2^20 cells): the row of a point must not depend on
+    // where it is in the file, nor on the other points. Dense points (40 radial lines of 100,
+    // query_dense) in the file's order, reversed, and with two points 1e6 radii out appended
+    // (which takes the comparison sort and leaves the points dense) give the same rows.
+    TempDir dir;
+    const std::string head = test::sphere_scalp(dir);
+    const float R = test::kSphereScalpRadius;
+    std::vector<float3> pts;
+    for (int i = 0; i < 40; ++i) {
+        const float z = 1.0f - 2.0f * (float(i) + 0.5f) / 40.0f, r = std::sqrt(1.0f - z * z), phi = 2.39996323f * float(i);
+        for (int k = 0; k < 100; ++k) pts.push_back(float3(r * std::cos(phi), r * std::sin(phi), z) * (R + 0.3f + 0.01f * float(k)));
+    }
+    const auto probe = [&](const std::vector<float3>& in) {
+        std::string text;
+        for (const float3& p : in) text += num(p.x) + " " + num(p.y) + " " + num(p.z) + "\n";
+        write_text(dir.file("p.txt"), text);
+        const auto r = run_groom({"probe", "--scalp", head, dir.file("p.txt"), "-o", dir.file("o.csv"), "--force"});
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        std::vector<std::string> rows;
+        std::istringstream lines(read_bytes(dir.file("o.csv")));
+        std::string line;
+        std::getline(lines, line);
+        while (std::getline(lines, line)) rows.push_back(line);
+        return rows;
+    };
+    const std::vector<std::string> forward = probe(pts);
+    ASSERT_EQ(forward.size(), pts.size());
+    std::vector<float3> reversed(pts.rbegin(), pts.rend());
+    std::vector<std::string> back = probe(reversed);
+    ASSERT_EQ(back.size(), pts.size());
+    std::reverse(back.begin(), back.end());
+    EXPECT_EQ(back, forward);
+    std::vector<float3> spread = pts;
+    spread.push_back(float3(1e6f * R, 0, 0));
+    spread.push_back(float3(0, -1e6f * R, 0));
+    std::vector<std::string> wide = probe(spread);
+    ASSERT_EQ(wide.size(), spread.size());
+    // The far points' own rows: a distance of about 1e6 R.
+    EXPECT_NEAR(std::stod(wide[pts.size()].substr(wide[pts.size()].find(',', wide[pts.size()].find(',', wide[pts.size()].find(',') + 1) + 1) + 1)),
+                1e6 * R - R, 1e6 * R * 1e-5);
+    wide.resize(pts.size());
+    EXPECT_EQ(wide, forward);
 }
 
 TEST(ProbeCli, BadPointFilesNameTheFileAndWriteNothing)

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cmath>
 
 using namespace groom;
@@ -49,6 +51,46 @@ TEST(CurveSet, ValidateRejectsNonFinitePositionsNamingThePoint)
     }
     catch (const InvalidGeometry& e) {
         EXPECT_NE(std::string(e.what()).find("guides.usda: point 3 (curve 1)"), std::string::npos) << e.what();
+    }
+}
+
+// validate() tests positions and widths on their bits (so the check vectorises): every value a
+// float can hold is judged as the plain comparisons judge it, the edge cases included.
+TEST(CurveSet, ValidateJudgesEveryKindOfFloatLikeThePlainComparisons)
+{
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float big = std::numeric_limits<float>::max(), tiny = std::numeric_limits<float>::denorm_min();
+    const float values[] = {0.0f, -0.0f, tiny, -tiny, 1.0f, -1.0f, big, -big, inf, -inf, nan, -nan};
+    for (const float v : values) {
+        for (const size_t at : {size_t(0), size_t(13), size_t(40)}) {  // inside and at the end of vector lanes
+            CurveSet cs = CurveSet::from_counts(std::vector<int64_t>{20, 21});
+            auto P = cs.positions_for_write();
+            auto W = cs.add<float>(Domain::Point, attr::width);
+            for (size_t i = 0; i < P.size(); ++i) P[i] = float3(float(i), 1.0f, 2.0f), W[i] = 0.01f;
+            P[at].y = v;
+            const bool position_ok = std::isfinite(v);
+            bool threw = false;
+            try {
+                cs.validate();
+            }
+            catch (const InvalidGeometry& e) {
+                threw = true;
+                EXPECT_NE(std::string(e.what()).find("point " + std::to_string(at)), std::string::npos) << e.what();
+            }
+            EXPECT_EQ(threw, !position_ok) << "position " << v << " at " << at;
+            P[at].y = 1.0f;
+            W[at] = v;
+            const bool width_ok = std::isfinite(v) && v >= 0.0f;
+            threw = false;
+            try {
+                cs.validate();
+            }
+            catch (const InvalidGeometry& e) {
+                threw = true;
+                EXPECT_NE(std::string(e.what()).find("point " + std::to_string(at)), std::string::npos) << e.what();
+            }
+            EXPECT_EQ(threw, !width_ok) << "width " << v << " at " << at;
+        }
     }
 }
 

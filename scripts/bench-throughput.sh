@@ -6,7 +6,8 @@
 # command; each line prints the range of wall seconds and peak RSS over the rounds. The ratios the
 # issue asks for (1 -> 2 threads, command / floor, curl --scalp / curl) are printed from the
 # per-round walls, as ranges.
-# Usage: [ROUNDS=3] scripts/bench-throughput.sh [HAIRS] [BUILD_DIR]   (needs ../shared/datasets, /usr/bin/time)
+# Usage: [ROUNDS=3] [TMPDIR=/dev/shm] scripts/bench-throughput.sh [HAIRS] [BUILD_DIR]   (needs ../shared/datasets,
+# /usr/bin/time; files go to mktemp -d, so TMPDIR on a RAM disk takes the disk out of every figure)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 hairs=${1:-100000}

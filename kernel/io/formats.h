@@ -86,6 +86,7 @@ private:
 
     std::ostream& stream_;
     std::vector<uint16_t> segments_;
+    uint64_t base_ = 0;  ///< the stream's position when the writer was made: the file's byte 0
     uint64_t points_ = 0, written_ = 0;
     size_t curves_ = 0;
     uint32_t flags_ = 0;

@@ -198,6 +198,9 @@ CurveSet read_hair_file(const std::string& path)
 
 HairBlockWriter::HairBlockWriter(std::ostream& stream, std::span<const int64_t> counts) : stream_(stream)
 {
+    // Places are counted from where the stream stands now (the start of a fresh file, in groom).
+    const std::streamoff here = stream.tellp();
+    base_ = here > 0 ? uint64_t(here) : 0;
     if (counts.size() > UINT32_MAX) throw InvalidParam("hair: more than 2^32 strands or points");
     segments_.resize(counts.size());
     for (size_t c = 0; c < counts.size(); ++c) {
@@ -214,7 +217,7 @@ HairBlockWriter::HairBlockWriter(std::ostream& stream, std::span<const int64_t> 
 
 void HairBlockWriter::put_at(uint64_t at, const char* bytes, size_t size)
 {
-    stream_.seekp(std::streamoff(at));
+    stream_.seekp(std::streamoff(base_ + at));
     stream_.write(bytes, std::streamsize(size));
 }
 

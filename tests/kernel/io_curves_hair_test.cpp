@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <limits>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -152,6 +153,9 @@ TEST(CurveIoHair, BlocksWrittenOneAfterAnotherMakeTheWholeFile)
     std::vector<int64_t> counts;
     for (size_t c = 0; c < src.num_curves(); ++c) counts.push_back(src.points_in(c));
     const std::string whole = io::write_hair(src);
+    std::ostringstream after("prefix", std::ios::ate);  // a stream that already holds bytes: the file follows them
+    io::write_hair(src, after);
+    EXPECT_EQ(after.str(), "prefix" + whole);
     for (const std::vector<size_t>& cuts : {std::vector<size_t>{0, 4}, {0, 1, 3, 4}, {0, 1, 2, 3, 4}, {0, 0, 2, 2, 4}}) {
         OutputBatch batch;
         CurveBlockWriter writer(dir.file("b.hair"), batch, counts);

@@ -1,5 +1,9 @@
 #include "fields/metadata_text.h"
 
+#include <limits>
+
+#include <algorithm>
+
 #include "kernel/error.h"
 
 #include <charconv>
@@ -38,6 +42,18 @@ float MetadataText::real()
         fail("expected a finite number, found '" + std::string(t.substr(0, 32)) + "'");
     }
     return v;
+}
+
+void MetadataText::header(std::string_view name)
+{
+    if (token() != name) fail("expected the header '" + std::string(name) + "'");
+    if (integer(0, 1000000, "a version") != 1) fail("unknown version (this groom reads version 1)");
+}
+
+int64_t MetadataText::count(int64_t lo, const char* name)
+{
+    // Every number takes at least two characters (a digit and a separator).
+    return integer(lo, std::min<int64_t>(int64_t(text_.size() / 2 + 1), std::numeric_limits<int32_t>::max()), name);
 }
 
 }  // namespace groom::detail

@@ -24,6 +24,11 @@ public:
     /// The next token as a finite float.
     float real();
     size_t size() const { return text_.size(); }
+    /// The first two tokens: `name` and version 1 (the only one written so far).
+    void header(std::string_view name);
+    /// A count of numbers still to come, read as an integer in [lo, the most the text could hold]:
+    /// a flipped digit must not allocate gigabytes.
+    int64_t count(int64_t lo, const char* name);
 
 private:
     std::string_view text_;

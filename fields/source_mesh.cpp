@@ -28,29 +28,22 @@ std::string encode_source_mesh(std::span<const float3> points, std::span<const s
 SourceMesh decode_source_mesh(std::string_view text, const std::string& what)
 {
     MetadataText in(text, what + ": source mesh (grid metadata 'groom_source_mesh')");
-    auto fail = [&](const std::string& why) { in.fail(why); };
-    auto token = [&]() { return in.token(); };
-    auto integer = [&](int64_t lo, int64_t hi, const char* name) { return in.integer(lo, hi, name); };
-    auto real = [&]() { return in.real(); };
-    if (token() != "groom-source-mesh") fail("expected the header 'groom-source-mesh'");
-    if (integer(0, 1000000, "a version") != 1) fail("unknown version (this groom reads version 1)");
-    // Counts cannot exceed what the text could hold: a flipped digit must not allocate gigabytes.
-    const int64_t cap = int64_t(text.size() / 2 + 1);
-    const int64_t np = integer(3, std::min<int64_t>(cap, std::numeric_limits<int32_t>::max()), "a point count");
-    const int64_t nt = integer(1, std::min<int64_t>(cap, std::numeric_limits<int32_t>::max()), "a triangle count");
-    if (np * 3 + nt * 3 > cap) fail("the counts need more numbers than the text holds");
+    in.header("groom-source-mesh");
+    const int64_t np = in.count(3, "a point count");
+    const int64_t nt = in.count(1, "a triangle count");
+    if (np * 3 + nt * 3 > int64_t(text.size() / 2 + 1)) in.fail("the counts need more numbers than the text holds");
     SourceMesh mesh;
     mesh.points.resize(size_t(np));
-    for (float3& p : mesh.points) p.x = real(), p.y = real(), p.z = real();
+    for (float3& p : mesh.points) p.x = in.real(), p.y = in.real(), p.z = in.real();
     mesh.tris.resize(size_t(nt));
     for (auto& t : mesh.tris) {
-        for (int k = 0; k < 3; ++k) t[k] = int32_t(integer(0, np - 1, "a vertex index"));
+        for (int k = 0; k < 3; ++k) t[k] = int32_t(in.integer(0, np - 1, "a vertex index"));
         if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
-            fail("triangle " + std::to_string(&t - mesh.tris.data()) + " repeats a corner (" + std::to_string(t[0]) + " " +
+            in.fail("triangle " + std::to_string(&t - mesh.tris.data()) + " repeats a corner (" + std::to_string(t[0]) + " " +
                  std::to_string(t[1]) + " " + std::to_string(t[2]) + ")");
         }
     }
-    if (!token().empty()) fail("unexpected text after the last triangle");
+    if (!in.token().empty()) in.fail("unexpected text after the last triangle");
     // Each directed edge once: the pseudo-normals pair every edge side with one face.
     std::vector<std::pair<int32_t, int32_t>> edges;
     edges.reserve(mesh.tris.size() * 3);
@@ -59,7 +52,7 @@ SourceMesh decode_source_mesh(std::string_view text, const std::string& what)
     std::sort(edges.begin(), edges.end());
     const auto dup = std::adjacent_find(edges.begin(), edges.end());
     if (dup != edges.end()) {
-        fail("the edge " + std::to_string(dup->first) + " -> " + std::to_string(dup->second) +
+        in.fail("the edge " + std::to_string(dup->first) + " -> " + std::to_string(dup->second) +
              " belongs to two triangles; expected an oriented manifold mesh");
     }
     return mesh;

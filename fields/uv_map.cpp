@@ -201,28 +201,21 @@ std::string UvMap::encode() const
 std::unique_ptr<UvMap> UvMap::decode(std::string_view text, const std::string& what)
 {
     MetadataText in(text, what + ": texture coordinates (grid metadata 'groom_uv_mesh')");
-    auto fail = [&](const std::string& why) { in.fail(why); };
-    auto token = [&]() { return in.token(); };
-    auto integer = [&](int64_t lo, int64_t hi, const char* name) { return in.integer(lo, hi, name); };
-    auto real = [&]() { return in.real(); };
-    if (token() != "groom-uv-mesh") fail("expected the header 'groom-uv-mesh'");
-    if (integer(0, 1000000, "a version") != 1) fail("unknown version (this groom reads version 1)");
-    // Counts cannot exceed what the text could hold: a flipped digit must not allocate gigabytes.
-    const int64_t cap = int64_t(text.size() / 2 + 1);
-    const int64_t np = integer(1, std::min<int64_t>(cap, std::numeric_limits<int32_t>::max()), "a point count");
-    const int64_t nu = integer(1, std::min<int64_t>(cap, std::numeric_limits<int32_t>::max()), "a texture coordinate count");
-    const int64_t nt = integer(1, cap, "a triangle count");
-    if (np * 3 + nu * 2 + nt * 6 > cap) fail("the counts need more numbers than the text holds");
+    in.header("groom-uv-mesh");
+    const int64_t np = in.count(1, "a point count");
+    const int64_t nu = in.count(1, "a texture coordinate count");
+    const int64_t nt = in.count(1, "a triangle count");
+    if (np * 3 + nu * 2 + nt * 6 > int64_t(text.size() / 2 + 1)) in.fail("the counts need more numbers than the text holds");
     std::vector<float3> points(static_cast<size_t>(np));
-    for (float3& p : points) p.x = real(), p.y = real(), p.z = real();
+    for (float3& p : points) p.x = in.real(), p.y = in.real(), p.z = in.real();
     std::vector<float> uvs(static_cast<size_t>(2 * nu));
-    for (float& x : uvs) x = real();
+    for (float& x : uvs) x = in.real();
     std::vector<std::array<int32_t, 3>> tris(static_cast<size_t>(nt)), tri_uvs(static_cast<size_t>(nt));
     for (size_t f = 0; f < size_t(nt); ++f) {
-        for (int k = 0; k < 3; ++k) tris[f][k] = int32_t(integer(0, np - 1, "a vertex index"));
-        for (int k = 0; k < 3; ++k) tri_uvs[f][k] = int32_t(integer(0, nu - 1, "a texture coordinate index"));
+        for (int k = 0; k < 3; ++k) tris[f][k] = int32_t(in.integer(0, np - 1, "a vertex index"));
+        for (int k = 0; k < 3; ++k) tri_uvs[f][k] = int32_t(in.integer(0, nu - 1, "a texture coordinate index"));
     }
-    if (!token().empty()) fail("unexpected text after the last triangle");
+    if (!in.token().empty()) in.fail("unexpected text after the last triangle");
     return std::make_unique<UvMap>(std::move(points), std::move(tris), std::move(uvs), std::move(tri_uvs));
 }
 

@@ -7,6 +7,7 @@
 #include "kernel/io/mesh_io.h"
 #include "support/sphere_mesh.h"
 #include "test_support.h"
+#include "tests/fields/vdb_grid_file.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -149,19 +150,10 @@ TEST(ScalpUv, DamagedUvMetadataIsAParseErrorNamingTheFile)
     test::TempDir dir;
     const ScalpField built = build_scalp(latlong_uv_sphere(10.0f, 12, 24), {1.0f, 3.0f});
     write_scalp(built, dir.file("uv.vdb"));
-    openvdb::initialize();
-    openvdb::io::File in(dir.file("uv.vdb"));
-    in.open();
-    openvdb::FloatGrid::Ptr g = openvdb::gridPtrCast<openvdb::FloatGrid>(in.readGrid("scalp"));
-    in.close();
+    openvdb::FloatGrid::Ptr g = test::read_scalp_grid(dir.file("uv.vdb"));
     const std::string good = g->metaValue<std::string>("groom_uv_mesh");
     auto refused = [&](const std::string& text, const char* why) {
-        g->removeMeta("groom_uv_mesh");
-        g->insertMeta("groom_uv_mesh", openvdb::StringMetadata(text));
-        const std::string path = dir.file("bad.vdb");
-        openvdb::io::File out(path);
-        out.write(openvdb::GridCPtrVec{g});
-        out.close();
+        const std::string path = test::write_grid_with(g, "groom_uv_mesh", openvdb::StringMetadata(text), dir.file("bad.vdb"));
         try {
             read_scalp_vdb(path);
             ADD_FAILURE() << why << ": read without an error";

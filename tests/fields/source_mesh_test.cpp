@@ -10,6 +10,7 @@
 #include "kernel/rng.h"
 #include "support/sphere_mesh.h"
 #include "test_support.h"
+#include "tests/fields/vdb_grid_file.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -160,16 +161,10 @@ TEST(SourceMesh, FileWithoutItLoadsTheZeroCrossing)
     test::TempDir dir;
     const ScalpField built = build_scalp(icosphere({0, 0, 0}, 1.0f, 4), {0.02f, 3.0f});
     write_scalp(built, dir.file("s.vdb"));
-    openvdb::initialize();
-    openvdb::io::File in(dir.file("s.vdb"));
-    in.open();
-    openvdb::FloatGrid::Ptr g = openvdb::gridPtrCast<openvdb::FloatGrid>(in.readGrid("scalp"));
-    in.close();
+    openvdb::FloatGrid::Ptr g = test::read_scalp_grid(dir.file("s.vdb"));
     ASSERT_TRUE(g->metaValue<std::string>("groom_source_mesh").starts_with("groom-source-mesh 1 "));
     g->removeMeta("groom_source_mesh");
-    openvdb::io::File out(dir.file("old.vdb"));
-    out.write(openvdb::GridCPtrVec{g});
-    out.close();
+    test::write_grid(g, dir.file("old.vdb"));
     const ScalpField old = read_scalp_vdb(dir.file("old.vdb"));
     EXPECT_FALSE(old.has_source_mesh());
     // In the band, the same grid: the same distance to the bit. Beyond it, the zero crossing, extracted
@@ -190,21 +185,9 @@ TEST(SourceMesh, DamagedMetadataIsAParseErrorNamingTheFile)
     test::TempDir dir;
     const ScalpField built = build_scalp(icosphere({0, 0, 0}, 1.0f, 2), {0.1f, 3.0f});
     write_scalp(built, dir.file("s.vdb"));
-    openvdb::initialize();
-    openvdb::io::File in(dir.file("s.vdb"));
-    in.open();
-    openvdb::FloatGrid::Ptr g = openvdb::gridPtrCast<openvdb::FloatGrid>(in.readGrid("scalp"));
-    in.close();
+    openvdb::FloatGrid::Ptr g = test::read_scalp_grid(dir.file("s.vdb"));
     const std::string good = g->metaValue<std::string>("groom_source_mesh");
-    auto write_with = [&](const openvdb::Metadata& meta) {
-        g->removeMeta("groom_source_mesh");
-        g->insertMeta("groom_source_mesh", meta);
-        const std::string path = dir.file("bad.vdb");
-        openvdb::io::File out(path);
-        out.write(openvdb::GridCPtrVec{g});
-        out.close();
-        return path;
-    };
+    auto write_with = [&](const openvdb::Metadata& meta) { return test::write_grid_with(g, "groom_source_mesh", meta, dir.file("bad.vdb")); };
     auto refused = [&](const std::string& text, const char* why) {
         const std::string path = write_with(openvdb::StringMetadata(text));
         try {

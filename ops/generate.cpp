@@ -231,8 +231,18 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
     return out;
 }
 
-CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
-                           std::span<const float3> normals, const GenerateParams& params, Progress* progress)
+namespace {
+
+/// What every part of one run shares: the guides prepared, their roots indexed, and the margin
+/// the scalp rule starts from (made once; a run written a block at a time grows many parts).
+struct GrowRun {
+    PreparedGuides pg;
+    PointIndex index;
+    float margin = 0.0f;
+};
+
+GrowRun prepare_run(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots, std::span<const float3> normals,
+                    const GenerateParams& params)
 {
     params.validate();
     if (!normals.empty() && normals.size() != roots.size()) {
@@ -243,14 +253,26 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
         throw InvalidParam("generate: `first_id` " + std::to_string(params.first_id) + " + " + std::to_string(roots.size()) +
                            " curves passes the largest id, 2^63 - 1 (ids would wrap to negative)");
     }
-    const PreparedGuides pg = prepare(guides, scalp, params.points);
-    const PointIndex index(pg.roots);
+    PreparedGuides pg = prepare(guides, scalp, params.points);
+    PointIndex index(pg.roots);
+    // The margin starts at a millionth of the groom's extent (every root and every guide, so a
+    // shard's or a block's part gets the whole run's margin), a few float ulps of the scene.
+    Bounds3 box;
+    for (const float3& p : roots) box.extend(p);
+    for (const float3& p : guides.positions()) box.extend(p);
+    const float margin = 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
+    return GrowRun{std::move(pg), std::move(index), margin};
+}
+
+/// Hairs [r0, r1) of the roots, grown (generate_at_roots' body for one part of the run).
+CurveSet grow(const GrowRun& run, const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
+              std::span<const float3> normals, const GenerateParams& params, int64_t r0, int64_t r1, Progress* progress)
+{
+    const PreparedGuides& pg = run.pg;
+    const PointIndex& index = run.index;
     const int np = pg.points;
     const int64_t ng = int64_t(guides.num_curves());
-    // Hairs [r0, r0 + nc) of the roots: all of them, or a shard's part.
-    const int64_t all = int64_t(roots.size());
-    const int64_t r0 = std::clamp<int64_t>(params.range_begin, 0, all);
-    const int64_t nc = std::clamp<int64_t>(params.range_end < 0 ? all : params.range_end, r0, all) - r0;
+    const int64_t nc = r1 - r0;
     check_generate_memory(guides, nc, params.points);  // the curves made here: a shard's or a block's part
     const int k = int(std::min<int64_t>(params.neighbours, ng));
     const int query = int(std::min<int64_t>(int64_t(k) + 1, ng));
@@ -328,16 +350,27 @@ CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::sp
     // Moved points are checked again and moved again with a doubled margin (up to 8 times): one
     // step along a level set's interpolated normal lands within about a tenth of a voxel of the
     // surface, either side, and on Sintel left 5,500 of 640,000 points reading up to 0.2 inside.
-    // The margin starts at a millionth of the groom's extent (every root and every guide, so a
-    // shard's part gets the whole run's margin), a few float ulps of the scene.
-    Bounds3 box;
-    for (const float3& p : roots) box.extend(p);
-    for (const float3& p : guides.positions()) box.extend(p);
-    const float margin = 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
-    keep_outside(dst, scalp, KeepOutside{params.clearance, margin, 8});
+    keep_outside(dst, scalp, KeepOutside{params.clearance, run.margin, 8});
     apply_hair_widths(dst, params.widths);
     add_root_uvs(dst, scalp);
     return dst;
+}
+
+/// The part of the roots a run grows: all of them, or [range_begin, range_end) of a shard.
+std::pair<int64_t, int64_t> run_range(const GenerateParams& params, int64_t all)
+{
+    const int64_t r0 = std::clamp<int64_t>(params.range_begin, 0, all);
+    return {r0, std::clamp<int64_t>(params.range_end < 0 ? all : params.range_end, r0, all)};
+}
+
+}  // namespace
+
+CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
+                           std::span<const float3> normals, const GenerateParams& params, Progress* progress)
+{
+    const GrowRun run = prepare_run(guides, scalp, roots, normals, params);
+    const auto [r0, r1] = run_range(params, int64_t(roots.size()));
+    return grow(run, guides, scalp, roots, normals, params, r0, r1, progress);
 }
 
 namespace {
@@ -372,26 +405,19 @@ void generate_blocks(const CurveSet& guides, const Surface& scalp, const RootSam
                      Progress* progress, int64_t block_points, const std::function<void(std::span<const int64_t> counts)>& start,
                      const std::function<void(const CurveSet& block)>& emit)
 {
-    params.validate();
     const Roots roots = roots_of(guides, scalp, sample, params);
-    const int64_t all = int64_t(roots.positions.size());
-    const int64_t r0 = std::clamp<int64_t>(params.range_begin, 0, all);
-    const int64_t r1 = std::clamp<int64_t>(params.range_end < 0 ? all : params.range_end, r0, all);
-    // Every hair has the points prepare() gives the guides: `points`, else the most any guide has.
-    int64_t np = params.points;
-    if (np == 0)
-        for (size_t g = 0; g < guides.num_curves(); ++g) np = std::max(np, guides.points_in(g));
-    const std::vector<int64_t> counts(size_t(r1 - r0), np);
+    const GrowRun run = prepare_run(guides, scalp, roots.positions, roots.normals, params);
+    const auto [r0, r1] = run_range(params, int64_t(roots.positions.size()));
+    const std::vector<int64_t> counts(size_t(r1 - r0), run.pg.points);
     const std::vector<int64_t> ends = curve_block_ends(counts, block_points);
-    if (r1 > r0) check_generate_memory(guides, largest_curve_block(counts, ends) / std::max<int64_t>(np, 1), params.points);
+    // Refused before the caller opens its output (each block checks its own part again).
+    if (!ends.empty()) check_generate_memory(guides, largest_curve_block(counts, ends) / std::max(run.pg.points, 1), params.points);
     start(counts);
     const ProgressStep step(progress, "generate", r1 - r0);
     hand_over_curve_blocks(
         ends,
         [&](int64_t c0, int64_t c1) {
-            GenerateParams part = params;
-            part.range_begin = r0 + c0, part.range_end = r0 + c1;
-            CurveSet block = generate_at_roots(guides, scalp, roots.positions, roots.normals, part, nullptr);
+            CurveSet block = grow(run, guides, scalp, roots.positions, roots.normals, params, r0 + c0, r0 + c1, nullptr);
             step.advance(c1 - c0);
             return block;
         },

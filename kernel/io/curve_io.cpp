@@ -69,13 +69,18 @@ bool writes_curve_blocks(const std::string& path)
 {
     if (is_memory_path(path)) return false;
     const io::Format* f = io::format_of_path(path);
-    return f && f->extension == "hair";
+    return f && f->open_blocks;
 }
 
 CurveBlockWriter::CurveBlockWriter(const std::string& path, OutputBatch& batch, std::span<const int64_t> counts) : path_(path)
 {
-    if (!writes_curve_blocks(path)) throw InvalidParam(path + ": only .hair is written a block of curves at a time");
-    hair_ = std::make_unique<io::HairBlockWriter>(batch.open(path), counts);
+    if (!writes_curve_blocks(path)) {
+        std::string can;
+        for (const io::Format& f : io::formats())
+            if (f.open_blocks) can += (can.empty() ? "." : ", .") + std::string(f.extension);
+        throw InvalidParam(path + ": only " + can + " is written a block of curves at a time");
+    }
+    sink_ = io::format_of_path(path)->open_blocks(batch.open(path), counts);
 }
 
 CurveBlockWriter::~CurveBlockWriter() = default;
@@ -83,10 +88,10 @@ CurveBlockWriter::~CurveBlockWriter() = default;
 void CurveBlockWriter::write(const CurveSet& block)
 {
     block.validate("writing " + path_);
-    hair_->write(block);
+    sink_->write(block);
 }
 
-void CurveBlockWriter::finish() { hair_->finish(); }
+void CurveBlockWriter::finish() { sink_->finish(); }
 
 CurveBlockCounts write_curve_blocks(const std::string& path, const std::function<void(const CurveBlockStart&, const CurveBlockEmit&)>& run)
 {

@@ -19,8 +19,15 @@
 namespace groom {
 
 namespace io {
-class HairBlockWriter;
-}
+/// What a format that can be written a block of curves at a time gives (its row's open_blocks;
+/// .hair's HairBlockWriter): the blocks in order, then finish().
+class CurveBlockSink {
+public:
+    virtual ~CurveBlockSink() = default;
+    virtual void write(const CurveSet& block) = 0;
+    virtual void finish() = 0;
+};
+}  // namespace io
 
 /// Curve formats by extension, lower-case, without dot.
 bool is_curve_path(const std::string& path);
@@ -59,7 +66,7 @@ void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& 
 /// everything; .ply everything but int64 columns with values beyond +-2^53 (stored as double,
 /// exact up to 2^53: such a column is left out, never rounded), named with that reason.
 /// Whether the format of `path` can be written a block of curves at a time (CurveBlockWriter):
-/// .hair only; the others are written from the whole set.
+/// its row in the format table has open_blocks (.hair); the others are written from the whole set.
 bool writes_curve_blocks(const std::string& path);
 
 /// An output written a block of curves at a time, in order, for an op that never holds its whole
@@ -78,7 +85,7 @@ public:
 
 private:
     std::string path_;
-    std::unique_ptr<io::HairBlockWriter> hair_;
+    std::unique_ptr<io::CurveBlockSink> sink_;
 };
 
 /// What write_curve_blocks wrote.

@@ -27,6 +27,10 @@ std::string write_obj_curves_row(const CurveSet& c, const CurveWriteOptions&) { 
 std::string write_ply_curves_row(const CurveSet& c, const CurveWriteOptions& o) { return write_ply_curves(c, o.ply_encoding); }
 std::string write_hair_row(const CurveSet& c, const CurveWriteOptions&) { return write_hair(c); }
 void stream_hair_row(const CurveSet& c, const CurveWriteOptions&, std::ostream& out) { write_hair(c, out); }
+std::unique_ptr<CurveBlockSink> hair_blocks_row(std::ostream& out, std::span<const int64_t> counts)
+{
+    return std::make_unique<HairBlockWriter>(out, counts);
+}
 
 /// `.usd` is either encoding of USD: the text one is read as .usda, the binary crate refused.
 CurveSet read_usd_row(const FileBytes& f, const CurveReadOptions& options)
@@ -89,7 +93,7 @@ const std::array<Format, 10> kFormats = [] {
     ply.keeps = ply_keeps_column;
 
     Format hair = row("hair", "Cem Yuksel's .hair");
-    hair.sniff = sniff_hair, hair.read_curves = read_hair_row, hair.read_curves_file = read_hair_file_row, hair.write_curves = write_hair_row, hair.stream_curves = stream_hair_row, hair.keeps = hair_keeps;
+    hair.sniff = sniff_hair, hair.read_curves = read_hair_row, hair.read_curves_file = read_hair_file_row, hair.write_curves = write_hair_row, hair.stream_curves = stream_hair_row, hair.open_blocks = hair_blocks_row, hair.keeps = hair_keeps;
 
     Format off = row("off", "OFF mesh");
     off.read_mesh = read_off;

@@ -12,6 +12,7 @@
 #include "kernel/io/curve_io.h"
 #include "kernel/polygon_soup.h"
 
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -42,6 +43,9 @@ struct Format {
     /// The same written straight to a stream, for formats that can (no second copy of a large output
     /// in memory); null = write_curves' string is written.
     void (*stream_curves)(const CurveSet& curves, const CurveWriteOptions& options, std::ostream& out) = nullptr;
+    /// A writer taking the curves a block at a time into `out`, every curve's point count given
+    /// first (an op's output never whole in memory); null = the format needs the whole set at once.
+    std::unique_ptr<CurveBlockSink> (*open_blocks)(std::ostream& out, std::span<const int64_t> counts) = nullptr;
     PolygonSoup (*read_mesh)(const FileBytes& file) = nullptr;
     std::string (*write_mesh)(const PolygonSoup& soup) = nullptr;
     /// For a format that holds either (.obj, .ply): whether this file's content is curves.

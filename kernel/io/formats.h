@@ -67,7 +67,7 @@ void write_hair(const CurveSet& curves, std::ostream& stream);
 /// format puts every strand's segment count first, then each array whole (points, thickness, ...),
 /// so the strands' point counts come first and each block's part of every array is written at its
 /// place: the stream must be seekable (a file). A single block writes the file front to back.
-class HairBlockWriter {
+class HairBlockWriter final : public CurveBlockSink {
 public:
     /// `counts`: every strand's point count, checked (1 to 65536 each, < 2^32 in all) before
     /// anything is written. Throws InvalidParam.
@@ -75,9 +75,9 @@ public:
     /// The next strands, in order. The first block's point columns (width, opacity, Cd) decide
     /// which arrays the file holds; a later block with other columns, or whose point counts are not
     /// those announced, is refused (InvalidParam).
-    void write(const CurveSet& block);
+    void write(const CurveSet& block) override;
     /// Throws InvalidParam unless every announced strand was written; leaves the stream at the end.
-    void finish();
+    void finish() override;
 
 private:
     void start(uint32_t flags);

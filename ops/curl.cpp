@@ -490,12 +490,12 @@ struct CurlPlan {
     Resolved res;
     std::vector<int64_t> counts;
     std::vector<float> frequency;
+    int64_t largest = 0;  ///< the most points of one output curve
     bool gather = false;  ///< other point attributes are taken from the nearest input point
 };
 
-/// The count pass over every curve, and the output's size checked against the limits. `held`:
-/// output points held at once (all of them, or a streamed run's largest block), for the memory check.
-CurlPlan plan_curl(const CurveSet& src, const CurlParams& params, const std::function<int64_t(std::span<const int64_t>)>& held)
+/// The count pass over every curve, and the output's size checked against the point limit.
+CurlPlan plan_curl(const CurveSet& src, const CurlParams& params)
 {
     params.validate();
     CurlPlan plan;
@@ -519,16 +519,22 @@ CurlPlan plan_curl(const CurveSet& src, const CurlParams& params, const std::fun
         throw LimitExceeded("curl: the output would have " + std::to_string(total) + " points (limit " + std::to_string(kMaxPoints) +
                             "); lower `samples` or `frequency`");
     }
-    // Before allocating (a curve 1.7e7 units long asked for 5e8 points and was killed past 2 GB: op
-    // fuzzer): the output copies every point column of the input and adds shape, cycle and width; a
-    // worker's centreline holds a curve's points and frames.
-    const int64_t at_once = held(plan.counts);
-    check_memory("curl: " + std::to_string(at_once) + " output points held (curve length x `frequency` x `samples`)",
-                 double(at_once) * (bytes_per_point(src) + (params.labels ? 12.0 : 4.0)) + double(largest) * 64.0, "lower `frequency` or `samples`");
+    plan.largest = largest;
     for (const Attribute& a : src.attributes(Domain::Point).all()) {
         if (a.name != attr::P && a.name != attr::width && a.name != "shape" && a.name != "cycle") plan.gather = true;
     }
     return plan;
+}
+
+/// Before allocating (a curve 1.7e7 units long asked for 5e8 points and was killed past 2 GB: op
+/// fuzzer): the output copies every point column of the input and adds shape, cycle and width; a
+/// worker's centreline holds a curve's points and frames. `at_once`: output points held at once
+/// (all of them, or a block's when the output is handed over a block at a time).
+void check_curl_memory(const CurveSet& src, const CurlParams& params, const CurlPlan& plan, int64_t at_once)
+{
+    check_memory("curl: " + std::to_string(at_once) + " output points held (curve length x `frequency` x `samples`)",
+                 double(at_once) * (bytes_per_point(src) + (params.labels ? 12.0 : 4.0)) + double(plan.largest) * 64.0,
+                 "lower `frequency` or `samples`");
 }
 
 /// Curves [c0, c1) of `src`, curled: the output of those curves alone.
@@ -631,11 +637,10 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
 
 CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress)
 {
-    const CurlPlan plan = plan_curl(src, params, [](std::span<const int64_t> counts) {
-        int64_t total = 0;
-        for (const int64_t n : counts) total += n;
-        return total;
-    });
+    const CurlPlan plan = plan_curl(src, params);
+    int64_t total = 0;
+    for (const int64_t n : plan.counts) total += n;
+    check_curl_memory(src, params, plan, total);
     const int64_t nc = int64_t(src.num_curves());
     const ProgressStep step(progress, "curl", nc);
     return curl_range(src, params, plan, 0, nc, scalp, step);
@@ -644,11 +649,9 @@ CurveSet curl(const CurveSet& src, const CurlParams& params, const Surface* scal
 void curl_blocks(const CurveSet& src, const CurlParams& params, const Surface* scalp, Progress* progress, int64_t block_points,
                  const std::function<void(std::span<const int64_t> counts)>& start, const std::function<void(const CurveSet& block)>& emit)
 {
-    std::vector<int64_t> ends;
-    const CurlPlan plan = plan_curl(src, params, [&](std::span<const int64_t> counts) {
-        ends = curve_block_ends(counts, block_points);
-        return largest_curve_block(counts, ends);
-    });
+    const CurlPlan plan = plan_curl(src, params);
+    const std::vector<int64_t> ends = curve_block_ends(plan.counts, block_points);
+    check_curl_memory(src, params, plan, largest_curve_block(plan.counts, ends));
     start(plan.counts);
     const ProgressStep step(progress, "curl", int64_t(src.num_curves()));
     hand_over_curve_blocks(ends, [&](int64_t c0, int64_t c1) { return curl_range(src, params, plan, c0, c1, scalp, step); }, emit);

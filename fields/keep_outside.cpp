@@ -38,8 +38,9 @@ bool settle(float3& p, float d, float need, const Surface& scalp, const KeepOuts
 /// A clear place on the segment from `a` (clear: fa = distance - need >= 0) to `p` (not: fp < 0)
 /// with a place that is not clear within 1/16 of the rule's margin beyond it along the segment
 /// (2^-24 of the segment where the margin is 0, what the 24 halvings used before gave). Every place
-/// kept as `lo` passed the rule's own test, so the point ends clear whatever the distances are. The steps are regula falsi's on distance - need with the Illinois
-/// rule (the side kept twice has its value halved), which converge superlinearly where the distance
+/// kept as `lo` passed the rule's own test, so the point ends clear whatever the distances are.
+/// The steps are regula falsi's on distance - need with the Illinois rule (the side kept twice has
+/// its value halved), which converge superlinearly where the distance
 /// is smooth along the segment (the band's trilinear values, the mesh's), each held at least half
 /// the tolerance inside the bracket so that the last step closes it; where a step leaves more than
 /// half of a bracket two steps old (a bound's values far out, a sign's jump at an opening) the next

@@ -407,7 +407,9 @@ void generate_blocks(const CurveSet& guides, const Surface& scalp, const RootSam
 {
     const Roots roots = roots_of(guides, scalp, sample, params);
     const GrowRun run = prepare_run(guides, scalp, roots.positions, roots.normals, params);
-    const auto [r0, r1] = run_range(params, int64_t(roots.positions.size()));
+    // Plain variables, not a structured binding: clang 14 (the sanitizer build) cannot capture one.
+    const std::pair<int64_t, int64_t> range = run_range(params, int64_t(roots.positions.size()));
+    const int64_t r0 = range.first, r1 = range.second;
     const std::vector<int64_t> counts(size_t(r1 - r0), run.pg.points);
     const std::vector<int64_t> ends = curve_block_ends(counts, block_points);
     // Refused before the caller opens its output (each block checks its own part again).

@@ -1,7 +1,9 @@
-// `groom info FILE [--json]`: what a curve or mesh file holds. Curves: counts, points per curve,
-// lengths, bounds, attributes. Meshes: vertices, faces by kind, shells, boundary and non-manifold
-// edges, duplicate vertices, degenerate faces.
+// `groom info FILE [--json]`: what a curve, mesh or scalp file holds. Curves: counts, points per
+// curve, lengths, bounds, attributes. Meshes: vertices, faces by kind, shells, boundary and
+// non-manifold edges, duplicate vertices, degenerate faces. Scalps (.vdb): voxel size, band, the
+// mesh far queries answer from, texture coordinates, seams.
 #include "cli/command.h"
+#include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/format_table.h"
@@ -11,7 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -174,11 +178,62 @@ void info_mesh(const Args& a)
     std::cout << o.str();
 }
 
+/// A .vdb scalp: what every --scalp query of it will use. Read as any command reads it (the same
+/// checks, the same messages), so a file `info` describes is one the commands accept.
+void info_scalp(const Args& a)
+{
+    const ScalpField scalp = read_scalp_vdb(a.input);
+    const PolygonSoup mesh = scalp.mesh();
+    const Bounds3 b = scalp.bounds();
+    const float voxel = scalp.voxel_size(), band = scalp.band_voxels();
+    const int64_t seams = scalp.seam_voxels();
+    std::ostringstream o;
+    if (a.json) {
+        nlohmann::ordered_json j;
+        j["file"] = a.input;
+        j["kind"] = "scalp";
+        j["grid"] = "scalp";
+        j["voxel_size"] = json_number(voxel);
+        j["band_voxels"] = json_number(band);
+        j["active_voxels"] = scalp.active_voxels();
+        if (!b.empty()) j["bounds"] = {{"min", json_triple(b.lo)}, {"max", json_triple(b.hi)}};
+        j["mesh"] = {{"faces", scalp.num_faces()}, {"vertices", mesh.points.size()}, {"source", scalp.has_source_mesh() ? "stored" : "zero crossing"}};
+        j["uvs"] = scalp.has_uvs();
+        j["seam_voxels"] = seams;
+        o << j.dump(2) << "\n";
+    }
+    else {
+        o << a.input << ": scalp level set (grid \"scalp\")\n";
+        o << "  voxel size      " << num(voxel) << "\n";
+        o << "  band            " << num(band) << " voxels each side (" << num(double(band) * voxel) << " scene units)\n";
+        o << "  active voxels   " << scalp.active_voxels() << "\n";
+        if (!b.empty()) o << "  bounds          " << triple(b.lo) << " to " << triple(b.hi) << "  size " << triple(b.size()) << "\n";
+        o << "  mesh            " << scalp.num_faces() << " triangles, " << mesh.points.size() << " vertices, "
+          << (scalp.has_source_mesh() ? "the repaired source mesh `groom scalp` stored (far queries exact)"
+                                      : "extracted from the zero crossing (not written by `groom scalp`: far queries within about a voxel)")
+          << "\n";
+        o << "  uvs             " << (scalp.has_uvs() ? "yes (hair grown on it gets each root's `root_uv`)" : "no") << "\n";
+        o << "  seams           "
+          << (seams == 0 ? std::string("none (the band is 1-Lipschitz)")
+                         : std::to_string(seams) + " voxels beside a jump of the distance (an open rim, or shells that disagree on inside; answered from the mesh)")
+          << "\n";
+    }
+    std::cout << o.str();
+}
+
+bool is_vdb_path(const std::string& path)
+{
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".vdb";
+}
+
 void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
-    app->add_option("FILE", args->input, "Curves (" + curve_formats() + ") or mesh (" + mesh_formats() + "); - = curves on stdin")->required();
+    app->add_option("FILE", args->input, "Curves (" + curve_formats() + "), mesh (" + mesh_formats() + ") or scalp (.vdb); - = curves on stdin")
+        ->required();
     app->add_flag("--json", args->json, "Print JSON instead of text");
     auto* m = app->add_flag("--mesh", args->mesh, "Read FILE as a mesh (default: decided by extension and content)");
     app->add_flag("--curves", args->curves, "Read FILE as curves")->excludes(m);
@@ -187,12 +242,17 @@ void setup(CommandContext& ctx)
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
         bool curves = args->curves;
+        if (!args->curves && !args->mesh && is_vdb_path(args->input)) {
+            if (!args->group.empty()) throw InvalidParam("info: --group applies to OBJ meshes; " + args->input + " is a scalp (.vdb)");
+            info_scalp(*args);
+            return;
+        }
         if (!args->curves && !args->mesh) {
             if (args->input != "-" && !is_curve_path(args->input) && !is_mesh_path(args->input)) {
                 const io::Format* f = io::format_of_path(args->input);
                 if (f && !f->refusal.empty()) throw InvalidParam("info: " + args->input + ": " + std::string(f->refusal));
-                throw InvalidParam("info: " + args->input + ": unknown format (expected curves " + curve_formats() + " or a mesh " +
-                                   mesh_formats() + ")");
+                throw InvalidParam("info: " + args->input + ": unknown format (expected curves " + curve_formats() + ", a mesh " +
+                                   mesh_formats() + " or a scalp .vdb)");
             }
             curves = holds_curves(args->input);
         }
@@ -202,7 +262,7 @@ void setup(CommandContext& ctx)
     };
 }
 
-const Registrar reg({"info", "Describe a curve or mesh file (counts, lengths, bounds, attributes, topology)", 10, setup});
+const Registrar reg({"info", "Describe a curve, mesh or scalp file (counts, lengths, bounds, attributes, topology, voxels)", 10, setup});
 
 }  // namespace
 }  // namespace groom::cli

@@ -98,6 +98,8 @@ float3 ScalpField::closest_point(const float3& p) const
 bool ScalpField::lipschitz() const { return impl_->seam_voxels() == 0; }
 float ScalpField::voxel_size() const { return impl_->voxel; }
 float ScalpField::band_voxels() const { return impl_->band_voxels; }
+int64_t ScalpField::active_voxels() const { return static_cast<int64_t>(impl_->sdf->activeVoxelCount()); }
+int64_t ScalpField::seam_voxels() const { return impl_->seam_voxels(); }
 bool ScalpField::has_source_mesh() const { return impl_->mesh_exact; }
 bool ScalpField::has_uvs() const { return impl_->uv != nullptr; }
 bool ScalpField::surface_uv(const float3& p, float& u, float& v) const { return impl_->uv && impl_->uv->lookup(p, u, v); }

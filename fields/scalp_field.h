@@ -98,6 +98,11 @@ public:
 
     float voxel_size() const;
     float band_voxels() const;
+    /// Voxels stored in the narrow band (the level set's active voxels).
+    int64_t active_voxels() const;
+    /// Band voxels beside a jump of the distance (an open mesh's rims, shells that disagree on
+    /// inside), left out of the interpolated band; 0 exactly when lipschitz().
+    int64_t seam_voxels() const;
     Bounds3 bounds() const;
     /// True when built from a mesh or loaded from a .vdb that carries it (every .vdb `groom scalp`
     /// writes); false when the mesh was extracted from a loaded .vdb's zero crossing (exact to

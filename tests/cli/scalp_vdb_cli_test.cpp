@@ -8,6 +8,8 @@
 #include "kernel/io/mesh_io.h"
 #include "support/sphere_mesh.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 
 using namespace groom;
@@ -88,4 +90,53 @@ TEST(ScalpVdbCli, VdbGivesTheMeshsOutputsByteForByteOnSintelsOpenHead)
     GROOM_REQUIRE_SHARED(guides, "sintel_tressfx_opengl/sintel_guides.obj");
     test::TempDir dir;
     expect_same_outputs(dir, mesh, guides, "5000");
+}
+
+// `groom info` on a .vdb reports what every --scalp query of it uses, read back from the file: the
+// voxel and band it was written with, the stored mesh (an icosphere of subdivision 4 has 5,120
+// triangles and 2,562 vertices on the sphere of radius 10, so its bounds are +-10), no seams on a
+// closed sphere and some beside an open cap's rim.
+TEST(ScalpVdbCli, InfoDescribesTheScalpFile)
+{
+    test::TempDir dir;
+    const std::string sphere = dir.file("sphere.obj"), cap = dir.file("cap.obj");
+    write_mesh(icosphere(float3(0, 0, 0), 10.0f, 4), sphere);
+    write_mesh(sphere_cap(float3(0, 0, 0), 10.0f, float3(0, 1, 0), 60.0f, 24, 48), cap);
+    ASSERT_EQ(run_groom({"scalp", sphere, "-o", dir.file("sphere.vdb"), "--voxel", "0.25", "--band", "4", "-q"}).exit_code, 0);
+    ASSERT_EQ(run_groom({"scalp", cap, "-o", dir.file("cap.vdb"), "--voxel", "0.25", "-q"}).exit_code, 0);
+
+    const auto r = run_groom({"info", dir.file("sphere.vdb"), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["kind"], "scalp");
+    EXPECT_FLOAT_EQ(j["voxel_size"].get<float>(), 0.25f);
+    EXPECT_FLOAT_EQ(j["band_voxels"].get<float>(), 4.0f);
+    EXPECT_EQ(j["mesh"]["faces"], 5120);
+    EXPECT_EQ(j["mesh"]["vertices"], 2562);
+    EXPECT_EQ(j["mesh"]["source"], "stored");
+    EXPECT_EQ(j["uvs"], false);
+    EXPECT_EQ(j["seam_voxels"], 0);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(j["bounds"]["min"][k].get<double>(), -10.0, 1e-4);
+        EXPECT_NEAR(j["bounds"]["max"][k].get<double>(), 10.0, 1e-4);
+    }
+    // A band 4 voxels each side of a sphere of radius 40 voxels: about 8 voxels x its area in voxels.
+    const double shell = 8.0 * 4.0 * 3.14159265 * 40.0 * 40.0;
+    EXPECT_GT(j["active_voxels"].get<double>(), 0.8 * shell);
+    EXPECT_LT(j["active_voxels"].get<double>(), 1.2 * shell);
+
+    const auto open = run_groom({"info", dir.file("cap.vdb")});
+    ASSERT_EQ(open.exit_code, 0) << open.err;
+    EXPECT_NE(open.out.find("scalp level set"), std::string::npos) << open.out;
+    EXPECT_NE(open.out.find("voxels beside a jump of the distance"), std::string::npos) << open.out;
+
+    // Not a .vdb inside: the reader's error, naming the file; --group is for OBJ meshes.
+    const std::string bad = dir.file("bad.vdb");
+    test::write_text(bad, "not a vdb\n");
+    const auto b = run_groom({"info", bad});
+    EXPECT_NE(b.exit_code, 0);
+    EXPECT_NE(b.err.find("bad.vdb"), std::string::npos) << b.err;
+    const auto g = run_groom({"info", dir.file("sphere.vdb"), "--group", "head"});
+    EXPECT_NE(g.exit_code, 0);
+    EXPECT_NE(g.err.find("--group"), std::string::npos) << g.err;
 }

@@ -308,6 +308,27 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
         range(q, D3(u), lo, hi);
         return lo > 0.0;
     };
+    // A face none of whose points can be nearer than s0 to any point p of the cell is nobody's
+    // closest face there, nor are its edges and vertices (they are its points). Its points lie
+    // within rho of its centroid m, so it is out when |p - m| > |p - s0| + rho for every p; squared,
+    // with |p - s0| <= reach (the farthest corner's), that holds when
+    //     |p - m|^2 - |p - s0|^2 > 2 rho reach + rho^2,
+    // whose left side is linear in p (the bisector of m and s0), so least at a corner. Near the
+    // scalp this keeps the faces around s0 a cell can see, where the sphere of |d_c| + 2 r kept
+    // every face within it (half of the faces the certificates examined on Sintel's curl, perf).
+    const double sx = s0.x, sy = s0.y, sz = s0.z;
+    const double cs2 = (cx - sx) * (cx - sx) + (cy - sy) * (cy - sy) + (cz - sz) * (cz - sz);
+    const auto farther_than_s0 = [&](int32_t f) {
+        const float3& m = face_centre_[f];
+        const double rho = face_radius_[f];
+        const double mx = double(m.x) - cx, my = double(m.y) - cy, mz = double(m.z) - cz;
+        const double at = mx * mx + my * my + mz * mz - cs2;  // |c - m|^2 - |c - s0|^2
+        const double spread = 2.0 * half * (std::fabs(double(m.x) - sx) + std::fabs(double(m.y) - sy) + std::fabs(double(m.z) - sz));
+        const double need = 2.0 * rho * reach + rho * rho;
+        // Rounding of the terms above is far below this slack (double over float coordinates).
+        const double slack = 1e-9 * (mx * mx + my * my + mz * mz + cs2 + scale * scale) + margin * (rho + reach);
+        return at - spread > need + slack;
+    };
     // Each vertex once: marked in a per-thread table by this call's generation.
     thread_local std::vector<uint32_t> stamp;
     thread_local uint32_t generation = 0;
@@ -320,6 +341,7 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
     for (size_t i = 0; i < faces.size(); ++i) {
         if (face_distance[i] > radius) continue;
         const int32_t f = faces[i];
+        if (farther_than_s0(f)) continue;
         const auto& t = geometry_.tris[f];
         const size_t f3 = size_t(f) * 3;
         // The face itself: points whose projection falls inside it (its prism).

@@ -149,14 +149,23 @@ void setup(CommandContext& ctx)
         // One row of the table per point, filled in place: x,y,z,distance,nx,ny,nz,cx,cy,cz.
         constexpr int kColumns = 10;
         std::vector<float> table(points.size() * kColumns);
-        const QueryOrder sorted = query_order(points, scalp->dense_cell_size());
-        const bool dense = sorted.dense;
+        // The smallest cells the points crowd; none (the tree for each point) where no size is
+        // crowded, in the order of the smallest cells (their band bricks stay in cache).
+        QueryOrder sorted = query_order(points, scalp->dense_cell_size(0));
+        int level = sorted.dense ? 0 : -1;
+        for (int l = 1; level < 0 && l < ScalpField::kDenseLevels; ++l) {
+            QueryOrder coarser = query_order(points, scalp->dense_cell_size(l));
+            if (!coarser.dense) continue;
+            sorted = std::move(coarser);
+            level = l;
+        }
+        const bool dense = level >= 0;
         parallel_for(n, 1024, [&](int64_t b, int64_t e) {
             for (int64_t j = b; j < e; ++j) {
                 const int64_t i = sorted.order.empty() ? j : int64_t(sorted.order[size_t(j)]);
                 float3 nn, c;
                 const float3& p = points[i];
-                const float d = dense ? scalp->query_dense(p, nn, c) : scalp->query(p, nn, c);
+                const float d = dense ? scalp->query_dense(p, nn, c, level) : scalp->query(p, nn, c);
                 float* row = table.data() + i * kColumns;
                 const float values[kColumns] = {p.x, p.y, p.z, d, nn.x, nn.y, nn.z, c.x, c.y, c.z};
                 std::copy(values, values + kColumns, row);

@@ -306,6 +306,111 @@ void MeshQuery::faces_within(const float3& center, double radius, std::vector<in
     }
 }
 
+namespace {
+
+/// What faces_seen_from asks of a sphere (centre m, radius rho) holding some of the mesh: can a
+/// point t inside it be nearer than s0 (plus the slack) to a point p of the ball B(c, r)?
+/// |p - t| >= |p - m| - rho, so no t can when |p - m| > |p - s0| + rho + slack for every p;
+/// squared, with |p - s0| <= R = |c - s0| + r, that holds when
+///     |p - m|^2 - |p - s0|^2 > 2 rho' R + rho'^2,   rho' = rho + slack,
+/// whose left side is linear in p (the bisector plane of m and s0), least over the ball at
+/// c - r (m - s0) / |m - s0|: |c - m|^2 - |c - s0|^2 - 2 r |m - s0|. Far from the mesh this keeps
+/// the patch around s0 a small ball can see, where a sphere around c keeps every face in it.
+struct SeenFrom {
+    double cx, cy, cz, r, sx, sy, sz, slack, cs2, R, gather2;
+
+    bool excluded(double mx, double my, double mz, double rho) const
+    {
+        const double ax = mx - cx, ay = my - cy, az = mz - cz;
+        const double bx = mx - sx, by = my - sy, bz = mz - sz;
+        const double least = ax * ax + ay * ay + az * az - cs2 - 2.0 * r * std::sqrt(bx * bx + by * by + bz * bz);
+        const double rp = rho + slack;
+        // Double rounding of the terms, far below the slack the caller gives for float coordinates.
+        return least > 2.0 * rp * R + rp * rp + 1e-9 * (ax * ax + ay * ay + az * az + cs2 + R * R);
+    }
+};
+
+/// CGAL's traversal traits (the interface of its own Listing_primitive_traits): a node is entered
+/// when its box is within the gather radius of the centre and not excluded by its bounding sphere;
+/// a face is listed when within that radius and not excluded by its own.
+template <class Tree>
+class SeenFromTraits {
+public:
+    using Primitive = typename Tree::Primitive;
+    using Node = CGAL::AABB_node<typename Tree::AABB_traits>;
+
+    SeenFromTraits(const SeenFrom& q, const MeshGeometry& g, const Triangles& tris, std::vector<int32_t>& faces,
+                   std::vector<double>& distances)
+        : q_(q), g_(g), tris_(tris), faces_(faces), distances_(distances)
+    {
+    }
+    bool go_further() const { return true; }
+    bool do_intersect(int, const Node& node) const
+    {
+        const CGAL::Bbox_3& b = node.bbox();
+        // The box's distance from the centre, squared.
+        const double dx = std::max({b.xmin() - q_.cx, 0.0, q_.cx - b.xmax()}), dy = std::max({b.ymin() - q_.cy, 0.0, q_.cy - b.ymax()}),
+                     dz = std::max({b.zmin() - q_.cz, 0.0, q_.cz - b.zmax()});
+        if (dx * dx + dy * dy + dz * dz > q_.gather2) return false;
+        const double hx = 0.5 * (b.xmax() - b.xmin()), hy = 0.5 * (b.ymax() - b.ymin()), hz = 0.5 * (b.zmax() - b.zmin());
+        return !q_.excluded(b.xmin() + hx, b.ymin() + hy, b.zmin() + hz, std::sqrt(hx * hx + hy * hy + hz * hz));
+    }
+    void intersection(int, const Primitive& primitive)
+    {
+        const int32_t f = int32_t(primitive.id() - tris_.cbegin());
+        const auto& t = g_.tris[size_t(f)];
+        const float3 &a = g_.points[size_t(t[0])], &b = g_.points[size_t(t[1])], &c = g_.points[size_t(t[2])];
+        const double mx = (double(a.x) + b.x + c.x) / 3.0, my = (double(a.y) + b.y + c.y) / 3.0, mz = (double(a.z) + b.z + c.z) / 3.0;
+        double rho2 = 0.0;
+        for (const float3* v : {&a, &b, &c}) {
+            const double ex = v->x - mx, ey = v->y - my, ez = v->z - mz;
+            rho2 = std::max(rho2, ex * ex + ey * ey + ez * ez);
+        }
+        if (q_.excluded(mx, my, mz, std::sqrt(rho2) * (1.0 + 1e-9))) return;
+        Feature feature;
+        const float3 centre(float(q_.cx), float(q_.cy), float(q_.cz));
+        const float3 p = closest_on_triangle(centre, a, b, c, feature);
+        const double px = double(p.x) - centre.x, py = double(p.y) - centre.y, pz = double(p.z) - centre.z;
+        const double d2 = px * px + py * py + pz * pz;
+        if (!(d2 <= q_.gather2)) return;
+        faces_.push_back(f);
+        distances_.push_back(std::sqrt(d2));
+    }
+
+private:
+    const SeenFrom& q_;
+    const MeshGeometry& g_;
+    const Triangles& tris_;
+    std::vector<int32_t>& faces_;
+    std::vector<double>& distances_;
+};
+
+}  // namespace
+
+void MeshQuery::faces_seen_from(const float3& center, double r, const double s0[3], double slack, std::vector<int32_t>& faces,
+                                std::vector<double>& distances) const
+{
+    faces.clear();
+    distances.clear();
+    SeenFrom q;
+    q.cx = center.x, q.cy = center.y, q.cz = center.z;
+    q.r = r;
+    q.sx = s0[0], q.sy = s0[1], q.sz = s0[2];
+    q.slack = slack;
+    const double ex = q.cx - q.sx, ey = q.cy - q.sy, ez = q.cz - q.sz;
+    q.cs2 = ex * ex + ey * ey + ez * ez;
+    const double cs = std::sqrt(q.cs2);
+    q.R = cs + r;
+    // Every candidate is within |c - s0| + 2 r + slack of the centre; float rounding of a face's
+    // closest point (a few ulps of the coordinates) kept on the inclusive side, as faces_within.
+    const double gather = cs + 2.0 * r + slack;
+    const double round = 1e-6 * (std::max({std::fabs(q.cx), std::fabs(q.cy), std::fabs(q.cz)}) + gather);
+    q.gather2 = (gather + round) * (gather + round);
+    const Tree& t = tree();
+    SeenFromTraits<AabbTree> traits(q, geometry_, t.triangles, faces, distances);
+    t.tree.traversal(0, traits);
+}
+
 const WindingNumber& MeshQuery::winding() const
 {
     std::call_once(winding_built_, [this] { winding_ = std::make_unique<WindingNumber>(geometry_.points, geometry_.tris); });

@@ -30,14 +30,20 @@ inline D3 to_d3(const float3& v) { return {v.x, v.y, v.z}; }
 /// Squared distance from p to triangle (a, b, c) in double: Ericson's regions (Real-Time Collision
 /// Detection 5.1.5), the same as closest_on_triangle, without its float rounding deciding between
 /// two faces.
-double distance2(const D3& p, const D3& a, const D3& b, const D3& c)
+double distance2(const D3& p, const D3& a, const D3& b, const D3& c, D3* at = nullptr)
 {
     const D3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0.0 && d2 <= 0.0) return dot(ap, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) {
+        if (at) *at = a;
+        return dot(ap, ap);
+    }
     const D3 bp = sub(p, b);
     const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0.0 && d4 <= d3) return dot(bp, bp);
+    if (d3 >= 0.0 && d4 <= d3) {
+        if (at) *at = b;
+        return dot(bp, bp);
+    }
     D3 q;
     const double vc = d1 * d4 - d3 * d2;
     const D3 cp = sub(p, c);
@@ -49,6 +55,7 @@ double distance2(const D3& p, const D3& a, const D3& b, const D3& c)
         q = {a.x + ab.x * t, a.y + ab.y * t, a.z + ab.z * t};
     }
     else if (d6 >= 0.0 && d5 <= d6) {
+        if (at) *at = c;
         return dot(cp, cp);
     }
     else if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
@@ -64,14 +71,16 @@ double distance2(const D3& p, const D3& a, const D3& b, const D3& c)
         const double v = vb * denom, w = vc * denom;
         q = {a.x + ab.x * v + ac.x * w, a.y + ab.y * v + ac.y * w, a.z + ab.z * v + ac.z * w};
     }
+    if (at) *at = q;
     const D3 e = sub(p, q);
     return dot(e, e);
 }
 
-double face_distance2(const MeshGeometry& g, int32_t f, const D3& p)
+/// Squared distance from p to face f; `at`, when given, receives the closest point.
+double face_distance2(const MeshGeometry& g, int32_t f, const D3& p, D3* at = nullptr)
 {
     const auto& t = g.tris[size_t(f)];
-    return distance2(p, to_d3(g.points[size_t(t[0])]), to_d3(g.points[size_t(t[1])]), to_d3(g.points[size_t(t[2])]));
+    return distance2(p, to_d3(g.points[size_t(t[0])]), to_d3(g.points[size_t(t[1])]), to_d3(g.points[size_t(t[2])]), at);
 }
 
 /// A margin for the float rounding of distances measured at `at` over `extent`: the candidates'
@@ -89,13 +98,14 @@ struct Last {
 
 }  // namespace
 
-NearFaces::NearFaces(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel)
+NearFaces::NearFaces(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel, int cell_voxels)
     : id_(next_id.fetch_add(1, std::memory_order_relaxed) + 1), geometry_(geometry), query_(query), ox_(origin.x), oy_(origin.y),
-      oz_(origin.z), side_(double(voxel) * kCellVoxels), inv_side_(1.0 / (double(voxel) * kCellVoxels))
+      oz_(origin.z), side_(double(voxel) * cell_voxels), inv_side_(1.0 / (double(voxel) * cell_voxels))
 {
     double area = 0.0;
     for (double a : geometry.face_areas) area += a;
-    enabled_ = !geometry.tris.empty() && area / double(geometry.tris.size()) >= kMinFaceArea * side_ * side_;
+    const double smallest = double(voxel) * kCellVoxels;
+    enabled_ = !geometry.tris.empty() && area / double(geometry.tris.size()) >= kMinFaceArea * smallest * smallest;
 }
 
 NearFaces::~NearFaces() = default;
@@ -105,16 +115,23 @@ std::unique_ptr<NearFaces::Cell> NearFaces::make(int64_t ix, int64_t iy, int64_t
     auto cell = std::make_unique<Cell>();
     cell->centre = float3(float(ox_ + side_ * (double(ix) + 0.5)), float(oy_ + side_ * (double(iy) + 0.5)), float(oz_ + side_ * (double(iz) + 0.5)));
     const D3 c = to_d3(cell->centre);
-    // D: the distance to the face the tree finds (any face's would do: it only bounds d(c) above).
-    const double reach_c = std::sqrt(face_distance2(geometry_, query_.tree_closest_face(cell->centre), c));
-    if (!(reach_c <= kMaxReachVoxels * side_ / kCellVoxels)) return cell;
+    // s0: the closest point of the face the tree finds (any point of the mesh would do: every point
+    // p's closest face is at most |p - s0| away).
+    D3 s0;
+    const double reach_c = std::sqrt(face_distance2(geometry_, query_.tree_closest_face(cell->centre), c, &s0));
+    if (!(reach_c <= kMaxReachCells * side_)) return cell;
     // The half diagonal, widened for the rounding of the centre and of p's cell index.
     const double half = 0.5 * std::sqrt(3.0) * side_;
     const double m = margin(cell->centre, reach_c + side_);
     const double r = half * (1.0 + 1e-6) + m;
     std::vector<int32_t> faces;
     std::vector<double> dist;
-    query_.faces_within(cell->centre, reach_c + 2.0 * r + m, faces, &dist);
+    // Every face that can be some point's closest, or within the rounding of a query of being it
+    // (the 2 m each distance below may lose, twice), and nothing farther: the patch around s0 the
+    // cell can see. Listing every face within |c - s0| + 2 r instead kept half the head for a
+    // cell 10 voxels out, and the cells were worth their cost only where points crowd.
+    const double at[3] = {s0.x, s0.y, s0.z};
+    query_.faces_seen_from(cell->centre, r, at, 4.0 * m, faces, dist);
     if (faces.size() > kMaxCandidates) return cell;
     std::vector<size_t> order(faces.size());
     std::iota(order.begin(), order.end(), size_t(0));

@@ -16,11 +16,18 @@
 // picked the same face except where two faces tie to double rounding (a shared edge or vertex:
 // the same closest point, up to float rounding of its computation from the other face).
 //
-// Cells are made on first use and kept in a lock-free table. A cell farther than kMaxReachVoxels
-// from the mesh, or whose list would exceed kMaxCandidates, keeps no list: its points go to the tree.
-// So does every point when the mesh's faces are small for the cells (mean area below kMinFaceArea
-// cell faces): the mesh a .vdb gives, its level set's zero crossing, has 24 times Sintel's faces;
-// there the lists ran to hundreds of faces, and 2M hair points took 10% longer than the tree alone.
+// The list is cut to the faces that can be closest to some point of the cell (MeshQuery::
+// faces_seen_from: the patch around the centre's closest point that the cell can see), so a cell
+// far out keeps a short list too, and bigger cells pay off where points are sparse: `groom probe`
+// picks the cell size from how its points crowd (kCellVoxels for hair, larger for points spread
+// through a box).
+//
+// Cells are made on first use and kept in a lock-free table. A cell farther than kMaxReachCells
+// cells from the mesh, or whose list would exceed kMaxCandidates, keeps no list: its points go to
+// the tree. So does every point when the mesh's faces are small for the cells (mean area below
+// kMinFaceArea faces of a kCellVoxels cell): the mesh a .vdb gives, its level set's zero crossing,
+// has 24 times Sintel's faces; there the lists ran to hundreds of faces, and 2M hair points took
+// 10% longer than the tree alone.
 #pragma once
 
 #include "fields/cell_key_hash.h"
@@ -39,12 +46,13 @@ class MeshQuery;
 
 class NearFaces {
 public:
-    static constexpr int kCellVoxels = 2;
-    static constexpr double kMaxReachVoxels = 48.0;
+    static constexpr int kCellVoxels = 2;  ///< the smallest cells, for points as crowded as hair
+    static constexpr double kMaxReachCells = 24.0;
     static constexpr size_t kMaxCandidates = 256;
     static constexpr double kMinFaceArea = 0.5;
 
-    NearFaces(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel);
+    /// Cells of `cell_voxels` voxels (kCellVoxels times a power of two).
+    NearFaces(const MeshGeometry& geometry, const MeshQuery& query, const float3& origin, float voxel, int cell_voxels = kCellVoxels);
     ~NearFaces();
     NearFaces(const NearFaces&) = delete;
     NearFaces& operator=(const NearFaces&) = delete;

@@ -18,7 +18,7 @@ ScalpField& ScalpField::operator=(ScalpField&&) noexcept = default;
 
 namespace {
 
-float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3& closest, bool cells)
+float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3& closest, int cells)
 {
     float d = 0.0f;
     float3 g;
@@ -47,9 +47,15 @@ float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3&
 
 }  // namespace
 
-float ScalpField::query(const float3& p, float3& n, float3& closest) const { return query_impl(*impl_, p, n, closest, false); }
-float ScalpField::query_dense(const float3& p, float3& n, float3& closest) const { return query_impl(*impl_, p, n, closest, true); }
-float ScalpField::dense_cell_size() const { return impl_->voxel * float(detail::NearFaces::kCellVoxels); }
+float ScalpField::query(const float3& p, float3& n, float3& closest) const { return query_impl(*impl_, p, n, closest, -1); }
+float ScalpField::query_dense(const float3& p, float3& n, float3& closest, int level) const
+{
+    return query_impl(*impl_, p, n, closest, std::clamp(level, 0, kDenseLevels - 1));
+}
+float ScalpField::dense_cell_size(int level) const
+{
+    return impl_->voxel * float(detail::NearFaces::kCellVoxels << std::clamp(level, 0, kDenseLevels - 1));
+}
 
 float ScalpField::distance(const float3& p) const
 {

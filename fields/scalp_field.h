@@ -70,16 +70,18 @@ public:
     float3 closest_point(const float3& p) const override;
     /// Signed distance, unit normal and closest point in one call (cheaper than three).
     float query(const float3& p, float3& normal, float3& closest) const override;
-    /// query(), with the closest face outside the band found among candidates kept per 2-voxel cell
-    /// (fields/near_faces.h) instead of by an AABB-tree search: about 4x faster per point where many
-    /// points share cells (hair: 2M points of 62,500 hairs on Sintel, 47 a cell), slower where
-    /// they do not (each cell costs about three tree searches to make: 2x slower at 0.4 a cell, 15%
-    /// at 4.6). The same answers as query()
+    /// query(), with the closest face outside the band found among candidates kept per cell
+    /// (fields/near_faces.h) instead of by an AABB-tree search: cells of 2 voxels at level 0, twice
+    /// that per level up to kDenseLevels - 1. Several times faster per point where many points share
+    /// cells (hair: 2M points of 62,500 hairs on Sintel, 47 a 2-voxel cell; points spread through
+    /// the head's box, about 30 a 4-voxel cell), slower where they do not (each cell costs a tree
+    /// search and a walk of the tree for the faces it can see). The same answers as query()
     /// except at ties between faces (a shared edge or vertex): the same closest point to float
     /// rounding. Which one a command calls must not depend on timing (the bytes would).
-    float query_dense(const float3& p, float3& normal, float3& closest) const;
-    /// The side of near_faces' cells, scene units (for a caller estimating points per cell).
-    float dense_cell_size() const;
+    static constexpr int kDenseLevels = 3;
+    float query_dense(const float3& p, float3& normal, float3& closest, int level = 0) const;
+    /// The side of query_dense's cells at `level`, scene units (for a caller counting points per cell).
+    float dense_cell_size(int level = 0) const;
     /// distance(p) in the band and wherever it is below `reach`; outside the band, where a cell of
     /// space around p is certified to lie on one side of the scalp at least `reach` away, that
     /// bound instead (fields/far_field.h): no exact mesh search, and the same answer as distance(p)

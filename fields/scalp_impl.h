@@ -87,6 +87,15 @@ public:
     /// Every face with a point within `radius` of `center` (scene units), in the tree's order, and
     /// with `distances`, each one's distance from `center` (float rounding of its closest point).
     void faces_within(const float3& center, double radius, std::vector<int32_t>& faces, std::vector<double>* distances = nullptr) const;
+    /// The faces that can be the closest face of some point p of the ball of radius `r` around
+    /// `center`, or come within `slack` of being it: every face with a point t where
+    /// |p - t| <= |p - s0| + slack for some such p, `s0` being a point of the mesh (any face
+    /// nearer to p than s0 is). Found by walking the tree past the boxes that cannot hold one (see
+    /// the .cpp), where faces_within(center, |center - s0| + 2 r + slack) lists every face of a
+    /// ball that, far out, holds most of the head. Each with its distance from `center` (float
+    /// rounding of its closest point, as faces_within). A superset of those faces, never a subset.
+    void faces_seen_from(const float3& center, double r, const double s0[3], double slack, std::vector<int32_t>& faces,
+                         std::vector<double>& distances) const;
     /// Inside test by the generalized winding number (> 1/2): robust through the holes of a nearly
     /// closed head (eye sockets, mouth, neck), where a rim's pseudo-normal points anywhere.
     /// `exact_near_half`: decide by the exact sum where the estimate is within 0.03 of 1/2, so the
@@ -191,18 +200,22 @@ struct ScalpField::Impl {
         return *far_;
     }
 
-    /// Candidate closest faces per cell outside the band (fields/near_faces.h), made on first use.
-    const detail::NearFaces& near() const
+    /// Candidate closest faces per cell outside the band (fields/near_faces.h), made on first use:
+    /// cells of NearFaces::kCellVoxels << level voxels, level in [0, kCellLevels).
+    static constexpr int kCellLevels = 3;
+    const detail::NearFaces& near(int level = 0) const
     {
-        std::call_once(near_built_, [this] { near_ = std::make_unique<detail::NearFaces>(geometry, *query, origin, voxel); });
-        return *near_;
+        std::call_once(near_built_[level], [this, level] {
+            near_[level] = std::make_unique<detail::NearFaces>(geometry, *query, origin, voxel, detail::NearFaces::kCellVoxels << level);
+        });
+        return *near_[level];
     }
-    /// The exact signed distance, closest point and face from the mesh: with `cells`, the face from
-    /// near()'s candidates, or from the AABB tree where p's cell keeps none; else from the tree.
-    /// The same answer either way, to float rounding at ties between faces (fields/near_faces.h).
-    float exact_distance(const float3& p, float3& closest, int32_t& face, bool cells = false) const
+    /// The exact signed distance, closest point and face from the mesh: with `level` >= 0, the face
+    /// from near(level)'s candidates, or from the AABB tree where p's cell keeps none; else from the
+    /// tree. The same answer either way, to float rounding at ties between faces (fields/near_faces.h).
+    float exact_distance(const float3& p, float3& closest, int32_t& face, int level = -1) const
     {
-        face = cells ? near().closest_face(p) : -1;
+        face = level >= 0 ? near(level).closest_face(p) : -1;
         if (face < 0) return query->signed_distance(p, closest, face);
         return query->signed_distance_to(p, face, closest);
     }
@@ -224,8 +237,8 @@ private:
     mutable int64_t seam_voxels_ = 0;
     mutable std::once_flag far_built_;
     mutable std::unique_ptr<detail::FarField> far_;
-    mutable std::once_flag near_built_;
-    mutable std::unique_ptr<detail::NearFaces> near_;
+    mutable std::once_flag near_built_[kCellLevels];
+    mutable std::unique_ptr<detail::NearFaces> near_[kCellLevels];
 };
 
 }  // namespace groom

@@ -215,6 +215,13 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
             face_distance.push_back(d);
         }
     }
+    else if (!parent) {
+        // The faces that can be closest to a point of the cell's ball, a superset of those the
+        // tests below keep (the bisector test there is over the box, with a smaller slack): far
+        // out, the ball of `gather` holds much of the head, and listing it was most of a cell.
+        const double at[3] = {s0.x, s0.y, s0.z};
+        query_.faces_seen_from(cf, r, at, 4.0 * margin, faces, face_distance);
+    }
     else {
         query_.faces_within(cf, gather, faces, &face_distance);
     }

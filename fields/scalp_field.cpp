@@ -47,6 +47,8 @@ float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3&
 
 }  // namespace
 
+static_assert(ScalpField::kDenseLevels == ScalpField::Impl::kCellLevels, "one NearFaces per query_dense level");
+
 float ScalpField::query(const float3& p, float3& n, float3& closest) const { return query_impl(*impl_, p, n, closest, -1); }
 float ScalpField::query_dense(const float3& p, float3& n, float3& closest, int level) const
 {

@@ -7,6 +7,7 @@
 // defaults, the validation, the messages and the bytes are the CLI's by construction, not a second
 // copy of every option that could drift from it.
 #include "cli/command.h"
+#include "fields/point_queries.h"
 #include "fields/scalp_field.h"
 #include "kernel/curve_set.h"
 #include "kernel/error.h"
@@ -196,16 +197,20 @@ public:
     explicit Scalp(std::shared_ptr<const ScalpField> f) : field(std::move(f)) {}
     std::shared_ptr<const ScalpField> field;
 
+    /// An (n,) or (n, 3) float32 array from each point's query (distance, normal, closest point):
+    /// fields/point_queries.h, in parallel and by cells where the points crowd, without the GIL.
     template <class F> py::array map_points(py::array_t<float, py::array::c_style | py::array::forcecast> pts, int out_dim, F&& f) const
     {
         if (pts.ndim() != 2 || pts.shape(1) != 3) raise(true, "points: expected an array of shape (n, 3)");
         const py::ssize_t n = pts.shape(0);
         py::array_t<float> out = out_dim == 1 ? py::array_t<float>({n}) : py::array_t<float>({n, py::ssize_t(3)});
-        const float* in = pts.data();
+        static_assert(sizeof(float3) == 3 * sizeof(float), "an (n, 3) float32 array is n float3s");
+        const auto* in = reinterpret_cast<const float3*>(pts.data());
         float* o = out.mutable_data();
         {
             py::gil_scoped_release release;
-            for (py::ssize_t i = 0; i < n; ++i) f(float3(in[3 * i], in[3 * i + 1], in[3 * i + 2]), o + i * out_dim);
+            query_points(*field, std::span<const float3>(in, size_t(n)),
+                         [&](size_t i, float d, const float3& nn, const float3& c) { f(d, nn, c, o + i * size_t(out_dim)); });
         }
         return out;
     }
@@ -431,31 +436,25 @@ PYBIND11_MODULE(groom, m)
         .def(
             "distance",
             [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
-                return s.map_points(p, 1, [&](const float3& q, float* o) { o[0] = s.field->distance(q); });
+                return s.map_points(p, 1, [](float d, const float3&, const float3&, float* o) { o[0] = d; });
             },
             py::arg("points"), "Signed distance of each point, (n,) float32; negative inside")
         .def(
             "normal",
             [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
-                return s.map_points(p, 3, [&](const float3& q, float* o) {
-                    const float3 n = s.field->normal(q);
-                    o[0] = n.x, o[1] = n.y, o[2] = n.z;
-                });
+                return s.map_points(p, 3, [](float, const float3& n, const float3&, float* o) { o[0] = n.x, o[1] = n.y, o[2] = n.z; });
             },
             py::arg("points"), "Unit outward normal at each point's closest surface point, (n, 3)")
         .def(
             "closest",
             [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
-                return s.map_points(p, 3, [&](const float3& q, float* o) {
-                    const float3 c = s.field->closest_point(q);
-                    o[0] = c.x, o[1] = c.y, o[2] = c.z;
-                });
+                return s.map_points(p, 3, [](float, const float3&, const float3& c, float* o) { o[0] = c.x, o[1] = c.y, o[2] = c.z; });
             },
             py::arg("points"), "Closest point on the scalp to each point, (n, 3)")
         .def(
             "inside",
             [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
-                py::array d = s.map_points(p, 1, [&](const float3& q, float* o) { o[0] = s.field->distance(q); });
+                py::array d = s.map_points(p, 1, [](float dist, const float3&, const float3&, float* o) { o[0] = dist; });
                 return py::array(d.attr("__lt__")(0.0f));
             },
             py::arg("points"), "Whether each point is inside the scalp, (n,) bool");

@@ -159,6 +159,33 @@ def test_scalp_queries_match_the_analytic_sphere(sphere):
     assert inside.dtype == bool and list(inside) == [True, True, False, False]
 
 
+def test_scalp_queries_are_probes_numbers(tmp_path):
+    """Scalp.distance/normal/closest answer as `groom probe` does, bit for bit, for points that
+    crowd (a thin shell: per-cell candidates) and points spread through a box (bigger cells, or the
+    tree), and far out they are the analytic sphere's."""
+    v, f = uv_sphere()
+    with open(tmp_path / "sphere.obj", "w") as out:
+        out.writelines(f"v {x} {y} {z}\n" for x, y, z in v)
+        out.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f)
+    vdb = str(tmp_path / "sphere.vdb")
+    subprocess.run([GROOM, "scalp", str(tmp_path / "sphere.obj"), "-o", vdb, "--voxel", "0.02", "-q"], check=True)
+    scalp = groom.Scalp.load(vdb)
+    rng = np.random.default_rng(4)
+    dirs = rng.normal(size=(20000, 3))
+    dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
+    for pts in ((dirs * rng.uniform(1.07, 1.12, size=(20000, 1))).astype(np.float32),
+                rng.uniform(-2.0, 2.0, size=(20000, 3)).astype(np.float32)):
+        np.save(tmp_path / "p.npy", pts)
+        subprocess.run([GROOM, "probe", str(tmp_path / "p.npy"), "--scalp", vdb, "-o", str(tmp_path / "q.npy"), "-q", "--force"],
+                       check=True)
+        probe = np.load(tmp_path / "q.npy")
+        d, n, c = scalp.distance(pts), scalp.normal(pts), scalp.closest(pts)
+        assert np.array_equal(d, probe[:, 3]) and np.array_equal(n, probe[:, 4:7]) and np.array_equal(c, probe[:, 7:10])
+        r = np.linalg.norm(pts, axis=1)
+        far = r > 1.1  # beyond the band: the mesh's exact distance, within 0.0021 of the sphere's
+        np.testing.assert_allclose(d[far], r[far] - 1.0, atol=0.003)
+
+
 def test_errors_name_the_parameter_and_the_value():
     cs = straight_guides()
     with pytest.raises(ValueError) as e:

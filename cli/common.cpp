@@ -126,9 +126,12 @@ void check_one_output(const std::string& option, const std::string& output, std:
         }
     }
     // The rename that puts an output in place needs only the folder to be writable, so a file the
-    // user made read-only would be replaced without a word: ask for --force, as `mv` asks.
+    // user made read-only would be replaced without a word: ask for --force, as `mv` asks. Read-only
+    // by its mode as well as by access(): root may write any file, and render farms and containers
+    // run as root (a `chmod 444` output was replaced there).
     struct stat st {};
-    if (::stat(output.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(output.c_str(), W_OK) != 0) {
+    const auto read_only = [&] { return (st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(output.c_str(), W_OK) != 0; };
+    if (::stat(output.c_str(), &st) == 0 && S_ISREG(st.st_mode) && read_only()) {
         throw InvalidParam(option + " " + output + " exists and is read-only; refusing to replace it (pass --force to replace it)");
     }
 }

@@ -3,6 +3,7 @@
 #include "kernel/error.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
@@ -213,6 +214,10 @@ void AtomicOutput::commit()
         committed_ = true;
         return;
     }
+    // A file replaced keeps its permissions (the temporary was made 0666 less the umask): a script
+    // that rewrites a shared output must not change who may read it.
+    struct stat old {};
+    if (::stat(path_.c_str(), &old) == 0 && S_ISREG(old.st_mode)) ::chmod(temp_.c_str(), old.st_mode & 07777);
     if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
         const int err = errno;
         std::remove(temp_.c_str());

@@ -132,6 +132,33 @@ TEST(Outputs, AReadOnlyOutputNeedsForce)
     EXPECT_EQ(read_curves(out).num_points(), 60u * 4u);
 }
 
+// Whoever runs it: root may write any file (render farms and containers run as root), but a file
+// whose mode says read-only is still one the user meant to keep. Replaced with --force, an output
+// keeps its permissions, as does any output that is replaced.
+TEST(Outputs, AReadOnlyOutputNeedsForceEvenForRootAndKeepsItsMode)
+{
+    test::TempDir dir;
+    const std::string in = write_guides(dir);
+    const std::string out = dir.file("kept.usda");
+    test::write_text(out, kPrevious);
+    const auto read_only = fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read;
+    fs::permissions(out, read_only);
+    const auto r = run_groom({"resample", in, "-o", out, "--count", "4"});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("read-only"), std::string::npos) << r.err;
+    EXPECT_EQ(test::read_bytes(out), kPrevious);
+    ASSERT_EQ(run_groom({"resample", in, "-o", out, "--count", "4", "--force"}).exit_code, 0);
+    EXPECT_EQ(read_curves(out).num_points(), 60u * 4u);
+    EXPECT_EQ(fs::status(out).permissions(), read_only);
+
+    const std::string shared = dir.file("shared.usda");
+    test::write_text(shared, kPrevious);
+    const auto group_write = fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::group_write;
+    fs::permissions(shared, group_write);
+    ASSERT_EQ(run_groom({"resample", in, "-o", shared, "--count", "4"}).exit_code, 0);
+    EXPECT_EQ(fs::status(shared).permissions(), group_write);
+}
+
 TEST(Outputs, FileSizeLimitIsAnErrorNotASignal)
 {
     test::TempDir dir;

@@ -54,7 +54,7 @@ void setup(CommandContext& ctx)
             const std::vector<float> c = parse_floats("--center", a.center, 3, 3);
             a.params.center = {c[0], c[1], c[2]};
         }
-        a.params.validate();
+        a.params.validate(!a.hairline.empty());
         const auto start = std::chrono::steady_clock::now();
         auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());

@@ -41,7 +41,7 @@ float3 on_scalp(const Surface& scalp, const float3& q, float offset)
 
 }  // namespace
 
-void CornrowGuidesParams::validate() const
+void CornrowGuidesParams::validate(bool hairline) const
 {
     require(count >= 1 && count <= 256, "`count` must be in [1, 256] (got " + std::to_string(count) + ")");
     require(std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z), "`center` must be finite");
@@ -59,7 +59,7 @@ void CornrowGuidesParams::validate() const
     // at elevation -asin(pivot / radius) in the middle row's plane (the tilted rows reach it at a
     // shallower angle). Rows ending below that point have crossed each other at the nape.
     const float meet = -std::asin(pivot / radius) / kDeg;
-    require(back_angle > meet, "`back_angle` " + fmt(back_angle) + " runs past the point where all rows meet (" + fmt(meet) +
+    require(hairline || back_angle > meet, "`back_angle` " + fmt(back_angle) + " runs past the point where all rows meet (" + fmt(meet) +
                                    " degrees for `pivot` " + fmt(pivot) + " and `radius` " + fmt(radius) +
                                    "), so rows would cross at the nape; use a back angle above " + fmt(meet) +
                                    " or a larger `pivot`");
@@ -111,8 +111,8 @@ std::pair<float, float> inside_arc(const HairRegion& region, float lo, float hi,
 
 CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params, const HairRegion* region)
 {
-    params.validate();
     if (region != nullptr && !region->has_hairline()) region = nullptr;
+    params.validate(region != nullptr);
     const int n = params.count;
     // Before allocating: the guides (position, root UV; id and guide per curve), the tails (position;
     // id and guide), and on each worker one dense path of 4 x `samples` points (position) and its

@@ -36,7 +36,10 @@ struct CornrowGuidesParams {
     float offset = 0.0f;              ///< height of the guides above the scalp, scene units; >= 0
     float tail_length = 0.0f;         ///< length of the free tail past the nape, scene units; >= 0 (0 = no tails)
     int tail_samples = 24;            ///< points per tail, >= 2
-    void validate() const;            ///< throws InvalidParam naming the option, value and range
+    /// Throws InvalidParam naming the option, value and range. `hairline`: the rows will run between
+    /// a hairline's ends instead (cornrow_guides with a region that has one), so front_angle,
+    /// hairline_curve and back_angle are not used and back_angle need not stay above the rows' meeting point.
+    void validate(bool hairline = false) const;
 };
 
 struct CornrowGuides {

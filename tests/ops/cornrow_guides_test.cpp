@@ -87,7 +87,9 @@ TEST(CornrowGuides, WithAHairlineRowsRunFromItAtTheFrontToItAtTheNape)
     p.count = 7;
     p.spread = 50.0f;
     p.samples = 48;
-    p.back_angle = -20.0f;  // above where these rows meet (-33.7 degrees); replaced by the hairline anyway
+    // The default back angle, -40, is below where these rows meet (-33.7 degrees): without a
+    // hairline that is refused, with one it is not used (the rows end on the hairline).
+    EXPECT_THROW(cornrow_guides(sphere, p), InvalidParam);
     for (const float3 n : {float3(0, 1, 0), normalize(float3(0, 1, -0.35f))}) {
         const float offset = 0.15f * R;
         const CurveSet hairline = test::circle_on_sphere(c, R, n, offset, 720);
@@ -105,6 +107,7 @@ TEST(CornrowGuides, WithAHairlineRowsRunFromItAtTheFrontToItAtTheNape)
         }
     }
     // No hairline in the region: the plain rows.
+    p.back_angle = -20.0f;
     const HairRegion none(sphere, CurveSet(), CurveSet(), HairRegionParams{});
     const CornrowGuides a = cornrow_guides(sphere, p, &none), b = cornrow_guides(sphere, p);
     ASSERT_EQ(a.guides.num_points(), b.guides.num_points());

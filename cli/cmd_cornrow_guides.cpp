@@ -46,7 +46,7 @@ void setup(CommandContext& ctx)
         ->needs(tails);
     app->add_option("--tail-samples", p.tail_samples, "Points per tail, >= 2")->capture_default_str();
     const CommonOptions& common = *ctx.common;
-    ctx.run = [args, &common] {
+    ctx.run = [args, &common, app] {
         Args& a = *args;
         check_outputs({{"-o", a.output}, {"--tails-out", a.tails_out}}, {a.scalp, a.hairline}, common);
         if (!a.tails_out.empty() && a.params.tail_length <= 0.0f) a.params.tail_length = 12.0f;
@@ -58,6 +58,19 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
+        // The default sphere is the default head's cranium (`groom head`: centimetres, +Y up, its top
+        // at y = 13). On another head it lays rows somewhere else without a word (a trial on a scan
+        // in other units ran them onto the shoulders): refuse unless the head's top is about there.
+        const Bounds3 box = scalp->bounds();
+        const float top = a.params.center.y + a.params.radius;
+        if (app->count("--center") == 0 && app->count("--radius") == 0 && !box.empty() && std::fabs(box.hi.y - top) > 0.5f * a.params.radius) {
+            throw InvalidParam("cornrow-guides: the default --center " + format_number(a.params.center.x) + "," + format_number(a.params.center.y) + "," +
+                               format_number(a.params.center.z) + " and --radius " + format_number(a.params.radius) +
+                               " are the default head's cranium (top at y " + format_number(top) + ", centimetres, +Y up), but " + a.scalp +
+                               " reaches y " + format_number(box.hi.y) + " (bounds " + format_number(box.lo.x) + "," + format_number(box.lo.y) + "," +
+                               format_number(box.lo.z) + " to " + format_number(box.hi.x) + "," + format_number(box.hi.y) + "," +
+                               format_number(box.hi.z) + "): pass --center (the middle of this head's cranium) and --radius (about half its width)");
+        }
         // The rows are laid +Y up (the frame of `groom head`), so the hairline is read around +Y.
         RegionOptions region_options;
         region_options.hairline = a.hairline;

@@ -2,10 +2,12 @@
 #include "cli/command.h"
 #include "cli/scalp_options.h"
 #include "cli/curl_options.h"
+#include "cli/scene_scale.h"
 #include "fields/scalp_field.h"
 #include "kernel/curve_blocks.h"
 #include "kernel/io/curve_io.h"
 #include "ops/curl.h"
+#include "ops/hair_types.h"
 
 namespace groom::cli {
 namespace {
@@ -42,6 +44,12 @@ void setup(CommandContext& ctx)
         CurlParams params = curl_params_from(args->curl);
         params.labels = keeps_point_labels(args->output);
         const CurveSet in = read_curve_input(args->input, common);
+        if (args->curl.amplitude.empty()) {
+            const HairTypePreset* preset = find_hair_type(params.hair_type);
+            warn_curl_scale(common, "curl", in, preset->radius_cm * params.units_per_cm,
+                            "type " + params.hair_type + "'s " + format_number(preset->radius_cm) + " cm x --units-per-cm " +
+                                format_number(params.units_per_cm));
+        }
         const auto progress = make_progress(common);
         std::shared_ptr<const ScalpField> scalp;
         if (!args->scalp.empty()) scalp = load_scalp(args->scalp, args->scalp_params, progress.get());

@@ -3,6 +3,7 @@
 // so `groom edges --scalp head.vdb -o edges.usda` works on `groom head`'s head alone.
 #include "cli/command.h"
 #include "cli/scalp_options.h"
+#include "cli/scene_scale.h"
 #include "cli/width_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
@@ -107,6 +108,7 @@ void setup(CommandContext& ctx)
         const CurveSet partings = args->parting.empty() ? CurveSet() : read_curve_input(args->parting, common, false);
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        warn_scene_scale(common, "edges", scalp->bounds(), u, "the defaults (lengths, radii, widths, the hairline's)");
         if (args->hairline.empty()) {
             HairlineParams hp;
             hp.up = params.up;

@@ -4,6 +4,7 @@
 #include "cli/frame_options.h"
 #include "cli/region_options.h"
 #include "cli/scalp_options.h"
+#include "cli/scene_scale.h"
 #include "cli/width_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/curve_blocks.h"
@@ -51,7 +52,9 @@ void setup(CommandContext& ctx)
     app->add_option("--seed", p.seed, "Random seed for the roots")->capture_default_str();
     add_scalp_build_options(app, args->scalp_params);
     add_region_options(app, args->hair_region);
-    add_width_options(app, args->widths, "the guides' widths, else the defaults");
+    add_width_options(app, args->widths, "the guides' widths, else the defaults x --units-per-cm");
+    app->add_option("--units-per-cm", p.units_per_cm, "Scene units per centimetre, for the default widths (0.01 for metres)")
+        ->capture_default_str();
     add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
@@ -69,6 +72,10 @@ void setup(CommandContext& ctx)
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const std::unique_ptr<HairRegion> region = make_region(args->hair_region, *scalp);
+        // The default widths are used when neither end is given and the guides carry none.
+        if (!args->params.widths.given() && guides.find<float>(Domain::Point, attr::width).empty()) {
+            warn_scene_scale(common, "generate", scalp->bounds(), args->params.units_per_cm, "the default widths");
+        }
         GenerateParams params = args->params;
         params.region = region.get();
         // A farm shard grows only its part of the roots (they are all scattered: that is cheap).

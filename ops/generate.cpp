@@ -157,6 +157,9 @@ void GenerateParams::validate() const
                            " curves passes the largest id, 2^63 - 1 (ids would wrap to negative)");
     }
     widths.validate("generate");
+    if (!(units_per_cm > 0.0f) || !std::isfinite(units_per_cm)) {
+        throw InvalidParam("generate: `units_per_cm` must be a finite number > 0 (got " + format_number(units_per_cm) + ")");
+    }
 }
 
 std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& scalp, const RootSampler& sample,
@@ -353,7 +356,7 @@ CurveSet grow(const GrowRun& run, const CurveSet& guides, const Surface& scalp, 
     // a crease the band's gradient is about half a unit long, so each step gains half of what is
     // missing: 8 steps left 191 of 100,000 hairs' points at Sintel's ear up to 0.05 inside.
     keep_outside(dst, scalp, KeepOutside{params.clearance, run.margin, 16});
-    apply_hair_widths(dst, params.widths);
+    apply_hair_widths(dst, params.widths, params.units_per_cm);
     add_root_uvs(dst, scalp);
     return dst;
 }

@@ -62,6 +62,8 @@ struct GenerateParams {
     /// Point `width` (--root-width, --tip-width): unset keeps the guides' widths (each point takes
     /// its nearest guide's, as other point attributes do), else the human-hair defaults.
     HairWidths widths;
+    /// Scene units per centimetre, for the default widths only (--units-per-cm); > 0.
+    float units_per_cm = 1.0f;
     /// Make only hairs [range_begin, range_end) of the count (a shard of a farm job): the same
     /// curves, ids and every column as those of the whole run; range_end < 0 = to the end.
     int64_t range_begin = 0, range_end = -1;

@@ -112,6 +112,12 @@ const std::array<Format, 10> kFormats = [] {
     Format abc = row("abc", "Alembic");
     abc.refusal = "Alembic is not readable here (no Alembic package exists on Debian); export the curves as .usda, "
                   ".ply or .obj from your DCC (Houdini, Maya and Blender all write them)";
+    usdc.write_refusal = "binary USD is not written here (no OpenUSD package exists on Debian); write .usda (text USD, which "
+                         "every USD reader loads) and, if a binary is needed, convert it with `usdcat FILE.usda -o FILE.usdc`";
+    usdz.write_refusal = "a USDZ package is not written here (no OpenUSD package exists on Debian); write .usda and package it "
+                         "with OpenUSD's `usdzip`";
+    abc.write_refusal = "Alembic is not written here (no Alembic package exists on Debian); write .usda (Houdini, Maya and "
+                        "Blender read it), .ply or .obj instead";
     return std::array<Format, 10>{usda, obj, ply, hair, off, stl, usd, usdc, usdz, abc};
 }();
 
@@ -157,9 +163,10 @@ const Format& format_for(const std::string& path, unsigned cap, std::string_view
     }
     const std::string ext = extension_of(path);
     const Format* f = format_by_extension(ext);
+    const bool writing = cap & (kWriteCurves | kWriteMesh);
+    if (f && writing && !f->write_refusal.empty()) return fail(path + ": " + std::string(f->write_refusal));
     if (f && !f->refusal.empty()) return fail(path + ": " + std::string(f->refusal));
     if (!f || !f->can(cap)) {
-        const bool writing = cap & (kWriteCurves | kWriteMesh);
         return fail(path + ": " + (f ? std::string(f->name) + " files are not " + (writing ? "written" : "read") + " as " + std::string(what) + "s"
                                      : "unknown " + std::string(what) + " format '." + ext + "'") +
                     " (expected " + format_list(cap, ", ") + ")");

@@ -52,8 +52,10 @@ struct Format {
     bool (*content_is_curves)(const FileBytes& file) = nullptr;
     /// Whether writing keeps a column (P is always kept); null = every column is kept.
     bool (*keeps)(Domain domain, const Attribute& column) = nullptr;
-    /// Non-empty for a format groom refuses: why, and how to convert the file.
+    /// Non-empty for a format groom refuses: why, and how to convert the file (reading) or what to
+    /// write instead (writing).
     std::string_view refusal;
+    std::string_view write_refusal;
 
     unsigned caps() const
     {

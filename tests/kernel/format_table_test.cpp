@@ -109,7 +109,12 @@ TEST(FormatTable, UnreadableFormatsAreRefusedByName)
     EXPECT_NE(abc.find("export the curves as .usda"), std::string::npos) << abc;
     const std::string write_abc = message_of([&] { write_curves(curves_with_columns(), dir.file("out.abc")); });
     EXPECT_NE(write_abc.find("no Alembic package"), std::string::npos) << write_abc;
+    // Writing says what to write instead, not how to export an input.
+    EXPECT_NE(write_abc.find("not written here"), std::string::npos) << write_abc;
+    EXPECT_NE(write_abc.find("write .usda"), std::string::npos) << write_abc;
     EXPECT_FALSE(std::filesystem::exists(dir.file("out.abc")));
+    const std::string write_usdc = message_of([&] { write_curves(curves_with_columns(), dir.file("out.usdc")); });
+    EXPECT_NE(write_usdc.find("usdcat FILE.usda -o FILE.usdc"), std::string::npos) << write_usdc;
     // Known format, wrong kind: says what the file is and what would do.
     const std::string off = message_of([&] { read_curves(dir.file("head.off")); });
     EXPECT_NE(off.find("OFF mesh files are not read as curves (expected .usda, .obj, .ply, .hair)"), std::string::npos) << off;

@@ -435,7 +435,11 @@ std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const Scal
         throw InvalidParam("--scalp-group " + params.group + ": " + path + " is a level set, not a mesh; choose the group when making it (groom scalp --group)");
     }
     if (io::extension_of(path) != "vdb" && !is_mesh_path(path)) {
-        throw InvalidParam("`scalp` " + path + ": expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
+        // A typo ("head.vbd") is first of all a file that is not there: say so.
+        std::error_code ec;
+        const bool exists = std::filesystem::exists(path, ec);
+        throw InvalidParam("`scalp` " + path + ": " + (exists ? std::string() : "no such file; ") +
+                           "expected a .vdb level set from `groom scalp` or a mesh (" + io::format_list(io::kReadMesh) + ")");
     }
     // Frames of an animation load one unchanged file many times (fields/scalp_cache.h).
     return cached_scalp(path, params, [&]() -> std::shared_ptr<const ScalpField> {

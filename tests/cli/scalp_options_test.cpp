@@ -36,6 +36,11 @@ TEST(ScalpOptions, BadValuesNameTheOptionAndWriteNothing)
     EXPECT_EQ(b.exit_code, 2);
     EXPECT_NE(b.err.find("--scalp-band"), std::string::npos) << b.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("out.usda")));
+    // A typo in the scalp's name: first of all a file that is not there.
+    const auto t = run_groom({"cull", dir.file("guides.usda"), "--scalp", dir.file("head.vbd"), "-o", dir.file("out.usda")});
+    EXPECT_EQ(t.exit_code, 2);
+    EXPECT_NE(t.err.find("head.vbd: no such file"), std::string::npos) << t.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out.usda")));
 }
 
 // Projection onto a mesh converted on the fly at voxel h lands where projection onto the .vdb that

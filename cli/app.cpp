@@ -3,6 +3,7 @@
 #include "cli/frame_options.h"
 
 #include "kernel/error.h"
+#include "kernel/io/curve_io.h"
 #include "kernel/memory_budget.h"
 #include "kernel/parallel.h"
 
@@ -251,7 +252,21 @@ int run_one(int argc, char** argv)
             for (const CLI::Option* o : c.app->get_options()) {
                 for (const std::string& l : o->get_lnames()) opts.push_back("--" + l);
             }
-            for (const std::string& extra : c.app->remaining()) {
+            // Extra words that are not options: more inputs than the command takes (CLI11 lists
+            // them last first), named in the order given; several curve files can be merged first.
+            std::vector<std::string> words;
+            const std::vector<std::string> extras = c.app->remaining();
+            for (int k = 1; k < argc; ++k) {
+                if (argv[k][0] != '-' && std::find(extras.begin(), extras.end(), argv[k]) != extras.end()) words.push_back(argv[k]);
+            }
+            if (!words.empty() && std::none_of(extras.begin(), extras.end(), [](const std::string& x) { return x.rfind("--", 0) == 0; })) {
+                msg = c.app->get_name() + ": unexpected argument" + (words.size() > 1 ? "s" : "") + ":";
+                for (const std::string& w : words) msg += " " + w;
+                if (std::all_of(words.begin(), words.end(), [](const std::string& w) { return is_curve_path(w); })) {
+                    msg += "; it takes one input file (to use several, merge them first: `groom merge A B ... -o all.usda`)";
+                }
+            }
+            for (const std::string& extra : extras) {
                 if (extra.rfind("--", 0) != 0) continue;
                 const std::string key = extra.substr(0, extra.find('='));
                 if (std::string near = closest(key, opts); !near.empty()) {

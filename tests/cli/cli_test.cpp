@@ -75,6 +75,18 @@ TEST(Cli, UnknownOptionSuggestsTheNearestAndExitsTwo)
     EXPECT_FALSE(std::filesystem::exists(dir.file("b.ply")));
 }
 
+// Several guide files where one is taken: named in the order given, with the way to join them.
+TEST(Cli, ExtraInputFilesAreNamedInOrderWithMerge)
+{
+    TempDir dir;
+    for (const char* f : {"a.usda", "b.usda", "c.usda"}) write_text(dir.file(f), kTwoCurvesUsda);
+    const auto r = run_groom({"resample", dir.file("a.usda"), dir.file("b.usda"), dir.file("c.usda"), "-o", dir.file("o.usda"), "--count", "4"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("resample: unexpected arguments: " + dir.file("b.usda") + " " + dir.file("c.usda")), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("groom merge"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("o.usda")));
+}
+
 TEST(Cli, MissingRequiredArgumentAndBadValueExitTwo)
 {
     EXPECT_EQ(run_groom({"convert"}).exit_code, 2);

@@ -64,12 +64,11 @@ void setup(CommandContext& ctx)
         const Bounds3 box = scalp->bounds();
         const float top = a.params.center.y + a.params.radius;
         if (app->count("--center") == 0 && app->count("--radius") == 0 && !box.empty() && std::fabs(box.hi.y - top) > 0.5f * a.params.radius) {
-            throw InvalidParam("cornrow-guides: the default --center " + format_number(a.params.center.x) + "," + format_number(a.params.center.y) + "," +
-                               format_number(a.params.center.z) + " and --radius " + format_number(a.params.radius) +
+            const auto xyz = [](const float3& v) { return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z); };
+            throw InvalidParam("cornrow-guides: the default --center " + xyz(a.params.center) + " and --radius " + format_number(a.params.radius) +
                                " are the default head's cranium (top at y " + format_number(top) + ", centimetres, +Y up), but " + a.scalp +
-                               " reaches y " + format_number(box.hi.y) + " (bounds " + format_number(box.lo.x) + "," + format_number(box.lo.y) + "," +
-                               format_number(box.lo.z) + " to " + format_number(box.hi.x) + "," + format_number(box.hi.y) + "," +
-                               format_number(box.hi.z) + "): pass --center (the middle of this head's cranium) and --radius (about half its width)");
+                               " reaches y " + format_number(box.hi.y) + " (bounds " + xyz(box.lo) + " to " + xyz(box.hi) +
+                               "): pass --center (the middle of this head's cranium) and --radius (about half its width)");
         }
         // The rows are laid +Y up (the frame of `groom head`), so the hairline is read around +Y.
         RegionOptions region_options;

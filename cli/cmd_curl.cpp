@@ -7,7 +7,6 @@
 #include "kernel/curve_blocks.h"
 #include "kernel/io/curve_io.h"
 #include "ops/curl.h"
-#include "ops/hair_types.h"
 
 namespace groom::cli {
 namespace {
@@ -45,10 +44,8 @@ void setup(CommandContext& ctx)
         params.labels = keeps_point_labels(args->output);
         const CurveSet in = read_curve_input(args->input, common);
         if (args->curl.amplitude.empty()) {
-            const HairTypePreset* preset = find_hair_type(params.hair_type);
-            warn_curl_scale(common, "curl", in, preset->radius_cm * params.units_per_cm,
-                            "type " + params.hair_type + "'s " + format_number(preset->radius_cm) + " cm x --units-per-cm " +
-                                format_number(params.units_per_cm));
+            warn_curl_scale(common, "curl", in, curl_default_radius(params),
+                            "type " + params.hair_type + "'s default x --units-per-cm " + format_number(params.units_per_cm));
         }
         const auto progress = make_progress(common);
         std::shared_ptr<const ScalpField> scalp;

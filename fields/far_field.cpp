@@ -255,26 +255,32 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
     double reach = 0.0;
     for (const double c : corner_reach) reach = std::max(reach, c);
     // A face none of whose points can be nearer than s0 to any point p of the cell is nobody's
-    // closest face there, nor are its edges and vertices (they are its points). Its points lie
-    // within rho of its centroid m, so it is out when |p - m| > |p - s0| + rho for every p; squared,
-    // with |p - s0| <= reach (the farthest corner's), that holds when
-    //     |p - m|^2 - |p - s0|^2 > 2 rho reach + rho^2,
-    // whose left side is linear in p (the bisector of m and s0), so least at a corner. Near the
-    // scalp this keeps the faces around s0 a cell can see, where the sphere of |d_c| + 2 r kept
-    // every face within it (half of the faces the certificates examined on Sintel's curl, perf).
-    const double sx = s0.x, sy = s0.y, sz = s0.z;
-    const double cs2 = (cx - sx) * (cx - sx) + (cy - sy) * (cy - sy) + (cz - sz) * (cz - sz);
-    const auto farther_than_s0 = [&](int32_t f) {
-        const float3& m = face_centre_[f];
-        const double rho = face_radius_[f];
-        const double mx = double(m.x) - cx, my = double(m.y) - cy, mz = double(m.z) - cz;
-        const double at = mx * mx + my * my + mz * mz - cs2;  // |c - m|^2 - |c - s0|^2
-        const double spread = 2.0 * half * (std::fabs(double(m.x) - sx) + std::fabs(double(m.y) - sy) + std::fabs(double(m.z) - sz));
-        const double need = 2.0 * rho * reach + rho * rho;
-        // Rounding of the terms above is far below this slack (double over float coordinates).
-        const double slack = 1e-9 * (mx * mx + my * my + mz * mz + cs2 + scale * scale) + margin * (rho + reach);
-        return at - spread > need + slack;
-    };
+    // closest face there, nor are its edges and vertices (they are its points): beyond_bisector
+    // over the box (the bisector's linear form least at a corner) with its centroid and radius and
+    // the farthest corner's reach. Near the scalp this keeps the faces around s0 a cell can see,
+    // where the sphere of |d_c| + 2 r kept every face within it (half of the faces the
+    // certificates examined on Sintel's curl, perf). Dropped here once, for the tests below and
+    // for the children.
+    {
+        const double sx = s0.x, sy = s0.y, sz = s0.z;
+        const double cs2 = (cx - sx) * (cx - sx) + (cy - sy) * (cy - sy) + (cz - sz) * (cz - sz);
+        size_t w = 0;
+        for (size_t i = 0; i < faces.size(); ++i) {
+            const float3& m = face_centre_[faces[i]];
+            const double rho = face_radius_[faces[i]];
+            const double mx = double(m.x) - cx, my = double(m.y) - cy, mz = double(m.z) - cz;
+            const double at = mx * mx + my * my + mz * mz - cs2;  // |c - m|^2 - |c - s0|^2
+            const double spread = 2.0 * half * (std::fabs(double(m.x) - sx) + std::fabs(double(m.y) - sy) + std::fabs(double(m.z) - sz));
+            // Rounding of the terms is far below this slack (double over float coordinates).
+            const double rounding = 1e-9 * (mx * mx + my * my + mz * mz + cs2 + scale * scale) + margin * (rho + reach);
+            if (beyond_bisector(at, spread, rho, reach, rounding)) continue;
+            faces[w] = faces[i];
+            face_distance[w] = face_distance[i];
+            ++w;
+        }
+        faces.resize(w);
+        face_distance.resize(w);
+    }
     if (kept && level > kMinLevel) {
         // Kept for the children in case this cell fails: the faces that can be closest to some
         // point of this cell, so to some point of each child (a child's own closest faces, the
@@ -284,10 +290,7 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
         k->center = cf;
         k->distance = float(distance);
         k->radius = gather;
-        k->faces.reserve(faces.size());
-        for (const int32_t f : faces) {
-            if (!farther_than_s0(f)) k->faces.push_back(f);
-        }
+        k->faces = faces;
     }
     if (!(distance > 0.0)) return fail;
     const double radius = (std::min(distance + 2.0 * r, reach + r)) * (1.0 + 1e-5) + margin;
@@ -353,7 +356,6 @@ FarField::Certificate FarField::certify(int level, int64_t ix, int64_t iy, int64
     for (size_t i = 0; i < faces.size(); ++i) {
         if (face_distance[i] > radius) continue;
         const int32_t f = faces[i];
-        if (farther_than_s0(f)) continue;
         const auto& t = geometry_.tris[f];
         const size_t f3 = size_t(f) * 3;
         // The face itself: points whose projection falls inside it (its prism).

@@ -309,13 +309,10 @@ void MeshQuery::faces_within(const float3& center, double radius, std::vector<in
 namespace {
 
 /// What faces_seen_from asks of a sphere (centre m, radius rho) holding some of the mesh: can a
-/// point t inside it be nearer than s0 (plus the slack) to a point p of the ball B(c, r)?
-/// |p - t| >= |p - m| - rho, so no t can when |p - m| > |p - s0| + rho + slack for every p;
-/// squared, with |p - s0| <= R = |c - s0| + r, that holds when
-///     |p - m|^2 - |p - s0|^2 > 2 rho' R + rho'^2,   rho' = rho + slack,
-/// whose left side is linear in p (the bisector plane of m and s0), least over the ball at
-/// c - r (m - s0) / |m - s0|: |c - m|^2 - |c - s0|^2 - 2 r |m - s0|. Far from the mesh this keeps
-/// the patch around s0 a small ball can see, where a sphere around c keeps every face in it.
+/// point inside it be nearer than s0 (plus the slack) to a point p of the ball B(c, r)?
+/// (beyond_bisector, with rho + slack, reach R = |c - s0| + r, and the bisector's linear form least
+/// over the ball at c - r (m - s0) / |m - s0|.) Far from the mesh this keeps the patch around s0 a
+/// small ball can see, where a sphere around c keeps every face in it.
 struct SeenFrom {
     double cx, cy, cz, r, sx, sy, sz, slack, cs2, R, gather2;
 
@@ -323,10 +320,10 @@ struct SeenFrom {
     {
         const double ax = mx - cx, ay = my - cy, az = mz - cz;
         const double bx = mx - sx, by = my - sy, bz = mz - sz;
-        const double least = ax * ax + ay * ay + az * az - cs2 - 2.0 * r * std::sqrt(bx * bx + by * by + bz * bz);
-        const double rp = rho + slack;
+        const double at = ax * ax + ay * ay + az * az - cs2;  // |c - m|^2 - |c - s0|^2
         // Double rounding of the terms, far below the slack the caller gives for float coordinates.
-        return least > 2.0 * rp * R + rp * rp + 1e-9 * (ax * ax + ay * ay + az * az + cs2 + R * R);
+        return beyond_bisector(at, 2.0 * r * std::sqrt(bx * bx + by * by + bz * bz), rho + slack, R,
+                               1e-9 * (ax * ax + ay * ay + az * az + cs2 + R * R));
     }
 };
 

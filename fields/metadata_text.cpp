@@ -1,13 +1,11 @@
 #include "fields/metadata_text.h"
 
-#include <limits>
-
-#include <algorithm>
-
 #include "kernel/error.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 namespace groom::detail {
 
@@ -50,10 +48,20 @@ void MetadataText::header(std::string_view name)
     if (integer(0, 1000000, "a version") != 1) fail("unknown version (this groom reads version 1)");
 }
 
-int64_t MetadataText::count(int64_t lo, const char* name)
+int64_t MetadataText::most_numbers() const
 {
     // Every number takes at least two characters (a digit and a separator).
-    return integer(lo, std::min<int64_t>(int64_t(text_.size() / 2 + 1), std::numeric_limits<int32_t>::max()), name);
+    return int64_t(text_.size() / 2 + 1);
+}
+
+int64_t MetadataText::count(int64_t lo, const char* name)
+{
+    return integer(lo, std::min<int64_t>(most_numbers(), std::numeric_limits<int32_t>::max()), name);
+}
+
+void MetadataText::expect_numbers(int64_t numbers) const
+{
+    if (numbers > most_numbers()) fail("the counts need more numbers than the text holds");
 }
 
 }  // namespace groom::detail

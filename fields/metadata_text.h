@@ -29,8 +29,11 @@ public:
     /// A count of numbers still to come, read as an integer in [lo, the most the text could hold]:
     /// a flipped digit must not allocate gigabytes.
     int64_t count(int64_t lo, const char* name);
+    /// Fails unless the whole text could hold `numbers` numbers (the counts read, multiplied out).
+    void expect_numbers(int64_t numbers) const;
 
 private:
+    int64_t most_numbers() const;
     std::string_view text_;
     std::string context_;
     size_t pos_ = 0;

@@ -18,7 +18,8 @@ ScalpField& ScalpField::operator=(ScalpField&&) noexcept = default;
 
 namespace {
 
-float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3& closest, int cells)
+/// `level`: query_dense's cell level for the exact fallback, -1 for the tree.
+float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3& closest, int level)
 {
     float d = 0.0f;
     float3 g;
@@ -31,7 +32,7 @@ float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3&
         return d;
     }
     int32_t face = -1;
-    const float sd = im.exact_distance(p, closest, face, cells);
+    const float sd = im.exact_distance(p, closest, face, level);
     if (im.band_normal(p, n)) return sd;  // near the band's edge the band's normal is the smoother one
     const float3 delta = p - closest;
     const float len = length(delta);
@@ -46,8 +47,6 @@ float query_impl(const ScalpField::Impl& im, const float3& p, float3& n, float3&
 }
 
 }  // namespace
-
-static_assert(ScalpField::kDenseLevels == ScalpField::Impl::kCellLevels, "one NearFaces per query_dense level");
 
 float ScalpField::query(const float3& p, float3& n, float3& closest) const { return query_impl(*impl_, p, n, closest, -1); }
 float ScalpField::query_dense(const float3& p, float3& n, float3& closest, int level) const

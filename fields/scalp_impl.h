@@ -33,6 +33,20 @@ enum class Feature : uint8_t { Face, Edge0, Edge1, Edge2, Vertex0, Vertex1, Vert
 /// feature it lies on, which selects the pseudo-normal that signs the distance.
 float3 closest_on_triangle(const float3& p, const float3& a, const float3& b, const float3& c, Feature& feature);
 
+/// Whether no point within `rho` of a centre m can be nearer than s0 (a point of the mesh) to any
+/// point p of a region, so that no face inside that sphere is the closest face of any p there.
+/// Points of the sphere are at least |p - m| - rho from p, so none is nearer when
+/// |p - m| > |p - s0| + rho for every p; squared, with |p - s0| <= `reach` over the region, that
+/// holds when |p - m|^2 - |p - s0|^2 > 2 rho reach + rho^2. The left side is linear in p (the
+/// bisector plane of m and s0): the caller gives its value at the region's centre, `at`, and the
+/// most it falls below that over the region, `spread` (at a box's corner, or over a ball), plus
+/// `rounding` for the float rounding of its terms (far_field.cpp over a cell's box,
+/// MeshQuery::faces_seen_from over a ball).
+inline bool beyond_bisector(double at, double spread, double rho, double reach, double rounding)
+{
+    return at - spread > 2.0 * rho * reach + rho * rho + rounding;
+}
+
 /// Flat, cache-friendly copy of the repaired mesh with angle-weighted pseudo-normals
 /// (Baerentzen & Aanaes 2005): the sign of the distance to the closest point c on feature F is
 /// sign(dot(p - c, N_F)), exact for closed and open oriented meshes alike.
@@ -201,8 +215,7 @@ struct ScalpField::Impl {
     }
 
     /// Candidate closest faces per cell outside the band (fields/near_faces.h), made on first use:
-    /// cells of NearFaces::kCellVoxels << level voxels, level in [0, kCellLevels).
-    static constexpr int kCellLevels = 3;
+    /// cells of NearFaces::kCellVoxels << level voxels, level in [0, ScalpField::kDenseLevels).
     const detail::NearFaces& near(int level = 0) const
     {
         std::call_once(near_built_[level], [this, level] {
@@ -237,8 +250,8 @@ private:
     mutable int64_t seam_voxels_ = 0;
     mutable std::once_flag far_built_;
     mutable std::unique_ptr<detail::FarField> far_;
-    mutable std::once_flag near_built_[kCellLevels];
-    mutable std::unique_ptr<detail::NearFaces> near_[kCellLevels];
+    mutable std::once_flag near_built_[kDenseLevels];
+    mutable std::unique_ptr<detail::NearFaces> near_[kDenseLevels];
 };
 
 }  // namespace groom

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <limits>
 
 namespace groom::detail {
 
@@ -31,7 +30,7 @@ SourceMesh decode_source_mesh(std::string_view text, const std::string& what)
     in.header("groom-source-mesh");
     const int64_t np = in.count(3, "a point count");
     const int64_t nt = in.count(1, "a triangle count");
-    if (np * 3 + nt * 3 > int64_t(text.size() / 2 + 1)) in.fail("the counts need more numbers than the text holds");
+    in.expect_numbers(np * 3 + nt * 3);
     SourceMesh mesh;
     mesh.points.resize(size_t(np));
     for (float3& p : mesh.points) p.x = in.real(), p.y = in.real(), p.z = in.real();

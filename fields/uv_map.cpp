@@ -12,7 +12,6 @@
 #include <charconv>
 #include <cmath>
 #include <iterator>
-#include <limits>
 
 namespace groom::detail {
 
@@ -205,7 +204,7 @@ std::unique_ptr<UvMap> UvMap::decode(std::string_view text, const std::string& w
     const int64_t np = in.count(1, "a point count");
     const int64_t nu = in.count(1, "a texture coordinate count");
     const int64_t nt = in.count(1, "a triangle count");
-    if (np * 3 + nu * 2 + nt * 6 > int64_t(text.size() / 2 + 1)) in.fail("the counts need more numbers than the text holds");
+    in.expect_numbers(np * 3 + nu * 2 + nt * 6);
     std::vector<float3> points(static_cast<size_t>(np));
     for (float3& p : points) p.x = in.real(), p.y = in.real(), p.z = in.real();
     std::vector<float> uvs(static_cast<size_t>(2 * nu));

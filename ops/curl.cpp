@@ -169,7 +169,7 @@ Resolved resolve(const CurlParams& p)
     r.preset = &preset_of(p);
     r.tiers = curl_shape_tiers(p);
     if (p.amplitude.lo == 0.0f && p.amplitude.hi == 0.0f) {
-        const float a = r.preset->radius_cm * p.units_per_cm;
+        const float a = curl_default_radius(p);
         r.amplitude = {0.8f * a, 1.2f * a};  // +-20% around the type's radius: our choice
     }
     else {
@@ -370,6 +370,8 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
 }
 
 }  // namespace
+
+float curl_default_radius(const CurlParams& params) { return preset_of(params).radius_cm * params.units_per_cm; }
 
 void CurlParams::validate() const
 {

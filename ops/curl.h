@@ -77,6 +77,11 @@ struct CurlParams {
     void validate() const;
 };
 
+/// The curl radius the hair type gives when `amplitude` is left at {0, 0}, scene units: its
+/// radius in centimetres x units_per_cm (each cycle draws within +-20% of it). Throws InvalidParam
+/// for an unknown type.
+float curl_default_radius(const CurlParams& params);
+
 /// The tiered shape list of Sec. 3.1, as probabilities over the dictionary.
 struct CurlShapeTiers {
     int dominant = 0;                  ///< tier A

@@ -65,6 +65,8 @@ void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& 
 /// "curve id"): .obj keeps only P; .hair keeps P and point width, opacity, Cd; .usda keeps
 /// everything; .ply everything but int64 columns with values beyond +-2^53 (stored as double,
 /// exact up to 2^53: such a column is left out, never rounded), named with that reason.
+std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path);
+
 /// Whether the format of `path` can be written a block of curves at a time (CurveBlockWriter):
 /// its row in the format table has open_blocks (.hair); the others are written from the whole set.
 bool writes_curve_blocks(const std::string& path);
@@ -101,8 +103,6 @@ using CurveBlockEmit = std::function<void(const CurveSet& block)>;
 /// with the two callbacks; the file lands (atomically) once the op returns, or not at all if it throws.
 /// Needs writes_curve_blocks(path).
 CurveBlockCounts write_curve_blocks(const std::string& path, const std::function<void(const CurveBlockStart&, const CurveBlockEmit&)>& run);
-
-std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path);
 
 /// Whether a file that could be either (.obj, .ply) holds curves rather than a mesh, by content:
 /// an OBJ with `l` records and no `f` is curves; a PLY with an `edge` or `curve` element and no

@@ -126,6 +126,9 @@ struct Centreline {
     std::vector<Frame> frames;
     double length = 0.0;
     double ds = 0.0;
+    // Scratch kept from curve to curve by a worker (the spline, its lengths, the tangents).
+    std::vector<float3> spline, tangents;
+    std::vector<double> cumulative;
 
     /// Where arc length s falls on the grid: between points j and j1, fraction f.
     void spot(double s, int64_t& j, int64_t& j1, float& f) const
@@ -204,12 +207,13 @@ void build_centreline(std::span<const float3> in, int64_t n, Centreline& cl)
     const int64_t m = int64_t(in.size());
     if (m >= 4) {
         const int per_segment = int(std::clamp<int64_t>((n + m - 2) / (m - 1), 1, 64));
-        cl.points = resample_by_count(evaluate_cubic(in, CubicBasis::CatmullRom, true, per_segment), int(n));
+        evaluate_cubic(in, CubicBasis::CatmullRom, true, per_segment, cl.spline);
+        resample_by_count(cl.spline, int(n), cl.points, cl.cumulative);
     }
     else {
-        cl.points = resample_by_count(in, int(n));
+        resample_by_count(in, int(n), cl.points, cl.cumulative);
     }
-    cl.frames = rotation_minimising_frames(cl.points);
+    rotation_minimising_frames(cl.points, {1, 0, 0}, cl.frames, cl.tangents);
     cl.length = polyline_length(cl.points);
     cl.ds = cl.length / double(n - 1);
 }
@@ -568,7 +572,7 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
             const IndexRange r = src.points_of(size_t(c));
             const IndexRange d = dst.points_of(size_t(k));
             const auto in = P.subspan(size_t(r.begin), size_t(r.size()));
-            in_cum = cumulative_lengths(in);
+            cumulative_lengths(in, in_cum);
             const double in_len = in_cum.empty() ? 0.0 : in_cum.back();
             if (!(in_len > 0.0) || r.size() < 2) {
                 // Nothing to curl: the curve passes through unchanged.

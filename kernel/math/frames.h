@@ -19,5 +19,8 @@ struct Frame {
 /// first frame's normal after projection onto the plane normal to the first tangent; when it is
 /// (nearly) parallel to the tangent a perpendicular is chosen. Tangents: see polyline_tangents().
 std::vector<Frame> rotation_minimising_frames(std::span<const float3> pts, const float3& initial_normal = {1, 0, 0});
+/// The same into `frames` (resized); `tangents` is scratch (it ends holding the unit tangents).
+void rotation_minimising_frames(std::span<const float3> pts, const float3& initial_normal, std::vector<Frame>& frames,
+                                std::vector<float3>& tangents);
 
 }  // namespace groom

@@ -14,13 +14,20 @@ float polyline_length(std::span<const float3> pts)
 
 std::vector<double> cumulative_lengths(std::span<const float3> pts)
 {
-    std::vector<double> out(pts.size(), 0.0);
+    std::vector<double> out;
+    cumulative_lengths(pts, out);
+    return out;
+}
+
+void cumulative_lengths(std::span<const float3> pts, std::vector<double>& out)
+{
+    out.resize(pts.size());
+    if (!pts.empty()) out[0] = 0.0;
     for (size_t i = 1; i < pts.size(); ++i) {
         const double dx = double(pts[i].x) - pts[i - 1].x, dy = double(pts[i].y) - pts[i - 1].y,
                      dz = double(pts[i].z) - pts[i - 1].z;
         out[i] = out[i - 1] + std::sqrt(dx * dx + dy * dy + dz * dz);
     }
-    return out;
 }
 
 namespace {
@@ -72,9 +79,17 @@ float3 point_at_length(std::span<const float3> pts, std::span<const double> cumu
 
 std::vector<float3> resample_by_count(std::span<const float3> pts, int count)
 {
-    std::vector<float3> out(static_cast<size_t>(std::max(count, 0)));
-    if (out.empty() || pts.empty()) return out;
-    const std::vector<double> cum = cumulative_lengths(pts);
+    std::vector<float3> out;
+    std::vector<double> cum;
+    resample_by_count(pts, count, out, cum);
+    return out;
+}
+
+void resample_by_count(std::span<const float3> pts, int count, std::vector<float3>& out, std::vector<double>& cum)
+{
+    out.assign(static_cast<size_t>(std::max(count, 0)), float3{});
+    if (out.empty() || pts.empty()) return;
+    cumulative_lengths(pts, cum);
     const double total = cum.back();
     size_t cursor = 0;  // the lengths asked for only grow: each lookup walks on from the last
     for (int i = 0; i < count; ++i) {
@@ -90,30 +105,38 @@ std::vector<float3> resample_by_count(std::span<const float3> pts, int count)
         out.front() = pts.front();
         out.back() = total > 0.0 ? pts.back() : pts.front();
     }
-    return out;
 }
 
 std::vector<float3> polyline_tangents(std::span<const float3> pts)
 {
+    std::vector<float3> t;
+    polyline_tangents(pts, t);
+    return t;
+}
+
+void polyline_tangents(std::span<const float3> pts, std::vector<float3>& t)
+{
     const size_t n = pts.size();
-    std::vector<float3> t(n, float3(0, 1, 0));
-    if (n < 2) return t;
-    std::vector<bool> valid(n, false);
+    t.assign(n, float3(0, 1, 0));
+    if (n < 2) return;
+    // A zero vector marks a point with no tangent of its own yet (a unit tangent is never zero).
+    bool any_missing = false;
     for (size_t i = 0; i < n; ++i) {
         const float3 a = pts[i == 0 ? 0 : i - 1];
         const float3 b = pts[i + 1 == n ? n - 1 : i + 1];
         const float3 d = b - a;
-        if (length_squared(d) > 0.0f) {
-            t[i] = normalize(d);
-            valid[i] = true;
-        }
+        if (length_squared(d) > 0.0f) t[i] = normalize(d);
+        else t[i] = float3(0, 0, 0), any_missing = true;
     }
+    if (!any_missing) return;
+    auto missing = [&](size_t i) { return t[i].x == 0.0f && t[i].y == 0.0f && t[i].z == 0.0f; };
     // Fill degenerate tangents from the nearest valid neighbour (forward, then backward).
     for (size_t i = 1; i < n; ++i)
-        if (!valid[i] && valid[i - 1]) { t[i] = t[i - 1]; valid[i] = true; }
+        if (missing(i) && !missing(i - 1)) t[i] = t[i - 1];
     for (size_t i = n - 1; i-- > 0;)
-        if (!valid[i] && valid[i + 1]) { t[i] = t[i + 1]; valid[i] = true; }
-    return t;
+        if (missing(i) && !missing(i + 1)) t[i] = t[i + 1];
+    for (float3& v : t)
+        if (v.x == 0.0f && v.y == 0.0f && v.z == 0.0f) v = float3(0, 1, 0);  // no extent at all: +Y
 }
 
 double segment_distance_sq(const float3& p1f, const float3& q1f, const float3& p2f, const float3& q2f)

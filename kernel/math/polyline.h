@@ -14,6 +14,8 @@ float polyline_length(std::span<const float3> pts);
 /// Cumulative arc length at each point: out[0] = 0, out.back() = total length. Computed in double
 /// so long curves do not drift.
 std::vector<double> cumulative_lengths(std::span<const float3> pts);
+/// The same into `out` (resized), for a loop over many curves that keeps its buffers.
+void cumulative_lengths(std::span<const float3> pts, std::vector<double>& out);
 
 /// Where arc length `s` falls along a polyline, found from its cumulative lengths.
 struct ArcSpot {
@@ -39,10 +41,14 @@ float3 point_at_length(std::span<const float3> pts, std::span<const double> cumu
 /// `count` points (>= 2) equally spaced in arc length from root to tip; the root and tip are kept
 /// exactly. A single-point or zero-length input yields `count` copies of its first point.
 std::vector<float3> resample_by_count(std::span<const float3> pts, int count);
+/// The same into `out` (resized); `cumulative` is scratch.
+void resample_by_count(std::span<const float3> pts, int count, std::vector<float3>& out, std::vector<double>& cumulative);
 
 /// Unit tangents per point: central differences inside, one-sided at the ends. Zero-length
 /// segments take the neighbouring tangent; a curve with no extent gets +Y (the up axis).
 std::vector<float3> polyline_tangents(std::span<const float3> pts);
+/// The same into `out` (resized).
+void polyline_tangents(std::span<const float3> pts, std::vector<float3>& out);
 
 /// Squared distance between segments [p1,q1] and [p2,q2] (Ericson, Real-Time Collision Detection
 /// 5.1.9), in double so near-touching curves are measured reliably.

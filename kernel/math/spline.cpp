@@ -29,32 +29,45 @@ float3 bspline(const float3& p0, const float3& p1, const float3& p2, const float
 
 std::vector<float3> evaluate_cubic(std::span<const float3> cvs, CubicBasis basis, bool pinned, int samples_per_segment)
 {
-    std::vector<float3> pts(cvs.begin(), cvs.end());
-    if (pinned && pts.size() >= 2) {
-        // Phantom points chosen so the curve starts/ends exactly on the end control points:
-        // reflection for Catmull-Rom, 2*p0 - p1 for B-spline (its end condition).
-        pts.insert(pts.begin(), 2.0f * cvs[0] - cvs[1]);
-        pts.push_back(2.0f * cvs[cvs.size() - 1] - cvs[cvs.size() - 2]);
-    }
-    if (pts.size() < 4) return std::vector<float3>(cvs.begin(), cvs.end());
-    const int k = std::max(samples_per_segment, 1);
-    const size_t segments = pts.size() - 3;
     std::vector<float3> out;
-    out.reserve(segments * k + 1);
+    evaluate_cubic(cvs, basis, pinned, samples_per_segment, out);
+    return out;
+}
+
+void evaluate_cubic(std::span<const float3> cvs, CubicBasis basis, bool pinned, int samples_per_segment, std::vector<float3>& out)
+{
+    // Phantom points chosen so the curve starts/ends exactly on the end control points:
+    // reflection for Catmull-Rom, 2*p0 - p1 for B-spline (its end condition). They are read in
+    // place of cvs[-1] and cvs[size], never stored (this runs once per curve in curl).
+    const bool phantoms = pinned && cvs.size() >= 2;
+    const size_t m = cvs.size(), np = m + (phantoms ? 2 : 0);
+    out.clear();
+    if (np < 4) {
+        out.assign(cvs.begin(), cvs.end());
+        return;
+    }
+    const float3 first = phantoms ? 2.0f * cvs[0] - cvs[1] : float3{}, last = phantoms ? 2.0f * cvs[m - 1] - cvs[m - 2] : float3{};
+    auto cv = [&](size_t j) {  // control point j of the extended list
+        if (!phantoms) return cvs[j];
+        return j == 0 ? first : j == np - 1 ? last : cvs[j - 1];
+    };
+    const int k = std::max(samples_per_segment, 1);
+    const size_t segments = np - 3;
+    out.resize(segments * size_t(k) + 1);
+    size_t o = 0;
     for (size_t s = 0; s < segments; ++s) {
+        const float3 p0 = cv(s), p1 = cv(s + 1), p2 = cv(s + 2), p3 = cv(s + 3);
         for (int i = 0; i < k; ++i) {
             const float t = static_cast<float>(i) / k;
-            out.push_back(basis == CubicBasis::CatmullRom ? catmull_rom(pts[s], pts[s + 1], pts[s + 2], pts[s + 3], t)
-                                                          : bspline(pts[s], pts[s + 1], pts[s + 2], pts[s + 3], t));
+            out[o++] = basis == CubicBasis::CatmullRom ? catmull_rom(p0, p1, p2, p3, t) : bspline(p0, p1, p2, p3, t);
         }
     }
     const size_t s = segments - 1;
-    out.push_back(basis == CubicBasis::CatmullRom ? pts[s + 2] : bspline(pts[s], pts[s + 1], pts[s + 2], pts[s + 3], 1.0f));
+    out[o] = basis == CubicBasis::CatmullRom ? cv(s + 2) : bspline(cv(s), cv(s + 1), cv(s + 2), cv(s + 3), 1.0f);
     if (pinned && basis == CubicBasis::CatmullRom) {
         out.front() = cvs.front();
         out.back() = cvs.back();
     }
-    return out;
 }
 
 float sample_uniform_spline(std::span<const float> values, float t)

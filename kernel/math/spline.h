@@ -24,6 +24,8 @@ enum class CubicBasis { CatmullRom, BSpline };
 /// reaches the first and last control points (USD wrap = "pinned"). A curve with fewer than 4
 /// control points (2 or 3 when pinned) yields the control points unchanged.
 std::vector<float3> evaluate_cubic(std::span<const float3> cvs, CubicBasis basis, bool pinned, int samples_per_segment);
+/// The same into `out` (resized), for a loop over many curves that keeps its buffers.
+void evaluate_cubic(std::span<const float3> cvs, CubicBasis basis, bool pinned, int samples_per_segment, std::vector<float3>& out);
 
 /// A smooth 1-D function through `values` placed uniformly over t in [0,1] (Catmull-Rom with
 /// clamped ends), evaluated at t (clamped). One value gives a constant; none gives 1.

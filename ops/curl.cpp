@@ -241,10 +241,15 @@ void draw_curve(const CurlParams& params, const Resolved& res, uint64_t id, floa
     d.cycles.resize(size_t(ncycles));
     const Rng shape_rng(params.seed, id, kStreamShape), amp_rng(params.seed, id, kStreamAmp), offset_rng(params.seed, id, kStreamOffset);
     auto unit = [](uint64_t v) { return double(v >> 11) * (1.0 / 9007199254740992.0); };
+    const bool offsets = params.offset.hi > 0.0f;  // else every centre stays on the centreline (the default)
     for (int64_t k = 0; k < ncycles; ++k) {
         Cycle& cy = d.cycles[size_t(k)];
         cy.shape = pick_curl_shape(res.tiers, unit(shape_rng.at(uint64_t(k))));
         cy.amplitude = res.amplitude.lo + (res.amplitude.hi - res.amplitude.lo) * float(unit(amp_rng.at(uint64_t(k))));
+        if (!offsets) {
+            cy.ox = cy.oy = 0.0f;
+            continue;
+        }
         const float orad = params.offset.lo + (params.offset.hi - params.offset.lo) * float(unit(offset_rng.at(2 * uint64_t(k))));
         const float oang = 2.0f * std::numbers::pi_v<float> * float(unit(offset_rng.at(2 * uint64_t(k) + 1)));
         cy.ox = orad * std::cos(oang);

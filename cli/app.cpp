@@ -337,7 +337,7 @@ int run(int argc, char** argv)
     }
 }
 
-int run_captured(const std::vector<std::string>& args, std::string& error_message)
+int run_captured(const std::vector<std::string>& args, std::string& error_message, std::vector<std::string>* warnings)
 {
     std::vector<std::string> words{"groom"};
     words.insert(words.end(), args.begin(), args.end());
@@ -346,8 +346,9 @@ int run_captured(const std::vector<std::string>& args, std::string& error_messag
     argv.push_back(nullptr);
     error_message.clear();
     error_sink = &error_message;
+    warning_sink = warnings;
     struct Reset {
-        ~Reset() { error_sink = nullptr; }
+        ~Reset() { error_sink = nullptr, warning_sink = nullptr; }
     } reset;
     return run(static_cast<int>(words.size()), argv.data());
 }

@@ -166,7 +166,7 @@ void setup(CommandContext& ctx)
                          (r.flyaways > 0 ? "; " + std::to_string(r.flyaways) + " flyaways" : std::string()) +
                          (r.fed_in > 0 ? "; " + std::to_string(r.fed_in) + " fibers fed in" : std::string()));
         if (r.skipped_guides > 0) {
-            note(common, "braid: warning: skipped " + std::to_string(r.skipped_guides) +
+            warn(common, "braid: warning: skipped " + std::to_string(r.skipped_guides) +
                              " guides with fewer than 2 points or zero length");
         }
         if (scalp) {

@@ -66,7 +66,7 @@ void setup(CommandContext& ctx)
         const std::string ext = io::extension_of(a.input);
         const bool usd = ext == "usda" || ext == "usd" || a.input == "-";
         read_options.prim_paths = usd && !params.prims.empty();
-        read_options.warn = [&common](const std::string& w) { note(common, "warning: " + w); };
+        read_options.warn = [&common](const std::string& w) { warn(common, "warning: " + w); };
         const CurveSet curves = read_curves(a.input, read_options);
         SelectStats stats;
         CurveSet out = select(curves, params, &stats);

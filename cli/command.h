@@ -54,8 +54,10 @@ struct Registrar {
 int run(int argc, char** argv);
 
 /// The same for a program that embeds groom (the Python module): `args` without the program name;
-/// the error message is returned in `error_message` instead of printed (empty on success).
-int run_captured(const std::vector<std::string>& args, std::string& error_message);
+/// the error message is returned in `error_message` instead of printed (empty on success). When
+/// `warnings` is given, the command's warnings (warn()) are appended to it, --quiet or not, and
+/// not printed: the embedding program shows them its own way (Python's warnings module).
+int run_captured(const std::vector<std::string>& args, std::string& error_message, std::vector<std::string>* warnings = nullptr);
 
 /// The message for an allocation that failed although the estimates fitted the budget: the command,
 /// what was being allocated (kernel/memory_budget.h MemoryNote) with the option to change, and
@@ -68,6 +70,13 @@ std::string out_of_memory_message();
 /// Messages on stderr: note() unless --quiet, detail() only with --verbose.
 void note(const CommonOptions& o, const std::string& message);
 void detail(const CommonOptions& o, const std::string& message);
+/// A warning ("curl: warning: ..."): the result was made but may not be what the user meant. On
+/// stderr unless --quiet; under run_captured with a warning list, handed to the caller instead
+/// (the Python module ran every command --quiet, so its users never saw one: a trial on Ratboy,
+/// a model in metres, got straight "curls" with no word why).
+void warn(const CommonOptions& o, const std::string& message);
+/// Where warn() hands its warnings when a caller asked for them (run_captured); else null.
+extern thread_local std::vector<std::string>* warning_sink;
 
 /// Throws InvalidParam when `output` names the same file as one of `inputs` (by any spelling: a
 /// link, `dir/./file`) or names an existing file this user may not write, and --force is absent

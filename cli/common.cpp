@@ -30,6 +30,14 @@ void detail(const CommonOptions& o, const std::string& message)
     if (o.verbose && !o.quiet) std::cerr << message << "\n";
 }
 
+thread_local std::vector<std::string>* warning_sink = nullptr;
+
+void warn(const CommonOptions& o, const std::string& message)
+{
+    if (warning_sink) warning_sink->push_back(message);
+    else note(o, message);
+}
+
 void add_prim_option(CLI::App* app, CommonOptions& common)
 {
     app->add_option("--prim", common.prims,
@@ -40,7 +48,7 @@ CurveSet read_curve_input(const std::string& path, const CommonOptions& common, 
 {
     CurveReadOptions ro;
     ro.cubic_samples_per_segment = samples_per_segment;
-    ro.warn = [&common, path](const std::string& w) { note(common, "warning: " + w); };
+    ro.warn = [&common, path](const std::string& w) { warn(common, "warning: " + w); };
     if (main_input && !common.prims.empty()) {
         const std::string ext = io::extension_of(path);
         if (path != "-" && ext != "usda" && ext != "usd") {

@@ -17,7 +17,7 @@ void warn_scene_scale(const CommonOptions& common, const std::string& command, c
     // A scalp mesh is at least a head (15 cm and more across) and at most a whole body (about 2 m).
     const double lo = 10.0 * units_per_cm, hi = 300.0 * units_per_cm;
     if (extent >= lo && extent <= hi) return;
-    note(common, command + ": warning: the scalp is " + format_number(extent) + " scene units across, but " + what +
+    warn(common, command + ": warning: the scalp is " + format_number(extent) + " scene units across, but " + what +
                      " are centimetres x --units-per-cm " + format_number(units_per_cm) + ", for a head, bust or body " +
                      format_number(lo) + " to " + format_number(hi) + " units across: if the scene is in other units pass " +
                      "--units-per-cm (0.01 for metres, 10 for millimetres)");
@@ -41,7 +41,7 @@ void warn_curl_scale(const CommonOptions& common, const std::string& command, co
     const double median = median_curve_length(hair);
     if (!(median > 0.0) || !(radius > 0.0f)) return;
     if (radius <= 0.5 * median && radius >= 1e-3 * median) return;
-    note(common, command + ": warning: the curl radius " + format_number(radius) + " (" + how + ") is " +
+    warn(common, command + ": warning: the curl radius " + format_number(radius) + " (" + how + ") is " +
                      (radius > 0.5 * median ? "more than half" : "under a thousandth of") + " the hairs' median length " +
                      format_number(median) + ", so the curls will not show: if the scene is not in centimetres pass --units-per-cm " +
                      "(0.01 for metres, 10 for millimetres), or give --amplitude");

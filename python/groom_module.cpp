@@ -17,8 +17,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <atomic>
+#include <filesystem>
 #include <memory>
 #include <regex>
 #include <string>
@@ -33,6 +35,7 @@ namespace {
 
 PyObject* g_error = nullptr;        // groom.Error(Exception)
 PyObject* g_param_error = nullptr;  // groom.ParamError(groom.Error, ValueError)
+PyObject* g_warning = nullptr;      // groom.GroomWarning(UserWarning)
 
 /// The CLI's wording turned into Python's: options become keyword names (--knot-length ->
 /// knot_length) and the pointer to `groom CMD --help` goes.
@@ -219,11 +222,26 @@ public:
 std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vector<const CurveSet*>& inputs, py::object scalp,
                                       const py::kwargs& kw)
 {
+    if (py::isinstance<Scalp>(scalp) && kw.contains("scalp_voxel") && !kw["scalp_voxel"].is_none()) {
+        // The field is built already: the voxel asked for would be silently dropped.
+        const std::string text = command + ": scalp_voxel is for a scalp given as a mesh path; this groom.Scalp keeps its voxel (" +
+                                 format_number(scalp.cast<const Scalp&>().field->voxel_size()) +
+                                 "): load it with groom.Scalp.load(mesh, voxel=...) instead";
+        if (PyErr_WarnEx(g_warning, text.c_str(), 1) != 0) throw py::error_already_set();
+    }
     const std::string id = std::to_string(g_call++);
     const std::string out_path = "mem:out" + id, scalp_path = "mem:scalp" + id;
     std::vector<std::string> args{command}, stored;
     for (size_t i = 0; i < inputs.size(); ++i) {
         const std::string in_path = "mem:in" + id + "_" + std::to_string(i);
+        // The arrays are live views a caller may have written NaNs into since: blamed here, on the
+        // input, not later as an error writing the command's in-memory output.
+        try {
+            inputs[i]->validate(inputs.size() == 1 ? "curves" : "curves " + std::to_string(i));
+        }
+        catch (const Error& e) {
+            raise(true, e.what());
+        }
         store_memory_curves(in_path, *inputs[i]);
         stored.push_back(in_path);
         args.push_back(in_path);
@@ -241,10 +259,22 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
     }
     append_options(args, kw, "mem:kw" + id + "_", stored);
     std::string message;
+    std::vector<std::string> warnings;
     int code = 0;
     {
         py::gil_scoped_release release;
-        code = cli::run_captured(args, message);
+        code = cli::run_captured(args, message, &warnings);
+    }
+    for (const std::string& w : warnings) {
+        // "curl: warning: the curl radius ..." -> "curl: the curl radius ..." (the category says it).
+        std::string text = python_message(w);
+        if (const size_t at = text.find("warning: "); at != std::string::npos) text.erase(at, 9);
+        if (PyErr_WarnEx(g_warning, text.c_str(), 1) != 0) {  // warnings turned into errors by a filter
+            for (const std::string& path : stored) erase_memory_curves(path);
+            erase_memory_scalp(scalp_path);
+            erase_memory_curves(out_path);
+            throw py::error_already_set();
+        }
     }
     for (const std::string& path : stored) erase_memory_curves(path);
     erase_memory_scalp(scalp_path);
@@ -262,7 +292,12 @@ std::shared_ptr<CurveSet> make_curves(py::array_t<float, py::array::c_style | py
     if (counts.ndim() != 1) raise(true, "counts: expected a 1-D array of points per curve");
     int64_t total = 0;
     for (py::ssize_t c = 0; c < counts.shape(0); ++c) {
-        if (counts.at(c) < 0) raise(true, "counts: curve " + std::to_string(c) + " has a negative count (" + std::to_string(counts.at(c)) + ")");
+        if (counts.at(c) < 1) {
+            // No file format holds a curve without points (.usda wrote one its readers refuse, .obj
+            // dropped it), so none is made.
+            raise(true, "counts: curve " + std::to_string(c) + " has " + std::to_string(counts.at(c)) +
+                            " points; every curve needs at least 1 (leave the curve out)");
+        }
         total += counts.at(c);
     }
     if (total != points.shape(0)) {
@@ -300,7 +335,7 @@ void def_op(py::module_& m, const char* name, const char* command, bool takes_cu
         m.def(
             name,
             [cmd](std::shared_ptr<CurveSet> curves, py::object scalp, py::kwargs kw) { return run_command(cmd, {curves.get()}, scalp, kw); },
-            py::arg("curves"), py::arg("scalp") = py::none(), doc);
+            py::arg("curves").none(false), py::arg("scalp") = py::none(), doc);
     }
     else {
         m.def(
@@ -318,6 +353,11 @@ PYBIND11_MODULE(groom, m)
               "Every op takes keyword arguments named like the command-line options (knot_length for "
               "--knot-length) with the same defaults; see `groom COMMAND --help`.";
     m.attr("__version__") = GROOM_VERSION;
+
+    g_warning = PyErr_NewExceptionWithDoc("groom.GroomWarning",
+                                          "A result that was made but may not be what was meant (units, skipped guides).",
+                                          PyExc_UserWarning, nullptr);
+    m.add_object("GroomWarning", py::handle(g_warning));
 
     static py::exception<Error> error(m, "Error");
     g_error = error.ptr();
@@ -369,12 +409,15 @@ PYBIND11_MODULE(groom, m)
         .def_property_readonly("offsets",
                                [](const CurveSet& cs) {
                                    const auto o = cs.offsets();
-                                   return py::array_t<int64_t>(py::ssize_t(o.size()), o.data());
+                                   py::array_t<int64_t> out(py::ssize_t(o.size()), o.data());
+                                   out.attr("setflags")(py::arg("write") = false);  // a copy: writing to it would change nothing
+                                   return out;
                                })
         .def_property_readonly("counts",
                                [](const CurveSet& cs) {
                                    py::array_t<int64_t> out(py::ssize_t(cs.num_curves()));
                                    for (size_t c = 0; c < cs.num_curves(); ++c) out.mutable_at(c) = cs.points_in(c);
+                                   out.attr("setflags")(py::arg("write") = false);  // a copy: writing to it would change nothing
                                    return out;
                                })
         .def_property_readonly("point_attributes",
@@ -389,13 +432,13 @@ PYBIND11_MODULE(groom, m)
         });
 
     m.def(
-        "read", [](const std::string& path) { return guarded([&] { return std::make_shared<CurveSet>(read_curves(path)); }); },
-        py::arg("path"), "Reads a curve file (.usda .obj .ply .hair)");
+        "read", [](const std::filesystem::path& path) { return guarded([&] { return std::make_shared<CurveSet>(read_curves(path.string())); }); },
+        py::arg("path"), "Reads a curve file (.usda .obj .ply .hair); a str or a pathlib.Path");
     m.def(
         "write",
-        [](const CurveSet& cs, const std::string& path) {
+        [](const CurveSet& cs, const std::filesystem::path& path) {
             guarded([&] {
-                write_curves(cs, path);
+                write_curves(cs, path.string());
                 return 0;
             });
         },
@@ -404,15 +447,24 @@ PYBIND11_MODULE(groom, m)
     py::class_<Scalp>(m, "Scalp", "The scalp as a signed distance field (OpenVDB level set)")
         .def_static(
             "load",
-            [](const std::string& path, float voxel) {
+            [](const std::filesystem::path& path, float voxel) {
                 ScalpBuildParams p;
                 p.voxel_size = voxel;
-                return guarded([&] {
+                Scalp s = guarded([&] {
                     p.validate();
-                    return Scalp(load_scalp(path, p));
+                    return Scalp(load_scalp(path.string(), p));
                 });
+                if (voxel > 0.0f && path.extension() == ".vdb" && s.field->voxel_size() != voxel) {
+                    // A .vdb is read as it was built; the voxel asked for was silently dropped.
+                    const std::string text = "Scalp.load: voxel " + format_number(voxel) + " is for meshes; " + path.string() +
+                                             " keeps the voxel it was built with (" + format_number(s.field->voxel_size()) +
+                                             "): rebuild it with `groom scalp MESH --voxel " + format_number(voxel) + "`";
+                    if (PyErr_WarnEx(g_warning, text.c_str(), 1) != 0) throw py::error_already_set();
+                }
+                return s;
             },
-            py::arg("path"), py::arg("voxel") = 0.0f, "A .vdb from `groom scalp`, or a mesh converted with the given voxel size (0 = automatic)")
+            py::arg("path"), py::arg("voxel") = 0.0f,
+            "A .vdb from `groom scalp`, or a mesh converted with the given voxel size (0 = automatic); a str or a pathlib.Path")
         .def_static(
             "from_mesh",
             [](py::array_t<float, py::array::c_style | py::array::forcecast> vertices,
@@ -438,7 +490,10 @@ PYBIND11_MODULE(groom, m)
             [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
                 return s.map_points(p, 1, [](float d, const float3&, const float3&, float* o) { o[0] = d; });
             },
-            py::arg("points"), "Signed distance of each point, (n,) float32; negative inside")
+            py::arg("points"),
+            "Signed distance of each point, (n,) float32; negative inside. Within 3 voxels of the surface this is the level "
+            "set's trilinear value, good to about half a voxel (more at sharp features and open rims); farther out it is the "
+            "exact distance to the mesh. The same numbers as `groom probe`; a smaller voxel= tightens them near the surface.")
         .def(
             "normal",
             [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
@@ -450,7 +505,10 @@ PYBIND11_MODULE(groom, m)
             [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
                 return s.map_points(p, 3, [](float, const float3&, const float3& c, float* o) { o[0] = c.x, o[1] = c.y, o[2] = c.z; });
             },
-            py::arg("points"), "Closest point on the scalp to each point, (n, 3)")
+            py::arg("points"),
+            "Closest point on the scalp to each point, (n, 3): the point minus distance x normal. Within 3 voxels of the "
+            "surface it lands within about half a voxel of the mesh (more at sharp features and open rims); farther out it is "
+            "the exact closest point on the mesh. A smaller voxel= tightens it.")
         .def(
             "inside",
             [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
@@ -483,7 +541,11 @@ PYBIND11_MODULE(groom, m)
         "gather",
         [](const std::vector<std::shared_ptr<CurveSet>>& puffs, py::object scalp, py::kwargs kw) {
             std::vector<const CurveSet*> inputs;
-            for (const auto& p : puffs) inputs.push_back(p.get());
+            for (size_t i = 0; i < puffs.size(); ++i) {
+                // A None in the list arrives as a null pointer (pybind11 lets it through).
+                if (!puffs[i]) throw py::type_error("gather: puffs[" + std::to_string(i) + "] is None; expected a groom.CurveSet");
+                inputs.push_back(puffs[i].get());
+            }
             return run_command("gather", inputs, scalp, kw);
         },
         py::arg("puffs"), py::arg("scalp") = py::none(),

@@ -6,7 +6,11 @@ space."""
 import bpy
 import numpy as np
 
-import groom
+try:
+    import groom
+except ModuleNotFoundError as e:  # a bare "No module named 'groom'" told the artist nothing
+    raise ModuleNotFoundError("the groom add-on needs the groom Python module on Blender's path: start Blender with "
+                              "PYTHONPATH=<groom>/build/python, or run `cmake --install build` (README, Blender)") from e
 
 
 def _world(points, matrix):

@@ -7,6 +7,8 @@ defaults shown here are the CLI's (`groom COMMAND --help`). Two settings are alw
 and forward directions, because Blender is Z-up with the face toward -Y where groom's own defaults
 (+Y up, face +Z) are those of the DCCs that export Y-up."""
 
+import warnings
+
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, PointerProperty
 
@@ -82,7 +84,8 @@ class GroomSettings(bpy.types.PropertyGroup):
     edge_length: FloatProperty(name="Edge length", default=2.4, min=0.0, description="Arc length of one baby hair")
     edge_radius: FloatProperty(name="Swirl radius", default=0.15, min=0.0, description="Tightest radius of curvature of a baby hair")
     units_per_cm: FloatProperty(name="Units per cm", default=1.0, min=0.0,
-                                description="Scene units per centimetre: edges' defaults are centimetres (0.01 for metres)")
+                                description="Scene units per centimetre, for groom's centimetre defaults: Generate's widths, "
+                                            "Curl's radius, Edges' sizes (0.01 for a scene in metres, Blender's default)")
     # sections
     layout: EnumProperty(name="Layout", items=LAYOUTS, default="grid")
     cols: IntProperty(name="Columns", default=8, min=1, max=256, description="grid: bands across the head; rows: rows")
@@ -145,10 +148,17 @@ class _GroomOperator:
             elif self.needs_scalp:
                 raise ValueError("scalp: choose a scalp mesh in the Groom panel")
             kw = _given(settings, ("threads",))
-            result = self.run(settings, guides, scalp, kw)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always", groom.GroomWarning)
+                result = self.run(settings, guides, scalp, kw)
         except (groom.Error, ValueError) as e:
             self.report({'ERROR'}, str(e))
             return {'CANCELLED'}
+        # groom's warnings (a scene in metres with centimetre defaults: hairs 2 cm wide, curls that
+        # do not show) in the status bar and the Info editor, where an artist looks.
+        for w in caught:
+            if issubclass(w.category, groom.GroomWarning):
+                self.report({'WARNING'}, str(w.message))
         ob = convert.curves_object(result, self.bl_label.split()[-1].lower(), context.collection)
         self.report({'INFO'}, f"groom: {result.num_curves} curves, {result.num_points} points -> {ob.name}")
         return {'FINISHED'}
@@ -182,7 +192,7 @@ class GROOM_OT_curl(_GroomOperator, bpy.types.Operator):
     needs_scalp = False
 
     def run(self, s, guides, scalp, kw):
-        kw.update(_given(s, ("type", "uniformity", "seed")))
+        kw.update(_given(s, ("type", "uniformity", "units_per_cm", "seed")))
         return groom.curl(guides, scalp=scalp, **kw)
 
 
@@ -192,7 +202,7 @@ class GROOM_OT_generate(_GroomOperator, bpy.types.Operator):
     bl_label = "Groom Generate"
 
     def run(self, s, guides, scalp, kw):
-        kw.update(_given(s, ("neighbours", "seed")))
+        kw.update(_given(s, ("neighbours", "units_per_cm", "seed")))
         return groom.generate(guides, scalp=scalp, count=s.hairs, **kw)
 
 

@@ -15,6 +15,7 @@ class GROOM_PT_panel(bpy.types.Panel):
         col = self.layout.column()
         col.prop(s, "scalp")
         col.prop(s, "scalp_voxel")
+        col.prop(s, "units_per_cm")
         col.prop(s, "seed")
         col.prop(s, "threads")
 
@@ -53,7 +54,7 @@ class GROOM_PT_panel(bpy.types.Panel):
         for name in ("up", "forward", "hairline", "parting", "parting_gap"):
             box.prop(s, name)
         box.operator("groom.hairline")
-        for name in ("edge_count", "edge_length", "edge_radius", "units_per_cm"):
+        for name in ("edge_count", "edge_length", "edge_radius"):
             box.prop(s, name)
         box.operator("groom.edges")
         for name in ("layout", "cols", "section_length"):

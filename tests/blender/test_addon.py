@@ -68,11 +68,16 @@ cases = [
     ("partition", lambda: groom.partition(guides, scalp=field, count=6), dict(count=6)),
     ("curl", lambda: groom.curl(guides, scalp=field, type="4a"), dict(type="4a")),
     ("generate", lambda: groom.generate(guides, scalp=field, count=40), dict(hairs=40)),
+    # Units per cm reaches Generate (its widths) and Curl (its radius), not only Edges: a scene in
+    # metres got 2 cm hairs and curls that did not show.
+    ("generate", lambda: groom.generate(guides, scalp=field, count=40, units_per_cm=0.01), dict(hairs=40, units_per_cm=0.01)),
+    ("curl", lambda: groom.curl(guides, scalp=field, type="4a", units_per_cm=0.1), dict(type="4a", units_per_cm=0.1)),
     ("puff", lambda: groom.puff(scalp=field, center=(0, 0, 1), radius=0.3, sphere_center=(0, 0, 1.6), sphere_radius=0.4, hairs=20),
      dict(center=(0, 0, 1), radius=0.3, sphere_center=(0, 0, 1.6), sphere_radius=0.4, puff_hairs=20)),
 ]
 for name, expected_fn, props in cases:
-    for key in ("fibers", "knot_length", "count", "type", "hairs", "puff_hairs", "center", "radius", "sphere_center", "sphere_radius"):
+    for key in ("fibers", "knot_length", "count", "type", "hairs", "puff_hairs", "center", "radius", "sphere_center", "sphere_radius",
+                "units_per_cm"):
         settings.property_unset(key)
     for key, value in props.items():
         setattr(settings, key, value)
@@ -100,7 +105,8 @@ for name, expected_fn, props in cases:
 # The whole scalp, Z-up as Blender is: a head-sized sphere (radius 10, centimetres like groom's
 # defaults), its hairline, edges along it, grid sections, and two puffs gathered. Each object must
 # equal the module's output for the same inputs with up = +Z and the face toward -Y.
-for key in ("fibers", "knot_length", "count", "type", "hairs", "puff_hairs", "center", "radius", "sphere_center", "sphere_radius"):
+for key in ("fibers", "knot_length", "count", "type", "hairs", "puff_hairs", "center", "radius", "sphere_center", "sphere_radius",
+            "units_per_cm"):
     settings.property_unset(key)
 bpy.ops.mesh.primitive_uv_sphere_add(radius=10.0, segments=96, ring_count=48, location=(0, 0, 0))
 head = bpy.context.active_object

@@ -200,6 +200,62 @@ def test_errors_name_the_parameter_and_the_value():
         groom.read("/nonexistent/guides.usda")
 
 
+def test_none_for_the_curves_is_a_type_error_not_a_crash(sphere):
+    # pybind11 let None through as a null pointer and the interpreter died (segfault) in a trial.
+    for call in (lambda: groom.generate(None, scalp=sphere, count=10), lambda: groom.curl(None), lambda: groom.braid(None),
+                 lambda: groom.cull(None, scalp=sphere), lambda: groom.select(None, ids="0")):
+        with pytest.raises(TypeError):
+            call()
+    with pytest.raises(TypeError, match=r"puffs\[0\] is None"):
+        groom.gather([None], scalp=sphere)
+
+
+def test_warnings_reach_python_as_groom_warnings(sphere):
+    """The CLI's unit warnings were dropped (every command ran --quiet): a head in metres got straight
+    'curls' with no word why. The sphere is 2 units across, outside a head's 10-300 cm."""
+    import warnings
+    guides = straight_guides(points=8, length=1.5)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        groom.curl(guides)  # the default radius 1 is more than half of the 1.5 long hairs
+    texts = [str(w.message) for w in caught if issubclass(w.category, groom.GroomWarning)]
+    assert len(texts) == 1 and "curl radius" in texts[0] and "units_per_cm" in texts[0] and "--" not in texts[0]
+    assert issubclass(groom.GroomWarning, UserWarning)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        groom.curl(guides, units_per_cm=0.1)  # a 0.1 radius on 1.5 long hairs shows: nothing to say
+    assert not [w for w in caught if issubclass(w.category, groom.GroomWarning)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", groom.GroomWarning)  # a pipeline that wants warnings to stop it
+        with pytest.raises(groom.GroomWarning):
+            groom.curl(guides)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        groom.generate(guides, scalp=sphere, count=5, scalp_voxel=0.05)  # the Scalp object is built already
+    assert any("scalp_voxel" in str(w.message) for w in caught)
+
+
+def test_input_problems_are_blamed_on_the_input():
+    with pytest.raises(groom.ParamError, match="curve 1 has 0 points"):
+        groom.CurveSet(np.zeros((5, 3), np.float32), np.array([3, 0, 2]))
+    cs = straight_guides()
+    cs.points[0] = np.nan  # through the live view, after the constructor checked
+    with pytest.raises(groom.ParamError, match=r"^curves: point 0 \(curve 0\) has a non-finite position"):
+        groom.curl(cs)
+    with pytest.raises(ValueError, match="read-only"):
+        cs.counts[0] = 5  # a copy: writing to it would silently change nothing
+    with pytest.raises(ValueError, match="read-only"):
+        cs.offsets[1] = 5
+
+
+def test_paths_may_be_pathlib_paths(tmp_path):
+    import pathlib
+    cs = straight_guides()
+    path = pathlib.Path(tmp_path) / "a.usda"
+    groom.write(cs, path)
+    np.testing.assert_array_equal(groom.read(path).points, cs.points)
+
+
 def test_threads_do_not_change_the_result():
     cs = straight_guides()
     one = groom.braid(cs, fibers=12, flyaways=0.2, threads=1)

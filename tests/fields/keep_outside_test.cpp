@@ -87,6 +87,40 @@ TEST(KeepOutside, RetriesDoubleTheMarginUntilTheFieldAgrees)
     EXPECT_NEAR(r.y, 0.994f, kTol);
 }
 
+/// The exact sphere, but its move's query gives `normal_sign` times the normal and, with `pit`, the
+/// centre as the closest point: a rim whose normal points into the head (an open eye hole), and a
+/// field whose moves only make things worse.
+class MisleadingSphere final : public Surface {
+public:
+    MisleadingSphere(float normal_sign, bool pit) : sign_(normal_sign), pit_(pit) {}
+    float distance(const float3& p) const override { return exact_.distance(p); }
+    float3 normal(const float3& p) const override { return exact_.normal(p) * sign_; }
+    float3 closest_point(const float3& p) const override { return pit_ ? float3(0, 0, 0) : exact_.closest_point(p); }
+
+private:
+    AnalyticSphere exact_{{0, 0, 0}, 1.0f};
+    float sign_;
+    bool pit_;
+};
+
+// A move that lands deeper inside than the point started tries the other side of the closest
+// point, and a move is never for the worse: where every try is worse the point stays (cull's push
+// put hair beside Sintel's eye holes half a unit inside, a trial).
+TEST(KeepOutside, AMoveIntoTheHeadTriesTheOtherSideAndNoneMakesThingsWorse)
+{
+    const MisleadingSphere rim(-1.0f, false);
+    float3 p(1.01f, 0, 0);  // outside, short of the clearance 0.1
+    ASSERT_TRUE(keep_outside(p, rim, KeepOutside{0.1f}));
+    EXPECT_NEAR(p.x, 1.1f, kTol);
+    EXPECT_NEAR(length(float3(0, p.y, p.z)), 0.0f, kTol);
+    const MisleadingSphere pit(1.0f, true);  // every move lands 0.9 deep or on the far side inside
+    for (const int steps : {1, 4}) {
+        float3 q(0, 0.95f, 0);
+        EXPECT_FALSE(keep_outside(q, pit, KeepOutside{0.1f, 0.0f, steps})) << steps;
+        EXPECT_TRUE(same_bits(q, float3(0, 0.95f, 0))) << steps;
+    }
+}
+
 TEST(KeepOutside, AnchorPullsBackAlongTheOffset)
 {
     const AnalyticSphere sphere({0, 0, 0}, 1.0f);
@@ -161,9 +195,10 @@ TEST(KeepOutside, CurvesKeepRootsAndSkipPointsProvablyClear)
     EXPECT_NEAR(Q[2].x, 1.1f, kTol);
     EXPECT_TRUE(same_bits(Q[3], pts[3]));
     for (int k = 4; k < 10; ++k) EXPECT_TRUE(same_bits(Q[k], pts[k])) << k;
-    // Curve 0: its three points. Curve 1: (0,2,0) only, the rest are within 0.1 per step of it and
-    // 1 out. No root is asked about.
-    EXPECT_EQ(sphere.queries.load(), 3 + 1);
+    // Curve 0: its three points, and where each of the two moved ones landed (a move is checked, so
+    // that it is never for the worse). Curve 1: (0,2,0) only, the rest are within 0.1 per step of
+    // it and 1 out. No root is asked about.
+    EXPECT_EQ(sphere.queries.load(), 3 + 2 + 1);
 }
 
 // With a margin the pull-back stops once the crossing is bracketed to a sixteenth of it: the point

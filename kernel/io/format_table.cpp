@@ -117,7 +117,7 @@ const std::array<Format, 10> kFormats = [] {
     usdz.write_refusal = "a USDZ package is not written here (no OpenUSD package exists on Debian); write .usda and package it "
                          "with OpenUSD's `usdzip`";
     abc.write_refusal = "Alembic is not written here (no Alembic package exists on Debian); write .usda (Houdini, Maya and "
-                        "Blender read it), .ply or .obj instead";
+                        "Blender builds with USD read it; Debian's Blender has no USD importer: give it .obj), .ply or .obj instead";
     return std::array<Format, 10>{usda, obj, ply, hair, off, stl, usd, usdc, usdz, abc};
 }();
 

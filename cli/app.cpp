@@ -177,7 +177,12 @@ int run_one(int argc, char** argv)
     for (size_t i = 0; i < commands.size(); ++i) {
         CLI::App* sub = app.add_subcommand(commands[i].name, commands[i].summary);
         sub->add_option("--threads", common.threads, "Worker threads (0 = all cores); results are identical for any count")
-            ->check(CLI::NonNegativeNumber);
+            // CLI::NonNegativeNumber's message printed its range's top, DBL_MAX, in 309 digits.
+            ->check(CLI::Validator(
+                [](std::string& text) -> std::string {
+                    return !text.empty() && text[0] == '-' ? "expected 0 (all cores) or a number of threads, got " + text : std::string();
+                },
+                ""));
         sub->add_flag("-q,--quiet", common.quiet, "Print errors only");
         sub->add_flag("-v,--verbose", common.verbose, "Print more detail");
         sub->add_flag("--force", common.force, "Allow writing over an input file or a read-only file");

@@ -20,6 +20,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <regex>
@@ -43,6 +44,15 @@ std::string python_message(std::string message)
 {
     static const std::regex see_help(R"( \(see `groom[^`]*`\))");
     message = std::regex_replace(message, see_help, "");
+    // The in-memory files a call hands the command are named in its messages: say what they hold.
+    static const std::vector<std::pair<std::regex, std::string>> memory_names{
+        {std::regex(R"((-o )?mem:out\d+)"), "the result"},
+        {std::regex(R"(mem:in\d+_\d+ is a \. file)"), "the curves given are not a USD file"},
+        {std::regex(R"(mem:in\d+_\d+)"), "the curves"},
+        {std::regex(R"(mem:scalp\d+)"), "the scalp"},
+        {std::regex(R"(mem:kw\d+_([a-z0-9]+(?:-[a-z0-9]+)*))"), "the curves given as --$1"},
+    };
+    for (const auto& [pattern, text] : memory_names) message = std::regex_replace(message, pattern, text);
     static const std::regex option(R"(--([a-z][a-z0-9]*(?:-[a-z0-9]+)*))");
     std::string out;
     auto begin = std::sregex_iterator(message.begin(), message.end(), option);
@@ -160,6 +170,8 @@ void append_options(std::vector<std::string>& args, const py::kwargs& kw, const 
         std::replace(name.begin(), name.end(), '_', '-');
         const py::handle v = item.second;
         if (v.is_none()) continue;
+        if (name == "help") raise(true, "help: the keywords are the command's options; help(groom.FUNCTION) lists them, as `groom COMMAND -h` does");
+        if (name == "output" || name == "o") raise(true, name + ": the result is returned; write it with groom.write(result, path)");
         if (py::isinstance<CurveSet>(v)) {
             const std::string path = prefix + name;
             store_memory_curves(path, v.cast<const CurveSet&>());
@@ -168,8 +180,8 @@ void append_options(std::vector<std::string>& args, const py::kwargs& kw, const 
             args.push_back(path);
             continue;
         }
-        if (py::isinstance<py::bool_>(v)) {
-            if (v.cast<bool>()) args.push_back("--" + name);
+        if (py::isinstance<py::bool_>(v) || std::string(py::str(py::type::handle_of(v).attr("__name__"))) == "bool_") {  // numpy's too
+            if (py::bool_(py::reinterpret_borrow<py::object>(v))) args.push_back("--" + name);
             continue;
         }
         std::string text;
@@ -206,6 +218,14 @@ public:
     {
         if (pts.ndim() != 2 || pts.shape(1) != 3) raise(true, "points: expected an array of shape (n, 3)");
         const py::ssize_t n = pts.shape(0);
+        for (py::ssize_t i = 0; i < n; ++i) {
+            // A NaN reached the field's arithmetic and came back as "a computation overflowed float".
+            const float* q = pts.data(i, 0);
+            if (!(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]))) {
+                raise(true, "points: row " + std::to_string(i) + " is not finite (" + format_number(q[0]) + ", " + format_number(q[1]) + ", " +
+                                format_number(q[2]) + ")");
+            }
+        }
         py::array_t<float> out = out_dim == 1 ? py::array_t<float>({n}) : py::array_t<float>({n, py::ssize_t(3)});
         static_assert(sizeof(float3) == 3 * sizeof(float), "an (n, 3) float32 array is n float3s");
         const auto* in = reinterpret_cast<const float3*>(pts.data());
@@ -222,6 +242,11 @@ public:
 std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vector<const CurveSet*>& inputs, py::object scalp,
                                       const py::kwargs& kw)
 {
+    if (!scalp.is_none() && !py::isinstance<Scalp>(scalp) && !py::isinstance<py::str>(scalp) && !py::hasattr(scalp, "__fspath__")) {
+        // scalp=123 was read as a file named "123": "no such file".
+        throw py::type_error(command + ": scalp: expected a groom.Scalp or a path, got " +
+                             std::string(py::str(py::type::handle_of(scalp).attr("__name__"))));
+    }
     if (py::isinstance<Scalp>(scalp) && kw.contains("scalp_voxel") && !kw["scalp_voxel"].is_none()) {
         // The field is built already: the voxel asked for would be silently dropped.
         const std::string text = command + ": scalp_voxel is for a scalp given as a mesh path; this groom.Scalp keeps its voxel (" +
@@ -254,7 +279,7 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
             args.push_back(scalp_path);
         }
         else {
-            args.push_back(py::str(scalp));
+            args.push_back(py::str(py::module_::import("os").attr("fspath")(scalp)));
         }
     }
     append_options(args, kw, "mem:kw" + id + "_", stored);

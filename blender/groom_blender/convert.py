@@ -137,9 +137,14 @@ def curves_object(curves, name, collection):
     ob.select_set(True)
     bpy.ops.object.convert(target='CURVES')
     ob = view_layer.objects.active
+    radius = ob.data.attributes.get('radius') or ob.data.attributes.new('radius', 'FLOAT', 'POINT')
     if 'width' in curves.point_attributes:
-        radius = ob.data.attributes.get('radius') or ob.data.attributes.new('radius', 'FLOAT', 'POINT')
         radius.data.foreach_set('value', 0.5 * np.asarray(curves.point_attributes['width'], np.float32))
+    elif len(points):
+        # Guides without widths (a hairline, section guides) got Blender's default radius of 1: tubes
+        # 2 cm thick on a head in centimetres, 2 m in metres. A thousandth of their extent draws them thin.
+        extent = float(np.max(points.max(axis=0) - points.min(axis=0)))
+        radius.data.foreach_set('value', np.full(len(points), max(1e-3 * extent, 1e-6), np.float32))
     _keep_attributes(curves, ob)
     return ob
 

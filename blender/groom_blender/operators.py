@@ -154,6 +154,10 @@ class _GroomOperator:
         except (groom.Error, ValueError) as e:
             self.report({'ERROR'}, str(e))
             return {'CANCELLED'}
+        if result.num_curves == 0:  # an empty object reported as FINISHED told the artist nothing
+            self.report({'ERROR'}, f"groom: {self.bl_label} made no curves (guides with fewer than 2 points or no length "
+                                   "are skipped; see the warnings above)")
+            return {'CANCELLED'}
         # groom's warnings (a scene in metres with centimetre defaults: hairs 2 cm wide, curls that
         # do not show) in the status bar and the Info editor, where an artist looks.
         for w in caught:

@@ -21,6 +21,10 @@ CurveSet read_curves(const std::string& path, const CurveReadOptions& options)
 {
     if (is_memory_path(path)) return read_memory_curves(path);
     if (path != "-") {
+        std::error_code dir_ec;
+        if (std::filesystem::is_directory(path, dir_ec)) {  // it read "unknown curve format '.'"
+            throw ParseError(path + ": is a directory, not a curve file (.usda .obj .ply .hair)");
+        }
         const io::Format& fmt = io::format_for(path, io::kReadCurves, "curve");  // refuse by name before reading
         // A file that cannot be sized, or an empty one, takes the whole-file path for its message.
         std::error_code ec;

@@ -138,6 +138,11 @@ hairline_ob = run_op("hairline")
 if hairline_ob is not None:
     expected = groom.hairline(scalp=head_field, up=up, forward=forward)
     same_as("hairline", hairline_ob, expected)
+    # No width: drawn thin (a thousandth of its extent), not with Blender's default radius of 1.
+    radius = np.empty(expected.num_points, np.float32)
+    hairline_ob.data.attributes['radius'].data.foreach_get('value', radius)
+    extent = float(np.max(expected.points.max(axis=0) - expected.points.min(axis=0)))
+    check("hairline: drawn thin", np.allclose(radius, 1e-3 * extent), f"radius {radius[:2]} extent {extent}")
     # Z-up read right: the hairline is higher at the forehead (-Y) than at the nape (+Y).
     p = expected.points
     check("hairline: forehead above the nape", p[np.argmin(p[:, 1]), 2] > p[np.argmax(p[:, 1]), 2] + 2.0)
@@ -188,6 +193,23 @@ try:
     check("no scalp: cancelled", r == {'CANCELLED'}, str(r))
 except RuntimeError as e:  # bpy raises the operator's ERROR report as RuntimeError in background mode
     check("no scalp: reported", "scalp" in str(e), str(e))
+
+# Guides that make nothing (a single point): an error report and no empty object, not FINISHED.
+cu = bpy.data.curves.new("dot", 'CURVE')
+cu.dimensions = '3D'
+cu.splines.new('POLY')  # one point
+dot = bpy.data.objects.new("dot", cu)
+bpy.context.scene.collection.objects.link(dot)
+for ob in bpy.context.view_layer.objects:
+    ob.select_set(ob == dot)
+bpy.context.view_layer.objects.active = dot
+before = len(bpy.data.objects)
+try:
+    r = bpy.ops.groom.braid()
+    check("braid of nothing: cancelled", r == {'CANCELLED'}, str(r))
+except RuntimeError as e:
+    check("braid of nothing: reported", "made no curves" in str(e), str(e))
+check("braid of nothing: no empty object", len(bpy.data.objects) == before, f"{before} -> {len(bpy.data.objects)}")
 
 groom_blender.unregister()
 check("unregister removes the operators", not hasattr(bpy.types, "GROOM_OT_braid"))

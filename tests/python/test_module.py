@@ -248,6 +248,29 @@ def test_input_problems_are_blamed_on_the_input():
         cs.offsets[1] = 5
 
 
+def test_messages_name_what_python_passed(sphere, tmp_path):
+    """A trial's list: messages named the in-memory files a call makes (mem:out1, mem:scalp10),
+    printed DBL_MAX in 309 digits, or blamed the wrong thing."""
+    cs = straight_guides()
+    with pytest.raises(groom.ParamError) as e:
+        groom.generate(cs, scalp=sphere, count=10, prim="/x")
+    assert "mem:" not in str(e.value) and "the curves given are not a USD file" in str(e.value)
+    with pytest.raises(groom.ParamError, match=r"threads: expected 0 \(all cores\) or a number of threads, got -1$"):
+        groom.curl(cs, threads=-1)
+    with pytest.raises(groom.ParamError, match=r"^points: row 1 is not finite \(nan, 0, 0\)"):
+        sphere.distance(np.array([[0, 0, 2], [np.nan, 0, 0]], np.float32))
+    with pytest.raises(groom.ParamError, match="the result is returned"):
+        groom.curl(cs, output=str(tmp_path / "x.usda"))
+    with pytest.raises(groom.ParamError, match="help"):
+        groom.curl(cs, help=True)
+    with pytest.raises(TypeError, match="scalp: expected a groom.Scalp or a path, got int"):
+        groom.generate(cs, scalp=123, count=10)
+    with pytest.raises(groom.Error, match="is a directory"):
+        groom.read(str(tmp_path))
+    # numpy's bool is a flag like Python's (it was sent as the text "True").
+    np.testing.assert_array_equal(groom.braid(cs, rest=np.True_, scalp=sphere).points, groom.braid(cs, rest=True, scalp=sphere).points)
+
+
 def test_paths_may_be_pathlib_paths(tmp_path):
     import pathlib
     cs = straight_guides()

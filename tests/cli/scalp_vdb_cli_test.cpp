@@ -144,14 +144,21 @@ TEST(ScalpVdbCli, InfoDescribesTheScalpFile)
     EXPECT_NE(g.err.find("--group"), std::string::npos) << g.err;
 }
 
-// Hair grown and curled on Sintel's head by the commands a user runs reads outside the scalp at
-// every point but the roots of `generate` (which grow on it), by the field's own distance, what
-// `groom probe` reports. In the crease behind the ear the band's gradient is about half a unit
-// long, so each move out along its normal gains half of what is missing: with 4 tries (curl) and
-// 8 (generate) 821 curled and 191 grown points of 100,000 hairs stayed up to 0.07 inside.
-// And no hair sprays sideways off the ears, where no guide grows: hairs reaching more than 1 unit
-// past the guides' own sideways extent are at most 1 in 2,000 (185 of 30,000 with the old default
-// --max-angle 75, whose ear roots took their guides' shapes turned to the ear's normal; 5 with 35).
+namespace {
+
+/// Sintel's head as a `.vdb` and `count` hairs grown on it from its guides, by the commands a user
+/// runs; the paths land in `vdb` and `grown` (under `dir`).
+void grow_on_sintel(const test::TempDir& dir, const std::string& mesh, const std::string& guides, const std::string& count,
+                    std::string& vdb, std::string& grown)
+{
+    vdb = dir.file("sintel.vdb");
+    grown = dir.file("grown.hair");
+    ASSERT_EQ(run_groom({"scalp", mesh, "-o", vdb, "-q"}).exit_code, 0);
+    ASSERT_EQ(run_groom({"generate", guides, "--scalp", vdb, "--count", count, "-o", grown, "-q"}).exit_code, 0);
+}
+
+}  // namespace
+
 // cull's push on real hair (a trial): beside Sintel's open eye holes the closest face's normal
 // points into the head, and one trusted move along it put 117 of 160,000 points that were outside
 // half a unit inside; in creases one move gains about half of what is missing (9,329 non-root
@@ -162,9 +169,9 @@ TEST(ScalpVdbCli, CullPushOnSintelClearsThePointsAndNeverPushesOneIn)
     GROOM_REQUIRE_SHARED(mesh, "sintel_tressfx_opengl/sintel.obj");
     GROOM_REQUIRE_SHARED(guides, "sintel_tressfx_opengl/sintel_guides.obj");
     test::TempDir dir;
-    const std::string vdb = dir.file("sintel.vdb"), grown = dir.file("grown.hair"), culled = dir.file("culled.hair");
-    ASSERT_EQ(run_groom({"scalp", mesh, "-o", vdb, "-q"}).exit_code, 0);
-    ASSERT_EQ(run_groom({"generate", guides, "--scalp", vdb, "--count", "5000", "-o", grown, "-q"}).exit_code, 0);
+    std::string vdb, grown;
+    ASSERT_NO_FATAL_FAILURE(grow_on_sintel(dir, mesh, guides, "5000", vdb, grown));
+    const std::string culled = dir.file("culled.hair");
     constexpr float kClearance = 0.5f;
     ASSERT_EQ(run_groom({"cull", grown, "--scalp", vdb, "--clearance", "0.5", "-o", culled, "-q"}).exit_code, 0);
     const ScalpField field = read_scalp_vdb(vdb);
@@ -187,14 +194,22 @@ TEST(ScalpVdbCli, CullPushOnSintelClearsThePointsAndNeverPushesOneIn)
     EXPECT_LE(short_of, checked / 10000) << "of " << checked << " points short of the clearance";
 }
 
+// Hair grown and curled on Sintel's head by the commands a user runs reads outside the scalp at
+// every point but the roots of `generate` (which grow on it), by the field's own distance, what
+// `groom probe` reports. In the crease behind the ear the band's gradient is about half a unit
+// long, so each move out along its normal gains half of what is missing: with 4 tries (curl) and
+// 8 (generate) 821 curled and 191 grown points of 100,000 hairs stayed up to 0.07 inside.
+// And no hair sprays sideways off the ears, where no guide grows: hairs reaching more than 1 unit
+// past the guides' own sideways extent are at most 1 in 2,000 (185 of 30,000 with the old default
+// --max-angle 75, whose ear roots took their guides' shapes turned to the ear's normal; 5 with 35).
 TEST(ScalpVdbCli, HairGrownAndCurledOnSintelStaysOutsideAndOffTheEars)
 {
     GROOM_REQUIRE_SHARED(mesh, "sintel_tressfx_opengl/sintel.obj");
     GROOM_REQUIRE_SHARED(guides, "sintel_tressfx_opengl/sintel_guides.obj");
     test::TempDir dir;
-    const std::string vdb = dir.file("sintel.vdb"), grown = dir.file("grown.hair"), curled = dir.file("curled.hair");
-    ASSERT_EQ(run_groom({"scalp", mesh, "-o", vdb, "-q"}).exit_code, 0);
-    ASSERT_EQ(run_groom({"generate", guides, "--scalp", vdb, "--count", "30000", "-o", grown, "-q"}).exit_code, 0);
+    std::string vdb, grown;
+    ASSERT_NO_FATAL_FAILURE(grow_on_sintel(dir, mesh, guides, "30000", vdb, grown));
+    const std::string curled = dir.file("curled.hair");
     ASSERT_EQ(run_groom({"curl", grown, "--scalp", vdb, "-o", curled, "-q"}).exit_code, 0);
     const ScalpField field = read_scalp_vdb(vdb);
     {

@@ -305,6 +305,20 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
     erase_memory_scalp(scalp_path);
     if (code != 0) {
         erase_memory_curves(out_path);
+        // A bool for an option that takes a value went on as a bare flag: CLI11 says "count: 1
+        // required INT missing". Say what was passed.
+        static const std::regex missing(R"(--([a-z0-9-]+): \d+ required (\w+) missing)");
+        std::smatch m;
+        if (std::regex_search(message, m, missing)) {
+            std::string key = m[1];
+            std::replace(key.begin(), key.end(), '-', '_');
+            if (kw.contains(key.c_str()) && (py::isinstance<py::bool_>(kw[key.c_str()]) ||
+                                             std::string(py::str(py::type::handle_of(kw[key.c_str()]).attr("__name__"))) == "bool_")) {
+                std::string type = m[2];
+                std::transform(type.begin(), type.end(), type.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+                raise(true, command + ": " + key + " takes a value (" + type + "), not True/False; only flags take a bool");
+            }
+        }
         raise(code == 2, message);
     }
     return std::make_shared<CurveSet>(take_memory_curves(out_path));

@@ -267,6 +267,8 @@ def test_messages_name_what_python_passed(sphere, tmp_path):
         groom.generate(cs, scalp=123, count=10)
     with pytest.raises(groom.Error, match="is a directory"):
         groom.read(str(tmp_path))
+    with pytest.raises(groom.ParamError, match=r"^resample: count takes a value \(int\), not True/False"):
+        groom.resample(cs, count=True)  # it said "count: 1 required INT missing"
     # numpy's bool is a flag like Python's (it was sent as the text "True").
     np.testing.assert_array_equal(groom.braid(cs, rest=np.True_, scalp=sphere).points, groom.braid(cs, rest=True, scalp=sphere).points)
 

@@ -148,6 +148,62 @@ void set_column(CurveSet& cs, Domain d, const std::string& name, py::handle valu
     }
 }
 
+/// A CurveSet as picklable values, for pickle, copy.copy/deepcopy and multiprocessing (they said
+/// "cannot pickle 'groom.CurveSet' object"): (1, counts, [(domain, name, type, bytes or strings)]),
+/// every column exactly, P among them.
+py::tuple curves_state(const CurveSet& cs)
+{
+    std::vector<int64_t> counts(cs.num_curves());
+    for (size_t c = 0; c < counts.size(); ++c) counts[c] = cs.points_in(c);
+    py::list columns;
+    for (int d = 0; d < 3; ++d) {
+        for (const Attribute& a : cs.attributes(Domain(d)).all()) {
+            py::object data;
+            switch (a.type()) {
+                case AttrType::Float: data = py::bytes(reinterpret_cast<const char*>(a.values<float>().data()), a.size() * sizeof(float)); break;
+                case AttrType::Int32: data = py::bytes(reinterpret_cast<const char*>(a.values<int32_t>().data()), a.size() * sizeof(int32_t)); break;
+                case AttrType::Int64: data = py::bytes(reinterpret_cast<const char*>(a.values<int64_t>().data()), a.size() * sizeof(int64_t)); break;
+                case AttrType::Float3: data = py::bytes(reinterpret_cast<const char*>(a.values<float3>().data()), a.size() * sizeof(float3)); break;
+                case AttrType::String: data = py::cast(std::vector<std::string>(a.values<std::string>().begin(), a.values<std::string>().end())); break;
+            }
+            columns.append(py::make_tuple(d, a.name, int(a.type()), data));
+        }
+    }
+    return py::make_tuple(1, py::cast(counts), columns);
+}
+
+std::shared_ptr<CurveSet> curves_from_state(const py::tuple& state)
+{
+    if (state.size() != 3 || state[0].cast<int>() != 1) raise(false, "CurveSet: unpickling: not a state this version of groom wrote");
+    const auto counts = state[1].cast<std::vector<int64_t>>();
+    auto cs = std::make_shared<CurveSet>(CurveSet::from_counts(std::span<const int64_t>(counts)));
+    for (const py::handle item : state[2].cast<py::list>()) {
+        const auto column = item.cast<py::tuple>();
+        const Domain d = Domain(column[0].cast<int>());
+        const std::string name = column[1].cast<std::string>();
+        const AttrType type = AttrType(column[2].cast<int>());
+        auto copy_in = [&](auto span) {
+            const std::string bytes = column[3].cast<std::string>();
+            if (bytes.size() != span.size_bytes()) raise(false, "CurveSet: unpickling: column '" + name + "' has the wrong size");
+            std::memcpy(span.data(), bytes.data(), bytes.size());
+        };
+        switch (type) {
+            case AttrType::Float: copy_in(cs->add<float>(d, name)); break;
+            case AttrType::Int32: copy_in(cs->add<int32_t>(d, name)); break;
+            case AttrType::Int64: copy_in(cs->add<int64_t>(d, name)); break;
+            case AttrType::Float3: copy_in(d == Domain::Point && name == attr::P ? cs->positions_for_write() : cs->add<float3>(d, name)); break;
+            case AttrType::String: {
+                const auto strings = column[3].cast<std::vector<std::string>>();
+                const auto out = cs->add<std::string>(d, name);
+                if (strings.size() != out.size()) raise(false, "CurveSet: unpickling: column '" + name + "' has the wrong size");
+                std::copy(strings.begin(), strings.end(), out.begin());
+                break;
+            }
+        }
+    }
+    return cs;
+}
+
 /// `cs.point_attributes` and friends: a live, dict-like view of one domain's columns.
 struct AttributeView {
     std::shared_ptr<CurveSet> cs;
@@ -466,6 +522,9 @@ PYBIND11_MODULE(groom, m)
         .def_property_readonly("detail_attributes",
                                [](py::object self) { return AttributeView{self.cast<std::shared_ptr<CurveSet>>(), self, Domain::Detail}; })
         .def("copy", [](const CurveSet& cs) { return std::make_shared<CurveSet>(cs); })
+        .def("__copy__", [](const CurveSet& cs) { return std::make_shared<CurveSet>(cs); })
+        .def("__deepcopy__", [](const CurveSet& cs, py::dict) { return std::make_shared<CurveSet>(cs); }, py::arg("memo"))
+        .def(py::pickle([](const CurveSet& cs) { return curves_state(cs); }, [](const py::tuple& state) { return curves_from_state(state); }))
         .def("__repr__", [](const CurveSet& cs) {
             return "<groom.CurveSet " + std::to_string(cs.num_curves()) + " curves, " + std::to_string(cs.num_points()) + " points>";
         });

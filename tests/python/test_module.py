@@ -273,6 +273,29 @@ def test_messages_name_what_python_passed(sphere, tmp_path):
     np.testing.assert_array_equal(groom.braid(cs, rest=np.True_, scalp=sphere).points, groom.braid(cs, rest=True, scalp=sphere).points)
 
 
+def test_curves_pickle_and_copy_with_every_column():
+    """pickle, copy.copy/deepcopy and so multiprocessing said "cannot pickle 'groom.CurveSet'"."""
+    import copy
+    import pickle
+    cs = straight_guides()
+    cs.point_attributes["width"] = np.linspace(0.1, 0.2, cs.num_points).astype(np.float32)
+    cs.point_attributes["rest"] = (cs.points * 2.0).astype(np.float32)
+    cs.curve_attributes["id"] = np.array([7, 8, 2**40], np.int64)
+    cs.curve_attributes["kind"] = np.array([1, 2, 3], np.int32)
+    cs.detail_attributes["hair_type"] = "4a"
+    for twin in (pickle.loads(pickle.dumps(cs)), copy.copy(cs), copy.deepcopy(cs)):
+        assert (twin.num_curves, twin.num_points) == (cs.num_curves, cs.num_points)
+        np.testing.assert_array_equal(twin.points, cs.points)
+        for view, other in ((twin.point_attributes, cs.point_attributes), (twin.curve_attributes, cs.curve_attributes)):
+            assert sorted(view.keys()) == sorted(other.keys())
+            for k in other.keys():
+                np.testing.assert_array_equal(view[k], other[k])
+                assert np.asarray(view[k]).dtype == np.asarray(other[k]).dtype
+        assert twin.detail_attributes["hair_type"] == "4a"
+        twin.points[0] = (9, 9, 9)  # its own memory
+        assert tuple(cs.points[0]) != (9.0, 9.0, 9.0)
+
+
 def test_paths_may_be_pathlib_paths(tmp_path):
     import pathlib
     cs = straight_guides()

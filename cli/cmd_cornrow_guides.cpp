@@ -30,7 +30,10 @@ void setup(CommandContext& ctx)
     app->add_option("--count", p.count, "Guides (rows), [1, 256]")->capture_default_str();
     app->add_option("--center", args->center, "Centre X,Y,Z of the sphere the rows are laid on (default: the default head's cranium, 0,3,-1)");
     app->add_option("--radius", p.radius, "Radius of that sphere, scene units")->capture_default_str();
-    app->add_option("--pivot", p.pivot, "Depth of the rows' fan axis below the centre, scene units, [0, radius)")->capture_default_str();
+    app->add_option("--pivot", p.pivot,
+                    "Depth of the rows' fan axis below the centre, scene units, >= 0 (from --radius on the rows never meet: nearly "
+                    "parallel rows; pivot x sin(spread) must stay below the radius)")
+        ->capture_default_str();
     app->add_option("--spread", p.spread, "How far the outermost rows lean from vertical, degrees, [0, 90)")->capture_default_str();
     app->add_option("--front-angle", p.front_angle, "Where the middle row starts above the front horizontal, degrees")->capture_default_str();
     app->add_option("--hairline-curve", p.hairline_curve, "How much further back the outermost rows start, degrees")->capture_default_str();
@@ -39,10 +42,13 @@ void setup(CommandContext& ctx)
     app->add_option("--hairline", args->hairline,
                     "Hairline: one closed curve around the head (`groom hairline`); rows then run from it at the front to it at the "
                     "nape, in place of --front-angle, --hairline-curve and --back-angle");
+    app->add_option("--min-spacing", p.min_spacing,
+                    "With --hairline: a row ends where its neighbours come within this fraction of their spacing over the crown, "
+                    "(0, 1]")
+        ->capture_default_str();
     app->add_option("--samples", p.samples, "Points per guide, >= 2")->capture_default_str();
     app->add_option("--offset", p.offset, "Height of the guides above the scalp, scene units")->capture_default_str();
-    app->add_option("--tail-length", p.tail_length, "Length of each tail past the nape, scene units (needs --tails-out)")
-        ->capture_default_str()
+    app->add_option("--tail-length", p.tail_length, "Length of each tail past the nape, scene units (needs --tails-out; default 12)")
         ->needs(tails);
     app->add_option("--tail-samples", p.tail_samples, "Points per tail, >= 2")->capture_default_str();
     const CommonOptions& common = *ctx.common;

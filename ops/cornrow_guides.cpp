@@ -46,9 +46,12 @@ void CornrowGuidesParams::validate(bool hairline) const
     require(count >= 1 && count <= 256, "`count` must be in [1, 256] (got " + std::to_string(count) + ")");
     require(std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z), "`center` must be finite");
     require(std::isfinite(radius) && radius > 0.0f, "`radius` must be > 0 (got " + fmt(radius) + ")");
-    require(std::isfinite(pivot) && pivot >= 0.0f && pivot < radius,
-            "`pivot` must be in [0, radius) = [0, " + fmt(radius) + ") (got " + fmt(pivot) + ")");
+    require(std::isfinite(pivot) && pivot >= 0.0f, "`pivot` must be >= 0 (got " + fmt(pivot) + ")");
     require(std::isfinite(spread) && spread >= 0.0f && spread < 90.0f, "`spread` must be in [0, 90) degrees (got " + fmt(spread) + ")");
+    require(pivot * std::sin(spread * kDeg) < radius, "`pivot` " + fmt(pivot) + " x sin(`spread` " + fmt(spread) + ") must be below `radius` " +
+                                                          fmt(radius) + " (the outermost rows' planes would miss the sphere): lower one of them");
+    require(std::isfinite(min_spacing) && min_spacing > 0.0f && min_spacing <= 1.0f,
+            "`min_spacing` must be in (0, 1] (got " + fmt(min_spacing) + ")");
     require(std::isfinite(front_angle) && front_angle > -90.0f && front_angle < 90.0f,
             "`front_angle` must be in (-90, 90) degrees (got " + fmt(front_angle) + ")");
     require(std::isfinite(hairline_curve) && hairline_curve >= 0.0f && hairline_curve < 90.0f,
@@ -58,7 +61,7 @@ void CornrowGuidesParams::validate(bool hairline) const
     // Every guide's plane contains the fan axis, so all rows meet where that axis pierces the sphere:
     // at elevation -asin(pivot / radius) in the middle row's plane (the tilted rows reach it at a
     // shallower angle). Rows ending below that point have crossed each other at the nape.
-    const float meet = -std::asin(pivot / radius) / kDeg;
+    const float meet = pivot < radius ? -std::asin(pivot / radius) / kDeg : -90.0f;
     require(hairline || back_angle > meet, "`back_angle` " + fmt(back_angle) + " runs past the point where all rows meet (" + fmt(meet) +
                                    " degrees for `pivot` " + fmt(pivot) + " and `radius` " + fmt(radius) +
                                    "), so rows would cross at the nape; use a back angle above " + fmt(meet) +
@@ -153,10 +156,16 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
             float a0 = (params.front_angle + params.hairline_curve * u * u) * kDeg;
             float a1 = (180.0f - params.back_angle) * kDeg;
             if (region != nullptr) {
-                // As far as the rows can go without crossing: 1 degree short of where they meet,
-                // front and back (the axis pierces the circle at angle -asin(h cos phi / rho)).
-                const float meet = std::asin(std::min(1.0f, h * std::cos(phi) / rho));
-                std::tie(a0, a1) = inside_arc(*region, -meet + kDeg, kPi + meet - kDeg, int(i), at);
+                // As far as the rows can go before they crowd. Neighbouring rows' planes are dphi
+                // apart about the axis, so at distance d from it they are d dphi apart, and over
+                // the crown (R + h) dphi: a row goes on while d >= min_spacing (R + h), where
+                // d = s0 + rho sin(a) in its plane. "1 degree short of where the rows meet" had
+                // them pile into one point at the nape (a trial on Lee Perry-Smith and the demo
+                // head: 8 of 10 rows ended at one point, their braids through each other). A
+                // deep axis (pivot >= radius) may leave the whole circle: all but its lowest point.
+                const float d_min = params.min_spacing * (params.radius + h);
+                const float reach = std::asin(std::clamp((s0 - d_min) / rho, -1.0f, 1.0f));
+                std::tie(a0, a1) = inside_arc(*region, -reach + 1e-3f, kPi + reach - 1e-3f, int(i), at);
             }
             std::vector<float3> path(static_cast<size_t>(dense));
             for (int k = 0; k < dense; ++k) {

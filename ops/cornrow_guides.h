@@ -5,9 +5,10 @@
 // that plane cuts a sphere around the cranium is a circle; the guide is its arc from the hairline
 // at the front over the crown down to the nape. Every point is then projected onto the scalp
 // (Surface::closest_point), lifted by `offset` along the scalp normal and re-spaced evenly in arc
-// length. pivot = 0 gives great circles (rows meeting at the front and back); a large pivot gives
-// nearly parallel rows that never reach the sides; the default sits between, so the outer rows run
-// above the ears. Optionally each guide continues past the nape as a free-hanging tail (the loose
+// length. pivot = 0 gives great circles (rows meeting at the front and back); a pivot below the
+// radius gives rows that converge to where its axis pierces the sphere; the default, twice the
+// radius with a 24 degree spread, gives nearly parallel straight-back rows whose outer ones run
+// above the ears (7.5 and 55 had every row end in one point at the nape: a trial). Optionally each guide continues past the nape as a free-hanging tail (the loose
 // ends of the braids), which the demo curls.
 //
 // Frame: +Y up, the face towards +Z (the convention of `groom head`).
@@ -23,10 +24,12 @@ struct CornrowGuidesParams {
     int count = 8;                    ///< guides, [1, 256]
     float3 center{0.0f, 3.0f, -1.0f}; ///< centre of the sphere paths are laid on (default: the default head's cranium)
     float radius = 10.0f;             ///< radius of that sphere, scene units; > 0 (roughly the cranium's)
-    /// Depth of the fan's axis below center, scene units; [0, radius). Rows meet (and would cross)
-    /// where the axis pierces the sphere, at elevation -asin(pivot / radius): back_angle must stay above it.
-    float pivot = 7.5f;
-    float spread = 55.0f;             ///< the outermost guides lean this far from vertical, degrees; [0, 90)
+    /// Depth of the fan's axis below center, scene units; >= 0, with pivot x sin(spread) < radius
+    /// (every row's plane cuts the sphere). Below radius, rows meet (and would cross) where the axis
+    /// pierces the sphere, at elevation -asin(pivot / radius): back_angle must stay above it. From
+    /// radius on, the axis misses the sphere and the rows never meet (nearly parallel rows).
+    float pivot = 20.0f;
+    float spread = 24.0f;             ///< the outermost guides lean this far from vertical, degrees; [0, 90)
     // Angles are measured in each guide's plane around its circle's centre, from the front
     // horizontal (+Z) upwards; for the middle guide they are plain elevations.
     float front_angle = 12.0f;        ///< where the middle guide starts (the hairline), degrees; (-90, 90)
@@ -36,6 +39,10 @@ struct CornrowGuidesParams {
     float offset = 0.0f;              ///< height of the guides above the scalp, scene units; >= 0
     float tail_length = 0.0f;         ///< length of the free tail past the nape, scene units; >= 0 (0 = no tails)
     int tail_samples = 24;            ///< points per tail, >= 2
+    /// With a hairline: a row ends where its neighbours come within this fraction of their spacing
+    /// over the crown, if that is before the hairline, so converging rows stop short of each other
+    /// instead of piling into one point at the nape; (0, 1].
+    float min_spacing = 0.3f;
     /// Throws InvalidParam naming the option, value and range. `hairline`: the rows will run between
     /// a hairline's ends instead (cornrow_guides with a region that has one), so front_angle,
     /// hairline_curve and back_angle are not used and back_angle need not stay above the rows' meeting point.
@@ -56,9 +63,10 @@ struct CornrowGuides {
 /// Makes the guides on `scalp` (any Surface: an exact sphere in tests, a ScalpField for real heads).
 /// With a `region` that has a hairline, every row runs from the hairline at the front to the
 /// hairline at the nape instead of between front_angle (+ hairline_curve) and back_angle: its arc is
-/// laid as far as the rows' meeting points allow and cut where it leaves the hairline (found to
-/// 1e-4 of the arc's angle), keeping the part through the row's highest point. Throws InvalidParam,
-/// and InvalidGeometry when a row never enters the hairline.
+/// laid as far as min_spacing lets it (neighbouring rows no closer than that fraction of their
+/// crown spacing) and cut where it leaves the hairline (found to 1e-4 of the arc's angle), keeping
+/// the part through the row's highest point. Throws InvalidParam, and InvalidGeometry when a row
+/// never enters the hairline.
 CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params, const HairRegion* region = nullptr);
 
 }  // namespace groom

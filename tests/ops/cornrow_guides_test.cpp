@@ -87,6 +87,7 @@ TEST(CornrowGuides, WithAHairlineRowsRunFromItAtTheFrontToItAtTheNape)
     p.count = 7;
     p.spread = 50.0f;
     p.samples = 48;
+    p.min_spacing = 0.05f;  // the rows reach the hairline before they crowd (the next test is the spacing)
     // The default back angle, -40, is below where these rows meet (-33.7 degrees): without a
     // hairline that is refused, with one it is not used (the rows end on the hairline).
     EXPECT_THROW(cornrow_guides(sphere, p), InvalidParam);
@@ -116,6 +117,48 @@ TEST(CornrowGuides, WithAHairlineRowsRunFromItAtTheFrontToItAtTheNape)
     const CurveSet tiny = test::circle_on_sphere(c, R, float3(0, -1, 0), 0.99f * R, 64);  // around the bottom
     const HairRegion away(sphere, tiny, CurveSet(), HairRegionParams{float3(0, -1, 0)});
     EXPECT_THROW(cornrow_guides(sphere, p, &away), InvalidGeometry);
+}
+
+// Converging rows (the fan's axis pierces the sphere, pivot < radius) on a hairline that reaches far
+// down: no two neighbouring rows come closer than min_spacing of their spacing over the crown. They
+// lie in planes dphi apart about the axis, (R + h) sin(dphi) apart at the crown, so every point of a
+// row must be at least min_spacing (R + h) sin(dphi) from its neighbour (distance to the plane, which
+// is never more than the distance to the row). Rows used to run to 1 degree short of the point where
+// they all meet: 8 of 10 rows on a real head ended there, their braids through each other.
+TEST(CornrowGuides, ConvergingRowsStopBeforeTheyCrowd)
+{
+    const float3 c{0.0f, 3.0f, -1.0f};
+    const float R = 9.0f;
+    const AnalyticSphere sphere(c, R);
+    const CurveSet hairline = test::circle_on_sphere(c, R, float3(0, 1, 0), -0.8f * R, 720);  // far below the equator
+    const HairRegion region(sphere, hairline, CurveSet(), HairRegionParams{});
+    CornrowGuidesParams p;
+    p.center = c;
+    p.radius = R;
+    p.pivot = 6.0f;
+    p.spread = 50.0f;
+    p.count = 9;
+    p.samples = 200;
+    for (const float spacing : {0.5f, 0.3f}) {
+        p.min_spacing = spacing;
+        const CornrowGuides g = cornrow_guides(sphere, p, &region);
+        const auto P = g.guides.positions();
+        const float dphi = 2.0f * p.spread * kDeg / float(p.count - 1);
+        const float want = spacing * (R + p.pivot) * std::sin(dphi);
+        for (size_t i = 0; i + 1 < g.guides.num_curves(); ++i) {
+            const IndexRange a = g.guides.points_of(i), b = g.guides.points_of(i + 1);
+            double closest = 1e30;
+            for (int64_t k = a.begin; k < a.end; ++k) {
+                for (int64_t m = b.begin; m + 1 < b.end; ++m) closest = std::min(closest, segment_distance_sq(P[k], P[k], P[m], P[m + 1]));
+            }
+            EXPECT_GE(std::sqrt(closest), 0.99 * want) << "rows " << i << " and " << i + 1 << ", min_spacing " << spacing;
+        }
+        // And no shorter than that: the middle row (the great circle over the top) ends at the back
+        // where its distance from the axis, h + (y - c.y), is down to min_spacing (R + h).
+        const IndexRange mid = g.guides.points_of(4);
+        EXPECT_NEAR(P[mid.end - 1].y - c.y, spacing * (R + p.pivot) - p.pivot, 0.02f) << spacing;
+        EXPECT_LT(P[mid.end - 1].z, c.z) << spacing;
+    }
 }
 
 TEST(CornrowGuides, OffsetLiftsAlongTheNormalAndTailsHangWithoutEnteringTheScalp)
@@ -162,8 +205,14 @@ TEST(CornrowGuides, InvalidOptionsAreRejected)
     p.radius = -1.0f;
     rejects(p, "`radius` must be > 0");
     p = {};
-    p.pivot = 10.0f;
-    rejects(p, "`pivot` must be in [0, radius)");
+    p.pivot = -1.0f;
+    rejects(p, "`pivot` must be >= 0");
+    p = {};
+    p.pivot = 30.0f;  // x sin(24 degrees) = 12.2 > radius 10: the outer rows' planes miss the sphere
+    rejects(p, "the outermost rows' planes would miss the sphere");
+    p = {};
+    p.min_spacing = 0.0f;
+    rejects(p, "`min_spacing` must be in (0, 1]");
     p = {};
     p.spread = 90.0f;
     rejects(p, "`spread` must be in [0, 90) degrees");

@@ -215,6 +215,7 @@ CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams
     if (hp.size() < 8) throw InvalidGeometry("edges: the hairline must have at least 8 points; found " + std::to_string(hp.size()));
     for (const float3& p : hp)
         if (!isfinite(p)) throw InvalidGeometry("edges: a hairline point is not finite");
+    check_hairline_closed(hp, "edges: hairline");
 
     const float3 up = normalize(params.up);
     AzimuthFrame frame;

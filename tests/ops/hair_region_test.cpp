@@ -123,3 +123,29 @@ TEST(HairRegion, RefusesHairlinesThatDoNotGoOnceAround)
     bad.parting_gap = -1;
     EXPECT_THROW(bad.validate(), InvalidParam);
 }
+
+// An open curve passed as the hairline by mistake (a trial passed a parting line to edges, gather,
+// sections and partition: all ran, on nonsense). A circle with a gap turns once around its
+// centroid's axis, so only its open ends tell: refused when they are more than a tenth of its length
+// apart; the same circle closed is taken.
+TEST(HairRegion, RefusesAnOpenCurveAsTheHairline)
+{
+    const AnalyticSphere sphere(kC, kR);
+    for (const float gap : {0.5f, 0.15f}) {
+        CurveSet open = CurveSet::from_counts(std::vector<int64_t>{60});
+        auto P = open.positions_for_write();
+        for (int i = 0; i < 60; ++i) {
+            const float a = 2.0f * kPi * (1.0f - gap) * float(i) / 59.0f;
+            P[i] = kC + float3(std::cos(a) * 6, 2, std::sin(a) * 6);
+        }
+        try {
+            HairRegion(sphere, open, CurveSet(), HairRegionParams{});
+            ADD_FAILURE() << "an open curve with a gap of " << gap << " of a turn was taken as a hairline";
+        }
+        catch (const InvalidGeometry& e) {
+            EXPECT_NE(std::string(e.what()).find("open curve"), std::string::npos) << e.what();
+        }
+        EXPECT_THROW(check_hairline_closed(open.positions(), "edges: hairline"), InvalidGeometry);
+    }
+    EXPECT_NO_THROW(HairRegion(sphere, circle_on_sphere({0, 1, 0}, 1, 60), CurveSet(), HairRegionParams{}));
+}

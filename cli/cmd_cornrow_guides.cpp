@@ -32,8 +32,7 @@ void setup(CommandContext& ctx)
     app->add_option("--radius", p.radius, "Radius of that sphere, scene units")->capture_default_str();
     app->add_option("--pivot", p.pivot,
                     "Depth of the rows' fan axis below the centre, scene units, >= 0 (from --radius on the rows never meet: nearly "
-                    "parallel rows; pivot x sin(spread) must stay below the radius)")
-        ->capture_default_str();
+                    "parallel rows; pivot x sin(spread) must stay below the radius); default twice --radius (20)");
     app->add_option("--spread", p.spread, "How far the outermost rows lean from vertical, degrees, [0, 90)")->capture_default_str();
     app->add_option("--front-angle", p.front_angle, "Where the middle row starts above the front horizontal, degrees")->capture_default_str();
     app->add_option("--hairline-curve", p.hairline_curve, "How much further back the outermost rows start, degrees")->capture_default_str();
@@ -56,6 +55,10 @@ void setup(CommandContext& ctx)
         Args& a = *args;
         check_outputs({{"-o", a.output}, {"--tails-out", a.tails_out}}, {a.scalp, a.hairline}, common);
         if (!a.tails_out.empty() && a.params.tail_length <= 0.0f) a.params.tail_length = 12.0f;
+        // The default pivot is twice the default radius: on another head (its own --radius) the
+        // rows keep the default's shape. A fixed 7.5 was reported back to a user who had given only
+        // --radius 1.8 ("pivot ... got 7.5": a trial on a scan in other units).
+        if (app->count("--radius") > 0 && app->count("--pivot") == 0) a.params.pivot = 2.0f * a.params.radius;
         if (!a.center.empty()) {
             const std::vector<float> c = parse_floats("--center", a.center, 3, 3);
             a.params.center = {c[0], c[1], c[2]};

@@ -70,6 +70,24 @@ TEST(CornrowGuidesCli, WithTheHeadsHairlineEveryRowStartsAndEndsOnIt)
     EXPECT_FALSE(std::filesystem::exists(dir.file("x.usda")));
 }
 
+// The default pivot is twice the radius, so a head given its own --radius keeps the default rows'
+// shape (a fixed 7.5 was reported back to a user who had given only --radius 1.8).
+TEST(CornrowGuidesCli, ThePivotFollowsTheRadiusUnlessGiven)
+{
+    test::TempDir dir;
+    ASSERT_EQ(run_groom({"head", "-o", dir.file("head.obj"), "--resolution", "32"}).exit_code, 0);
+    const auto guides = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args{"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file(name), "--count", "5", "-q"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto r = run_groom(args);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return test::read_bytes(dir.file(name));
+    };
+    EXPECT_EQ(guides("a.usda", {}), guides("b.usda", {"--radius", "10"}));
+    EXPECT_EQ(guides("c.usda", {"--radius", "9"}), guides("d.usda", {"--radius", "9", "--pivot", "18"}));
+    EXPECT_NE(guides("e.usda", {"--radius", "9"}), guides("f.usda", {"--radius", "9", "--pivot", "20"}));
+}
+
 TEST(CornrowGuidesCli, BadOptionsAreUsageErrors)
 {
     test::TempDir dir;

@@ -90,7 +90,7 @@ void setup(CommandContext& ctx)
         }
         check_outputs({{"-o", args->output}, {"--bands-out", args->bands_out}}, {args->scalp}, common);
         GatherParams params = args->params;
-        params.curl = curl_params_from(args->curl);
+        params.curl = curl_params_from(args->curl, "gather");
         params.validate();
 
         const auto start = std::chrono::steady_clock::now();

@@ -53,7 +53,7 @@ void setup(CommandContext& ctx)
         PuffParams params = args->params;
         params.center = parse_float3("--center", args->center);
         params.sphere_center = parse_float3("--sphere-center", args->sphere_center);
-        params.curl = curl_params_from(args->curl);
+        params.curl = curl_params_from(args->curl, "puff");
         params.validate();
         if (!args->guides_out.empty() && params.hairs == 0) {
             throw InvalidParam("puff: --guides-out needs --hairs > 0 (with no hairs, -o holds the guides)");

@@ -66,7 +66,7 @@ void add_curl_options(CLI::App* app, CurlOptions& o, bool with_seed)
     if (with_seed) app->add_option("--seed", o.params.seed, "Random seed")->capture_default_str();
 }
 
-CurlParams curl_params_from(const CurlOptions& o)
+CurlParams curl_params_from(const CurlOptions& o, const std::string& command)
 {
     CurlParams p = o.params;
     if (!o.type.empty()) p.hair_type = o.type;
@@ -86,8 +86,8 @@ CurlParams curl_params_from(const CurlOptions& o)
     p.phase = parse_range("--phase", o.phase, p.phase);
     p.offset = parse_range("--offset", o.offset, p.offset);
     p.preserve_length = !o.keep_extent;
-    p.widths = hair_widths_from(o.widths, "curl");
-    p.validate();
+    p.widths = hair_widths_from(o.widths, command);
+    p.validate_for(command);
     return p;
 }
 

@@ -27,8 +27,9 @@ struct CurlOptions {
 /// A command with a --seed of its own passes with_seed = false and sets o.params.seed itself.
 void add_curl_options(CLI::App* app, CurlOptions& o, bool with_seed = true);
 
-/// The validated CurlParams the options describe. Throws InvalidParam naming the option.
-CurlParams curl_params_from(const CurlOptions& o);
+/// The validated CurlParams the options describe. Throws InvalidParam naming the option, with
+/// `command` ("puff", "gather") as the messages' prefix.
+CurlParams curl_params_from(const CurlOptions& o, const std::string& command = "curl");
 
 /// Index of a shape given by name (case-sensitive, as curl_shape_name spells it) or by its number
 /// ("0".."4"); -1 when unknown.

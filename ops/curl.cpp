@@ -382,6 +382,17 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
 
 float curl_default_radius(const CurlParams& params) { return preset_of(params).radius_cm * params.units_per_cm; }
 
+void CurlParams::validate_for(const std::string& op) const
+{
+    try {
+        validate();
+    }
+    catch (const InvalidParam& e) {
+        const std::string message = e.what();
+        throw InvalidParam(message.rfind("curl: ", 0) == 0 ? op + ": " + message.substr(6) : message);
+    }
+}
+
 void CurlParams::validate() const
 {
     preset_of(*this);

@@ -75,6 +75,9 @@ struct CurlParams {
 
     /// Throws InvalidParam naming the option (`curl: --uniformity ...`), the value and the range.
     void validate() const;
+    /// validate() for an op that curls its own hairs (puff, gather): the messages name that op
+    /// ("puff: `type` must be one of ...", not "curl: ...", which a user of puff never typed).
+    void validate_for(const std::string& op) const;
 };
 
 /// The curl radius the hair type gives when `amplitude` is left at {0, 0}, scene units: its

@@ -63,7 +63,7 @@ void GatherParams::validate() const
         throw InvalidParam("gather: `band_strands` must be in [0, 256] (got " + std::to_string(band_strands) + ")");
     }
     if (first_id < 0) throw InvalidParam("gather: `first_id` must be >= 0 (got " + std::to_string(first_id) + ")");
-    curl.validate();
+    curl.validate_for("gather");
 }
 
 GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::vector<GatherPuff>& puffs, const HairRegion& region,

@@ -88,7 +88,7 @@ void PuffParams::validate() const
     if (!(power > 0.0f) || !std::isfinite(power)) {
         throw InvalidParam("puff: `power` must be a finite number > 0 (got " + str(power) + ")");
     }
-    if (hairs > 0) curl.validate();
+    if (hairs > 0) curl.validate_for("puff");
 }
 
 float curl_reach(const CurlParams& params)

@@ -103,7 +103,8 @@ TEST(PuffCli, RejectsInvalidOptionsWithoutWritingOutput)
         {{"--sphere-radius", "-1"}, "--sphere-radius"},
         {{"--center", "0,12"}, "--center"},
         {{"--hairs", "-5"}, "--hairs must be >= 0"},
-        {{"--uniformity", "3"}, "--uniformity"},
+        {{"--uniformity", "3"}, "puff: --uniformity"},  // the curl's options are puff's own (it said "curl: ...")
+        {{"--type", "9z"}, "puff: --type must be one of"},
         {{"--sphere-center", "0,5,0"}, "--sphere-center"},
     };
     for (const Case& c : cases) {

@@ -84,7 +84,15 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
         const float3 a = top - up * (0.4f * top_height);
         float3 front, back;
         if (!outermost_hit(scalp, a + fwd * reach, a, front) || !outermost_hit(scalp, a - fwd * reach, a, back)) {
-            throw InvalidGeometry("hairline: could not measure the head's length (no scalp in front of or behind the axis); give --head-length");
+            // On a whole body the middle of the bounds is the belly, not the head: following the old
+            // advice (--head-length) put the hairline across the eyebrows and down the neck (a trial
+            // on MakeHuman). The axis is what is wrong; say where it runs.
+            const auto xyz = [](const float3& v) { return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z); };
+            throw InvalidGeometry("hairline: could not measure the head's length: no scalp in front of or behind the head's axis at " + xyz(a) +
+                                  (params.has_center ? std::string(" (through --center)")
+                                                     : " (through the middle of the scalp's bounds, " + xyz(c) + ")") +
+                                  "; give --center inside the head (on a bust or a whole body the middle of the bounds is not in it), "
+                                  "then --head-length if it still fails");
         }
         length_fb = dot(front - back, fwd);
         if (!(length_fb > 0.0f)) throw InvalidGeometry("hairline: measured a head length <= 0; give --head-length");

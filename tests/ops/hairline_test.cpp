@@ -79,6 +79,30 @@ TEST(Hairline, OnTheDefaultHeadSitsWhereAHairlineDoes)
     EXPECT_FALSE(region.inside_hairline({0, -15, -6}));  // back of the neck
 }
 
+// A head on a tall body: the middle of the bounds is far below the head, so the axis through it
+// meets the head only at its top and the length cannot be measured. The message says to give
+// --center (its old advice, --head-length, put the hairline across a MakeHuman body's eyebrows),
+// and with a centre inside the head the same scalp gets its hairline.
+TEST(Hairline, OnABodyItAsksForACentreInsideTheHead)
+{
+    const AnalyticSphere head({0, 0, 0}, 1.0f);
+    Bounds3 body;  // the head's top at y = 1, the feet at y = -11
+    body.extend(float3(-1, -11, -1));
+    body.extend(float3(1, 1, 1));
+    HairlineParams p;
+    try {
+        make_hairline(head, body, p);
+        ADD_FAILURE() << "measured a head from the middle of the body";
+    }
+    catch (const InvalidGeometry& e) {
+        EXPECT_NE(std::string(e.what()).find("give --center inside the head"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("middle of the scalp's bounds, 0,-5,0"), std::string::npos) << e.what();
+    }
+    p.center = {0, 0, 0};
+    p.has_center = true;
+    EXPECT_EQ(make_hairline(head, body, p).num_curves(), 1u);
+}
+
 TEST(Hairline, RejectsBadParams)
 {
     const AnalyticSphere sphere({0, 0, 0}, 1);

@@ -167,7 +167,7 @@ const Format& format_for(const std::string& path, unsigned cap, std::string_view
     if (f && writing && !f->write_refusal.empty()) return fail(path + ": " + std::string(f->write_refusal));
     if (f && !f->refusal.empty()) return fail(path + ": " + std::string(f->refusal));
     if (!f || !f->can(cap)) {
-        return fail(path + ": " + (f ? std::string(f->name) + " files are not " + (writing ? "written" : "read") + " as " + std::string(what) + "s"
+        return fail(path + ": " + (f ? std::string(f->name) + " files are not " + (writing ? "written" : "read") + " as " + std::string(what) + (std::string_view(what) == "mesh" ? "es" : "s")
                                      : "unknown " + std::string(what) + " format '." + ext + "'") +
                     " (expected " + format_list(cap, ", ") + ")");
     }

@@ -118,6 +118,9 @@ TEST(FormatTable, UnreadableFormatsAreRefusedByName)
     // Known format, wrong kind: says what the file is and what would do.
     const std::string off = message_of([&] { read_curves(dir.file("head.off")); });
     EXPECT_NE(off.find("OFF mesh files are not read as curves (expected .usda, .obj, .ply, .hair)"), std::string::npos) << off;
+    write_text(dir.file("strands.hair"), "x");
+    const std::string hair = message_of([&] { read_mesh(dir.file("strands.hair")); });
+    EXPECT_NE(hair.find("files are not read as meshes (expected .obj, .ply, .off, .stl)"), std::string::npos) << hair;  // was "meshs"
     const std::string unknown = message_of([&] { read_mesh(dir.file("x.xyz")); });
     EXPECT_NE(unknown.find("unknown mesh format '.xyz' (expected .obj, .ply, .off, .stl)"), std::string::npos) << unknown;
 }

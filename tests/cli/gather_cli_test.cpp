@@ -105,6 +105,32 @@ TEST(GatherCli, HairlinePartingAndGatherChain)
     EXPECT_NE(r.err.find("--lift"), std::string::npos) << r.err;
 }
 
+// --units-per-cm scales every centimetre default, not only the curl's radius and the widths (a
+// trial on a scan at 5.7 cm a unit got bands 4.6 cm thick): with it alone the output equals the
+// one with each of those lengths typed at the scaled value, and differs from the unscaled one.
+TEST(GatherCli, UnitsPerCmScalesEveryCentimetreDefault)
+{
+    TempDir dir;
+    const std::string scalp = dir.file("head.vdb");
+    ASSERT_EQ(run_groom({"scalp", sphere_scalp(dir), "-o", scalp}).exit_code, 0);
+    const std::vector<std::string> puffs = make_puffs(dir, scalp);
+    const std::string parting = dir.file("parting.usda");
+    ASSERT_EQ(run_groom({"parting", "--scalp", scalp, "-o", parting, "--through", "0,0,20/0,20,0/0,0,-20", "--step", "0.5"}).exit_code, 0);
+    const auto gathered = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args{"gather", puffs[0], puffs[1], "--scalp", scalp, "--parting", parting, "-o", dir.file(name),
+                                      "--hairs", "200", "--seed", "3", "-q"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto r = run_groom(args);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return test::read_bytes(dir.file(name));
+    };
+    const std::string scaled = gathered("a.usda", {"--units-per-cm", "0.5"});
+    EXPECT_EQ(scaled, gathered("b.usda", {"--units-per-cm", "0.5", "--lift", "0.04", "--step", "0.125", "--band-width", "0.4",
+                                          "--band-thickness", "0.06", "--parting-gap", "0.15"}));
+    EXPECT_NE(scaled, gathered("c.usda", {"--units-per-cm", "0.5", "--lift", "0.08", "--step", "0.25", "--band-width", "0.8",
+                                          "--band-thickness", "0.12", "--parting-gap", "0.3"}));
+}
+
 TEST(GatherCli, RefusesHairlinesAndPartingsThatCannotBeRead)
 {
     TempDir dir;

@@ -82,10 +82,13 @@ for t in "${targets[@]}"; do
     [[ $t == op_* ]] && op_env=(GROOM_FUZZ_OP="${t#op_}")
     [[ -n $op_seconds ]] && run_seconds=$op_seconds
   fi
-  # -timeout: one input taking over 10 s is a hang; -rss_limit_mb / -malloc_limit_mb: a reader that
-  # believes a header's absurd count and allocates for it is a crash, not a slow run.
+  # -timeout: one input taking over 30 s is a hang (10 s flagged a sound input on the 2-core VM: an
+  # op-target seed whose fuzzed mesh converts to a field in about 11 s under ASan and coverage,
+  # perf: OpenVDB's narrow-band expansion and the exact closest faces; it passed on other runs);
+  # -rss_limit_mb / -malloc_limit_mb: a reader that believes a header's absurd count and allocates
+  # for it is a crash, not a slow run.
   set +e
-  env "${op_env[@]}" "$sbuild/fuzz/$(binary_of "$t")" "${dirs[@]}" "${extra[@]}" -max_total_time="$run_seconds" -timeout=10 -rss_limit_mb=2048 \
+  env "${op_env[@]}" "$sbuild/fuzz/$(binary_of "$t")" "${dirs[@]}" "${extra[@]}" -max_total_time="$run_seconds" -timeout=30 -rss_limit_mb=2048 \
     -malloc_limit_mb=1024 -max_len=65536 -print_final_stats=1 -artifact_prefix="$sbuild/fuzz-artifacts/$t-" >"$log" 2>&1
   rc=$?
   set -e

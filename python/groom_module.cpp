@@ -314,15 +314,18 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
     const std::string out_path = "mem:out" + id, scalp_path = "mem:scalp" + id;
     std::vector<std::string> args{command}, stored;
     for (size_t i = 0; i < inputs.size(); ++i) {
-        const std::string in_path = "mem:in" + id + "_" + std::to_string(i);
         // The arrays are live views a caller may have written NaNs into since: blamed here, on the
-        // input, not later as an error writing the command's in-memory output.
+        // input, not later as an error writing the command's in-memory output (all of them before
+        // any is stored, so a refusal leaves nothing behind).
         try {
             inputs[i]->validate(inputs.size() == 1 ? "curves" : "curves " + std::to_string(i));
         }
         catch (const Error& e) {
             raise(true, e.what());
         }
+    }
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        const std::string in_path = "mem:in" + id + "_" + std::to_string(i);
         store_memory_curves(in_path, *inputs[i]);
         stored.push_back(in_path);
         args.push_back(in_path);

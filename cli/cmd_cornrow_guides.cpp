@@ -4,8 +4,10 @@
 #include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/math/polyline.h"
 #include "ops/cornrow_guides.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -92,6 +94,25 @@ void setup(CommandContext& ctx)
         char line[256];
         std::snprintf(line, sizeof line, "cornrow-guides: %zu guides x %d points, %.2f s -> ", g.guides.num_curves(), a.params.samples, secs);
         note(common, line + a.output + (a.tails_out.empty() ? std::string() : " (tails -> " + a.tails_out + ")"));
+        // A row cut to a stub by the hairline (at a sideburn, above an ear) braids into a short tuft
+        // with its tail hanging by the face (a trial on Lee Perry-Smith and MakeHuman): say which.
+        std::vector<double> lengths;
+        for (size_t c = 0; c < g.guides.num_curves(); ++c) {
+            const IndexRange r = g.guides.points_of(c);
+            lengths.push_back(polyline_length(g.guides.positions().subspan(size_t(r.begin), size_t(r.size()))));
+        }
+        std::vector<double> sorted = lengths;
+        std::sort(sorted.begin(), sorted.end());
+        const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+        std::string stubs;
+        for (size_t c = 0; c < lengths.size(); ++c) {
+            if (lengths[c] < 0.25 * median) stubs += (stubs.empty() ? "" : ", ") + std::to_string(c) + " (" + format_number(float(lengths[c])) + ")";
+        }
+        if (!stubs.empty()) {
+            warn(common, "cornrow-guides: warning: rows " + stubs + " are under a quarter of the rows' median length " +
+                             format_number(float(median)) + " (the hairline cuts them short at the side): lower --spread, or drop them with " +
+                             "groom select --ids");
+        }
     };
 }
 

@@ -55,8 +55,10 @@ std::string closest(std::string_view word, const std::vector<std::string>& candi
     return best;
 }
 
-/// Where error() puts its message: stderr, or a caller's string (run_captured).
+/// Where error() puts its message: stderr, or a caller's string (run_captured); where warn() puts
+/// its warnings: note(), or a caller's list.
 thread_local std::string* error_sink = nullptr;
+thread_local std::vector<std::string>* warning_sink = nullptr;
 
 /// The command being run and its long option names, for out_of_memory_message().
 std::string g_command;
@@ -131,6 +133,12 @@ uint64_t memory_budget_from(const CommonOptions& common)
 }
 
 }  // namespace
+
+void warn(const CommonOptions& o, const std::string& message)
+{
+    if (warning_sink) warning_sink->push_back(message);
+    else note(o, message);
+}
 
 std::string out_of_memory_message()
 {

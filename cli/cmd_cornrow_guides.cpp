@@ -2,12 +2,12 @@
 #include "cli/command.h"
 #include "cli/region_options.h"
 #include "cli/scalp_options.h"
+#include "cli/scene_scale.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/math/polyline.h"
 #include "ops/cornrow_guides.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -75,10 +75,9 @@ void setup(CommandContext& ctx)
         const Bounds3 box = scalp->bounds();
         const float top = a.params.center.y + a.params.radius;
         if (app->count("--center") == 0 && app->count("--radius") == 0 && !box.empty() && std::fabs(box.hi.y - top) > 0.5f * a.params.radius) {
-            const auto xyz = [](const float3& v) { return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z); };
-            throw InvalidParam("cornrow-guides: the default --center " + xyz(a.params.center) + " and --radius " + format_number(a.params.radius) +
+            throw InvalidParam("cornrow-guides: the default --center " + format_xyz(a.params.center) + " and --radius " + format_number(a.params.radius) +
                                " are the default head's cranium (top at y " + format_number(top) + ", centimetres, +Y up), but " + a.scalp +
-                               " reaches y " + format_number(box.hi.y) + " (bounds " + xyz(box.lo) + " to " + xyz(box.hi) +
+                               " reaches y " + format_number(box.hi.y) + " (bounds " + format_xyz(box.lo) + " to " + format_xyz(box.hi) +
                                "): pass --center (the middle of this head's cranium) and --radius (about half its width)");
         }
         // The rows are laid +Y up (the frame of `groom head`), so the hairline is read around +Y.
@@ -96,17 +95,12 @@ void setup(CommandContext& ctx)
         note(common, line + a.output + (a.tails_out.empty() ? std::string() : " (tails -> " + a.tails_out + ")"));
         // A row cut to a stub by the hairline (at a sideburn, above an ear) braids into a short tuft
         // with its tail hanging by the face (a trial on Lee Perry-Smith and MakeHuman): say which.
-        std::vector<double> lengths;
+        const double median = median_curve_length(g.guides);
+        std::string stubs;
         for (size_t c = 0; c < g.guides.num_curves(); ++c) {
             const IndexRange r = g.guides.points_of(c);
-            lengths.push_back(polyline_length(g.guides.positions().subspan(size_t(r.begin), size_t(r.size()))));
-        }
-        std::vector<double> sorted = lengths;
-        std::sort(sorted.begin(), sorted.end());
-        const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
-        std::string stubs;
-        for (size_t c = 0; c < lengths.size(); ++c) {
-            if (lengths[c] < 0.25 * median) stubs += (stubs.empty() ? "" : ", ") + std::to_string(c) + " (" + format_number(float(lengths[c])) + ")";
+            const float length = polyline_length(g.guides.positions().subspan(size_t(r.begin), size_t(r.size())));
+            if (length < 0.25 * median) stubs += (stubs.empty() ? "" : ", ") + std::to_string(c) + " (" + format_number(length) + ")";
         }
         if (!stubs.empty()) {
             warn(common, "cornrow-guides: warning: rows " + stubs + " are under a quarter of the rows' median length " +

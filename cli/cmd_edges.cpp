@@ -81,10 +81,9 @@ void setup(CommandContext& ctx)
         if (!(u > 0.0f) || !std::isfinite(u)) throw InvalidParam("edges: --units-per-cm must be a finite number > 0 (got " + format_number(u) + ")");
         // The defaults are a head in centimetres; a scene in other units gets them scaled, while
         // every length the user typed is taken as given (scene units).
-        for (auto [option, value] : {std::pair{"--depth", &params.depth}, {"--length", &params.length}, {"--radius", &params.radius},
-                                     {"--swoop", &params.swoop}, {"--height", &params.height}}) {
-            if (app->count(option) == 0) *value *= u;
-        }
+        scale_default_lengths(*app, u,
+                              {{"--depth", &params.depth}, {"--length", &params.length}, {"--radius", &params.radius},
+                               {"--swoop", &params.swoop}, {"--height", &params.height}});
         params.widths = hair_widths_from(args->widths, "edges");
         if (app->count("--width")) {
             if (!(std::isfinite(args->width) && args->width > 0.0f)) {
@@ -99,7 +98,7 @@ void setup(CommandContext& ctx)
         params.direction = parse_edge_direction(args->direction);
         params.validate();
         HairRegionParams region_params = args->region;
-        if (app->count("--parting-gap") == 0) region_params.parting_gap *= u;
+        scale_default_lengths(*app, u, {{"--parting-gap", &region_params.parting_gap}});
         region_params.up = params.up;
         region_params.validate();
 

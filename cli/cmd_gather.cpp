@@ -4,6 +4,7 @@
 #include "cli/curl_options.h"
 #include "cli/region_options.h"
 #include "cli/scalp_options.h"
+#include "cli/scene_scale.h"
 #include "fields/scalp_field.h"
 #include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
@@ -100,10 +101,9 @@ void setup(CommandContext& ctx)
         // a length the user typed is taken as given.
         const float u = params.curl.units_per_cm;
         RegionOptions region_options = args->region;  // a copy: a command run once per frame scales it once
-        for (auto [option, value] : {std::pair{"--lift", &params.lift}, {"--step", &params.step}, {"--band-width", &params.band_width},
-                                     {"--band-thickness", &params.band_thickness}, {"--parting-gap", &region_options.params.parting_gap}}) {
-            if (app->count(option) == 0) *value *= u;
-        }
+        scale_default_lengths(*app, u,
+                              {{"--lift", &params.lift}, {"--step", &params.step}, {"--band-width", &params.band_width},
+                               {"--band-thickness", &params.band_thickness}, {"--parting-gap", &region_options.params.parting_gap}});
         params.validate();
 
         const auto start = std::chrono::steady_clock::now();

@@ -75,8 +75,6 @@ void detail(const CommonOptions& o, const std::string& message);
 /// (the Python module ran every command --quiet, so its users never saw one: a trial on Ratboy,
 /// a model in metres, got straight "curls" with no word why).
 void warn(const CommonOptions& o, const std::string& message);
-/// Where warn() hands its warnings when a caller asked for them (run_captured); else null.
-extern thread_local std::vector<std::string>* warning_sink;
 
 /// Throws InvalidParam when `output` names the same file as one of `inputs` (by any spelling: a
 /// link, `dir/./file`) or names an existing file this user may not write, and --force is absent

@@ -30,14 +30,6 @@ void detail(const CommonOptions& o, const std::string& message)
     if (o.verbose && !o.quiet) std::cerr << message << "\n";
 }
 
-thread_local std::vector<std::string>* warning_sink = nullptr;
-
-void warn(const CommonOptions& o, const std::string& message)
-{
-    if (warning_sink) warning_sink->push_back(message);
-    else note(o, message);
-}
-
 void add_prim_option(CLI::App* app, CommonOptions& common)
 {
     app->add_option("--prim", common.prims,

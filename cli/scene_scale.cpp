@@ -23,6 +23,13 @@ void warn_scene_scale(const CommonOptions& common, const std::string& command, c
                      "--units-per-cm (0.01 for metres, 10 for millimetres)");
 }
 
+void scale_default_lengths(const CLI::App& app, float units_per_cm, std::initializer_list<std::pair<const char*, float*>> lengths)
+{
+    for (const auto& [option, value] : lengths) {
+        if (app.count(option) == 0) *value *= units_per_cm;
+    }
+}
+
 double median_curve_length(const CurveSet& curves)
 {
     const auto P = curves.positions();

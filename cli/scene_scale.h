@@ -8,7 +8,9 @@
 #include "kernel/curve_set.h"
 #include "kernel/math/vec.h"
 
+#include <initializer_list>
 #include <string>
+#include <utility>
 
 namespace groom::cli {
 
@@ -18,6 +20,10 @@ namespace groom::cli {
 /// widths").
 void warn_scene_scale(const CommonOptions& common, const std::string& command, const Bounds3& scalp, float units_per_cm,
                       const std::string& what);
+
+/// Multiplies each length whose option (`--lift`, ...) was not typed by `units_per_cm`: its default
+/// is centimetres, while a length the user typed is taken as scene units (edges, gather).
+void scale_default_lengths(const CLI::App& app, float units_per_cm, std::initializer_list<std::pair<const char*, float*>> lengths);
 
 /// The median of the curves' polyline lengths (0 for no curves).
 double median_curve_length(const CurveSet& curves);

@@ -26,6 +26,7 @@
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 
@@ -43,6 +44,13 @@ struct KeepOutside {
     /// doubled margin (lift_outside: iterations of its fixed point).
     int max_steps = 1;
 };
+
+/// The margin for a scene of these bounds: a millionth of its diagonal, a few float ulps of its
+/// coordinates, so a moved point lands strictly clear (0 for empty bounds). generate and cull use it.
+inline float scene_margin(const Bounds3& box)
+{
+    return box.empty() ? 0.0f : 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
+}
 
 /// @brief The rule on one point.
 /// With `anchor` (a point the caller expects to be clear, e.g. the curl's centreline under a curled

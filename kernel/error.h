@@ -54,4 +54,11 @@ inline std::string format_number(double v)
     return buf;
 }
 
+/// A point as the options take one, "x,y,z" (each format_number), so a message's point can be
+/// pasted back as --center and the like.
+template <class Vec3> std::string format_xyz(const Vec3& v)
+{
+    return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z);
+}
+
 }  // namespace groom

@@ -77,9 +77,7 @@ CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& param
         // Re-checked and retried like generate's hairs: one trusted move along the band's normal
         // left 14,329 of 160,000 points on Sintel short of a 0.5 clearance (in creases each move
         // gains about half of what is missing), 1,521 of them inside. The margin is generate's.
-        const Bounds3 box = src.bounds();
-        const float margin = box.empty() ? 0.0f : 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
-        const KeepOutsideCount moved = keep_outside(dst, scalp, KeepOutside{D, margin, 16});
+        const KeepOutsideCount moved = keep_outside(dst, scalp, KeepOutside{D, scene_margin(src.bounds()), 16});
         if (stats) {
             *stats = CullStats{};
             stats->points_pushed = moved.points;

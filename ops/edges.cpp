@@ -208,14 +208,7 @@ void EdgesParams::validate() const
 CurveSet edges(const Surface& scalp, const CurveSet& hairline, const EdgesParams& params, const HairRegion* region)
 {
     params.validate();
-    if (hairline.num_curves() != 1) {
-        throw InvalidGeometry("edges: the hairline must be one closed curve around the head; found " + std::to_string(hairline.num_curves()) + " curves");
-    }
-    const auto hp = hairline.positions();
-    if (hp.size() < 8) throw InvalidGeometry("edges: the hairline must have at least 8 points; found " + std::to_string(hp.size()));
-    for (const float3& p : hp)
-        if (!isfinite(p)) throw InvalidGeometry("edges: a hairline point is not finite");
-    check_hairline_closed(hp, "edges: hairline");
+    const auto hp = check_hairline(hairline, "edges: the hairline");
 
     const float3 up = normalize(params.up);
     AzimuthFrame frame;

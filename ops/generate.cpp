@@ -258,13 +258,12 @@ GrowRun prepare_run(const CurveSet& guides, const Surface& scalp, std::span<cons
     }
     PreparedGuides pg = prepare(guides, scalp, params.points);
     PointIndex index(pg.roots);
-    // The margin starts at a millionth of the groom's extent (every root and every guide, so a
-    // shard's or a block's part gets the whole run's margin), a few float ulps of the scene.
+    // The margin (scene_margin) is of the groom's extent: every root and every guide, so a shard's
+    // or a block's part gets the whole run's margin.
     Bounds3 box;
     for (const float3& p : roots) box.extend(p);
     for (const float3& p : guides.positions()) box.extend(p);
-    const float margin = 1e-6f * std::max(length(box.hi - box.lo), 1e-30f);
-    return GrowRun{std::move(pg), std::move(index), margin};
+    return GrowRun{std::move(pg), std::move(index), scene_margin(box)};
 }
 
 /// Hairs [r0, r1) of the roots, grown (generate_at_roots' body for one part of the run).

@@ -32,15 +32,23 @@ void HairRegionParams::validate() const
     }
 }
 
-void check_hairline_closed(std::span<const float3> pts, const std::string& op)
+std::span<const float3> check_hairline(const CurveSet& hairline, const std::string& who)
 {
+    if (hairline.num_curves() != 1) {
+        throw InvalidGeometry(who + " must be one closed curve around the head; found " + std::to_string(hairline.num_curves()) + " curves");
+    }
+    const auto pts = hairline.positions();
+    if (pts.size() < 8) throw InvalidGeometry(who + " must have at least 8 points; found " + std::to_string(pts.size()));
+    for (const float3& p : pts)
+        if (!isfinite(p)) throw InvalidGeometry(who + " has a point that is not finite");
     double length = 0.0;
     for (size_t i = 1; i < pts.size(); ++i) length += double(distance(pts[i - 1], pts[i]));
-    const double gap = pts.empty() ? 0.0 : double(distance(pts.front(), pts.back()));
+    const double gap = double(distance(pts.front(), pts.back()));
     if (gap > 0.1 * length) {
-        throw InvalidGeometry(op + ": expected one closed curve around the head, but its ends are " + format_number(gap) + " apart on a curve " +
+        throw InvalidGeometry(who + " must be one closed curve around the head, but its ends are " + format_number(gap) + " apart on a curve " +
                               format_number(length) + " long (an open curve: a parting line?); `groom hairline` makes one");
     }
+    return pts;
 }
 
 HairRegion::HairRegion(const Surface& scalp, const CurveSet& hairline, const CurveSet& partings, const HairRegionParams& params)
@@ -51,15 +59,8 @@ HairRegion::HairRegion(const Surface& scalp, const CurveSet& hairline, const Cur
     e1_ = any_perpendicular(params_.up);
     e2_ = cross(params_.up, e1_);
 
-    if (hairline.num_curves() > 1) {
-        throw InvalidGeometry("hairline: expected one closed curve around the head, found " + std::to_string(hairline.num_curves()) + " curves");
-    }
-    if (hairline.num_curves() == 1) {
-        const auto pts = hairline.positions();
-        if (pts.size() < 8) throw InvalidGeometry("hairline: expected at least 8 points, found " + std::to_string(pts.size()));
-        for (const float3& p : pts)
-            if (!isfinite(p)) throw InvalidGeometry("hairline: a point is not finite");
-        check_hairline_closed(pts, "hairline");
+    if (hairline.num_curves() > 0) {
+        const auto pts = check_hairline(hairline, "hairline");
         centroid_ = std::accumulate(pts.begin(), pts.end(), float3{}) * (1.0f / float(pts.size()));
         // Azimuths must turn one way once around the axis: the hairline is then a height function
         // of the azimuth, and inside/outside is a comparison of elevations.

@@ -34,11 +34,13 @@ struct HairRegionParams {
 /// A parting's side at p is the sign of (p - q) . (t x n) for q the closest point of the parting, t
 /// its tangent there and n = `up`-independent scalp normal at q; the sides of all partings form p's
 /// section (a bitmask, parting i = bit i; at most 64 partings: a 46-section grid from `groom sections` has 45).
-/// Throws InvalidGeometry "<op>: ..." unless `pts` (a hairline's points) close on themselves: the
-/// ends no more than a tenth of the curve's length apart. An open curve passed by mistake (a
-/// parting line) can still turn once around an axis through its centroid, and every op then ran
-/// on nonsense without a word (a trial: baby hairs across the eye, "20 sections ... 0 roots").
-void check_hairline_closed(std::span<const float3> pts, const std::string& op);
+/// The points of `hairline` if it is one: a single curve of at least 8 finite points whose ends
+/// close, no more than a tenth of its length apart (an open curve passed by mistake, a parting
+/// line, can still turn once around an axis through its centroid, and every op then ran on
+/// nonsense without a word: a trial, baby hairs across the eye, "20 sections ... 0 roots").
+/// Throws InvalidGeometry otherwise, each message starting with `who` ("hairline",
+/// "edges: the hairline"). HairRegion and edges both ask it.
+std::span<const float3> check_hairline(const CurveSet& hairline, const std::string& who);
 
 class HairRegion {
 public:

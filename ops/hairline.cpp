@@ -75,7 +75,7 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
     float3 c = params.has_center ? params.center : bounds.center();
     float3 top;
     if (!outermost_hit(scalp, c + up * reach, c, top)) {
-        throw InvalidGeometry("hairline: no scalp above the centre " + format_number(c.x) + "," + format_number(c.y) + "," + format_number(c.z) +
+        throw InvalidGeometry("hairline: no scalp above the centre " + format_xyz(c) +
                               " (give --center inside the head)");
     }
     const float top_height = dot(top - c, up);
@@ -87,10 +87,10 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
             // On a whole body the middle of the bounds is the belly, not the head: following the old
             // advice (--head-length) put the hairline across the eyebrows and down the neck (a trial
             // on MakeHuman). The axis is what is wrong; say where it runs.
-            const auto xyz = [](const float3& v) { return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z); };
-            throw InvalidGeometry("hairline: could not measure the head's length: no scalp in front of or behind the head's axis at " + xyz(a) +
+            throw InvalidGeometry("hairline: could not measure the head's length: no scalp in front of or behind the head's axis at " +
+                                  format_xyz(a) +
                                   (params.has_center ? std::string(" (through --center)")
-                                                     : " (through the middle of the scalp's bounds, " + xyz(c) + ")") +
+                                                     : " (through the middle of the scalp's bounds, " + format_xyz(c) + ")") +
                                   "; give --center inside the head (on a bust or a whole body the middle of the bounds is not in it), "
                                   "then --head-length if it still fails");
         }

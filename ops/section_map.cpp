@@ -416,8 +416,7 @@ float3 SectionMap::hit(const float3& dir) const
 {
     float3 x;
     if (!scalp_.first_intersection(c_ + dir * reach_, c_, x, 1e-5f * reach_)) {
-        throw InvalidGeometry("sections: no scalp along the ray from the hairline's centroid " + format_number(c_.x) + "," + format_number(c_.y) + "," +
-                              format_number(c_.z) + " toward " + format_number(dir.x) + "," + format_number(dir.y) + "," + format_number(dir.z) +
+        throw InvalidGeometry("sections: no scalp along the ray from the hairline's centroid " + format_xyz(c_) + " toward " + format_xyz(dir) +
                               " (is the centroid inside the head?)");
     }
     return x;

@@ -215,8 +215,7 @@ SectionsResult sections(const Surface& scalp, const CurveSet& hairline, const Ro
         for (int64_t i = b; i < e; ++i) {
             if (!surface_path_through(scalp, borders[i].points, params.step, 0.0f, paths[i])) {
                 throw InvalidGeometry("sections: a parting could not be drawn on the scalp (a hole or a fold near " +
-                                      format_number(borders[i].points.front().x) + "," + format_number(borders[i].points.front().y) + "," +
-                                      format_number(borders[i].points.front().z) + "?)");
+                                      format_xyz(borders[i].points.front()) + "?)");
             }
         }
     });

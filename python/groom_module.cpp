@@ -74,6 +74,19 @@ std::string python_message(std::string message)
     throw py::error_already_set();
 }
 
+/// groom.GroomWarning with `message` (in Python's wording); throws when a warnings filter made it
+/// an error.
+void warn(const std::string& message)
+{
+    if (PyErr_WarnEx(g_warning, python_message(message).c_str(), 1) != 0) throw py::error_already_set();
+}
+
+/// Python's bool or numpy's (np.True_, a comparison's element), which a keyword takes as a flag.
+bool is_bool(py::handle v)
+{
+    return py::isinstance<py::bool_>(v) || std::string(py::str(py::type::handle_of(v).attr("__name__"))) == "bool_";
+}
+
 // --- CurveSet <-> numpy ---------------------------------------------------------------------------
 
 /// A numpy view of one column, sharing its memory; `owner` (the Python CurveSet) is kept alive by it.
@@ -236,7 +249,7 @@ void append_options(std::vector<std::string>& args, const py::kwargs& kw, const 
             args.push_back(path);
             continue;
         }
-        if (py::isinstance<py::bool_>(v) || std::string(py::str(py::type::handle_of(v).attr("__name__"))) == "bool_") {  // numpy's too
+        if (is_bool(v)) {
             if (py::bool_(py::reinterpret_borrow<py::object>(v))) args.push_back("--" + name);
             continue;
         }
@@ -305,26 +318,33 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
     }
     if (py::isinstance<Scalp>(scalp) && kw.contains("scalp_voxel") && !kw["scalp_voxel"].is_none()) {
         // The field is built already: the voxel asked for would be silently dropped.
-        const std::string text = command + ": scalp_voxel is for a scalp given as a mesh path; this groom.Scalp keeps its voxel (" +
-                                 format_number(scalp.cast<const Scalp&>().field->voxel_size()) +
-                                 "): load it with groom.Scalp.load(mesh, voxel=...) instead";
-        if (PyErr_WarnEx(g_warning, text.c_str(), 1) != 0) throw py::error_already_set();
+        warn(command + ": scalp_voxel is for a scalp given as a mesh path; this groom.Scalp keeps its voxel (" +
+             format_number(scalp.cast<const Scalp&>().field->voxel_size()) + "): load it with groom.Scalp.load(mesh, voxel=...) instead");
     }
     const std::string id = std::to_string(g_call++);
     const std::string out_path = "mem:out" + id, scalp_path = "mem:scalp" + id;
-    std::vector<std::string> args{command}, stored;
+    // The in-memory files this call stores, erased however it ends (a keyword refused, a warning a
+    // filter made an error, the command failing); the output is taken before they go.
+    struct CallFiles {
+        std::vector<std::string> curves;
+        std::string scalp;
+        ~CallFiles()
+        {
+            for (const std::string& path : curves) erase_memory_curves(path);
+            erase_memory_scalp(scalp);
+        }
+    } files{{out_path}, scalp_path};
+    std::vector<std::string>& stored = files.curves;
+    std::vector<std::string> args{command};
     for (size_t i = 0; i < inputs.size(); ++i) {
         // The arrays are live views a caller may have written NaNs into since: blamed here, on the
-        // input, not later as an error writing the command's in-memory output (all of them before
-        // any is stored, so a refusal leaves nothing behind).
+        // input, not later as an error writing the command's in-memory output.
         try {
             inputs[i]->validate(inputs.size() == 1 ? "curves" : "curves " + std::to_string(i));
         }
         catch (const Error& e) {
             raise(true, e.what());
         }
-    }
-    for (size_t i = 0; i < inputs.size(); ++i) {
         const std::string in_path = "mem:in" + id + "_" + std::to_string(i);
         store_memory_curves(in_path, *inputs[i]);
         stored.push_back(in_path);
@@ -349,21 +369,12 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
         py::gil_scoped_release release;
         code = cli::run_captured(args, message, &warnings);
     }
-    for (const std::string& w : warnings) {
+    for (std::string w : warnings) {
         // "curl: warning: the curl radius ..." -> "curl: the curl radius ..." (the category says it).
-        std::string text = python_message(w);
-        if (const size_t at = text.find("warning: "); at != std::string::npos) text.erase(at, 9);
-        if (PyErr_WarnEx(g_warning, text.c_str(), 1) != 0) {  // warnings turned into errors by a filter
-            for (const std::string& path : stored) erase_memory_curves(path);
-            erase_memory_scalp(scalp_path);
-            erase_memory_curves(out_path);
-            throw py::error_already_set();
-        }
+        if (const size_t at = w.find("warning: "); at != std::string::npos) w.erase(at, 9);
+        warn(w);
     }
-    for (const std::string& path : stored) erase_memory_curves(path);
-    erase_memory_scalp(scalp_path);
     if (code != 0) {
-        erase_memory_curves(out_path);
         // A bool for an option that takes a value went on as a bare flag: CLI11 says "count: 1
         // required INT missing". Say what was passed.
         static const std::regex missing(R"(--([a-z0-9-]+): \d+ required (\w+) missing)");
@@ -371,8 +382,7 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
         if (std::regex_search(message, m, missing)) {
             std::string key = m[1];
             std::replace(key.begin(), key.end(), '-', '_');
-            if (kw.contains(key.c_str()) && (py::isinstance<py::bool_>(kw[key.c_str()]) ||
-                                             std::string(py::str(py::type::handle_of(kw[key.c_str()]).attr("__name__"))) == "bool_")) {
+            if (kw.contains(key.c_str()) && is_bool(kw[key.c_str()])) {
                 std::string type = m[2];
                 std::transform(type.begin(), type.end(), type.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
                 raise(true, command + ": " + key + " takes a value (" + type + "), not True/False; only flags take a bool");
@@ -557,10 +567,8 @@ PYBIND11_MODULE(groom, m)
                 });
                 if (voxel > 0.0f && path.extension() == ".vdb" && s.field->voxel_size() != voxel) {
                     // A .vdb is read as it was built; the voxel asked for was silently dropped.
-                    const std::string text = "Scalp.load: voxel " + format_number(voxel) + " is for meshes; " + path.string() +
-                                             " keeps the voxel it was built with (" + format_number(s.field->voxel_size()) +
-                                             "): rebuild it with `groom scalp MESH --voxel " + format_number(voxel) + "`";
-                    if (PyErr_WarnEx(g_warning, text.c_str(), 1) != 0) throw py::error_already_set();
+                    warn("Scalp.load: voxel " + format_number(voxel) + " is for meshes; " + path.string() + " keeps the voxel it was built with (" +
+                         format_number(s.field->voxel_size()) + "): rebuild it with `groom scalp MESH --voxel " + format_number(voxel) + "`");
                 }
                 return s;
             },

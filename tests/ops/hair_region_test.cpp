@@ -145,7 +145,7 @@ TEST(HairRegion, RefusesAnOpenCurveAsTheHairline)
         catch (const InvalidGeometry& e) {
             EXPECT_NE(std::string(e.what()).find("open curve"), std::string::npos) << e.what();
         }
-        EXPECT_THROW(check_hairline_closed(open.positions(), "edges: hairline"), InvalidGeometry);
+        EXPECT_THROW(check_hairline(open, "edges: the hairline"), InvalidGeometry);
     }
     EXPECT_NO_THROW(HairRegion(sphere, circle_on_sphere({0, 1, 0}, 1, 60), CurveSet(), HairRegionParams{}));
 }

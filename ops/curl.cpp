@@ -15,6 +15,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 namespace groom {
@@ -573,8 +574,12 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
         dshape = dst.add<int32_t>(Domain::Point, "shape");
         dcycle = dst.add<int32_t>(Domain::Point, "cycle");
     }
+    // Widths the output is tapered to are written curve by curve, each as it is made; else the
+    // input's are interpolated.
+    const std::optional<HairWidths> taper = hair_widths_taper(src, params.widths, params.units_per_cm);
+    const bool carry_width = !taper && !src_width.empty();
     std::span<float> dwidth;
-    if (!src_width.empty()) dwidth = dst.add<float>(Domain::Point, attr::width);
+    if (taper || carry_width) dwidth = dst.add<float>(Domain::Point, attr::width);
     const bool gather = plan.gather;
     std::vector<int64_t> src_point(gather ? dst.num_points() : 0);
 
@@ -582,7 +587,13 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
         Centreline cl;
         CurveDraws draws;
         std::vector<float3> grid, out;
-        std::vector<double> in_cum, s_of, chord, short_by;
+        std::vector<double> in_cum, s_of, chord, short_by, taper_scratch;
+        auto write_taper = [&](const IndexRange& d) {
+            if (taper) {
+                taper_curve_widths(dP.subspan(size_t(d.begin), size_t(d.size())), dwidth.subspan(size_t(d.begin), size_t(d.size())), *taper->root,
+                                   *taper->tip, taper_scratch);
+            }
+        };
         for (int64_t k = b; k < e; ++k) {
             const int64_t c = c0 + k;
             const IndexRange r = src.points_of(size_t(c));
@@ -598,9 +609,10 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
                         dshape[size_t(d.begin + i)] = plan.res.tiers.dominant;
                         dcycle[size_t(d.begin + i)] = 0;
                     }
-                    if (!dwidth.empty()) dwidth[size_t(d.begin + i)] = src_width[size_t(r.begin + i)];
+                    if (carry_width) dwidth[size_t(d.begin + i)] = src_width[size_t(r.begin + i)];
                     if (gather) src_point[size_t(d.begin + i)] = r.begin + i;
                 }
+                write_taper(d);
                 step.advance(1);
                 continue;
             }
@@ -635,15 +647,16 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
                     dcycle[o] = int32_t(k);
                     dshape[o] = draws.cycles[size_t(k)].shape;
                 }
-                if (!dwidth.empty() || gather) {
+                if (carry_width || gather) {
                     // Where this point's centreline position falls on the input curve, by arc length.
                     const ArcSpot a = locate_at_length(in_cum, s_of[size_t(j)] * to_input, cursor);
-                    if (!dwidth.empty()) {
+                    if (carry_width) {
                         dwidth[o] = float((1.0 - a.t) * src_width[size_t(r.begin) + a.lo] + a.t * src_width[size_t(r.begin) + a.hi]);
                     }
                     if (gather) src_point[o] = r.begin + int64_t(a.nearest);
                 }
             }
+            write_taper(d);
             step.advance(1);
         }
     });
@@ -653,7 +666,12 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
     for (size_t k = 0; k < curves.size(); ++k) curves[k] = c0 + int64_t(k);
     carry_curve_attributes(src, dst, curves);
     if (gather) carry_point_attributes(src, dst, src_point, {attr::P, attr::width, "shape", "cycle"});
-    apply_hair_widths(dst, params.widths, params.units_per_cm);
+    if (taper) {
+        dst.attributes(Domain::Curve).remove(attr::width);  // as taper_widths does: the per-point taper replaces it
+    }
+    else {
+        apply_hair_widths(dst, params.widths, params.units_per_cm);
+    }
     return dst;
 }
 

@@ -38,6 +38,28 @@ double segment_length(const float3& a, const float3& b)
 
 }  // namespace
 
+void taper_curve_widths(std::span<const float3> P, std::span<float> W, float root, float tip, std::vector<double>& seg)
+{
+    const int64_t n = int64_t(P.size());
+    if (n == 0) return;
+    seg.resize(size_t(n));  // each segment's length, measured once (the square roots were half the time)
+    double total = 0.0;
+    for (int64_t i = 1; i < n; ++i) {
+        seg[size_t(i)] = segment_length(P[size_t(i)], P[size_t(i - 1)]);
+        total += seg[size_t(i)];
+    }
+    // Fractions in double: (1 - f) r + f t is then monotone in f to double rounding, and the
+    // one rounding to float keeps that order (rounding is monotone).
+    const double r = root, t = tip;
+    double s = 0.0;
+    for (int64_t i = 0; i < n; ++i) {
+        if (i > 0) s += seg[size_t(i)];
+        double f = total > 0.0 ? s / total : (n > 1 ? double(i) / double(n - 1) : 0.0);
+        if (i == n - 1 && n > 1) f = 1.0;  // the sum of the segments need not land on total exactly
+        W[size_t(i)] = i == 0 ? root : f == 1.0 ? tip : float((1.0 - f) * r + f * t);
+    }
+}
+
 void taper_widths(CurveSet& curves, float root, float tip)
 {
     AttributeSet& points = curves.attributes(Domain::Point);
@@ -46,30 +68,22 @@ void taper_widths(CurveSet& curves, float root, float tip)
     curves.attributes(Domain::Curve).remove(attr::width);
     const auto P = curves.positions();
     auto W = curves.add<float>(Domain::Point, attr::width);
-    const double r = root, t = tip;
     parallel_for(int64_t(curves.num_curves()), 1024, [&](int64_t b, int64_t e) {
-        std::vector<double> seg;  // each segment's length, measured once (the square roots were half the time)
+        std::vector<double> seg;
         for (int64_t c = b; c < e; ++c) {
             const IndexRange pr = curves.points_of(size_t(c));
-            const int64_t n = pr.size();
-            if (n == 0) continue;
-            seg.resize(size_t(n));
-            double total = 0.0;
-            for (int64_t i = 1; i < n; ++i) {
-                seg[size_t(i)] = segment_length(P[pr.begin + i], P[pr.begin + i - 1]);
-                total += seg[size_t(i)];
-            }
-            // Fractions in double: (1 - f) r + f t is then monotone in f to double rounding, and the
-            // one rounding to float keeps that order (rounding is monotone).
-            double s = 0.0;
-            for (int64_t i = 0; i < n; ++i) {
-                if (i > 0) s += seg[size_t(i)];
-                double f = total > 0.0 ? s / total : (n > 1 ? double(i) / double(n - 1) : 0.0);
-                if (i == n - 1 && n > 1) f = 1.0;  // the sum of the segments need not land on total exactly
-                W[pr.begin + i] = i == 0 ? root : f == 1.0 ? tip : float((1.0 - f) * r + f * t);
-            }
+            taper_curve_widths(P.subspan(size_t(pr.begin), size_t(pr.size())), W.subspan(size_t(pr.begin), size_t(pr.size())), root, tip,
+                               seg);
         }
     });
+}
+
+std::optional<HairWidths> hair_widths_taper(const CurveSet& input, const HairWidths& widths, float units_per_cm)
+{
+    if (!widths.given() && (!input.find<float>(Domain::Point, attr::width).empty() || !input.find<float>(Domain::Curve, attr::width).empty())) {
+        return std::nullopt;
+    }
+    return widths.resolved(units_per_cm);
 }
 
 void apply_hair_widths(CurveSet& curves, const HairWidths& widths, float units_per_cm)

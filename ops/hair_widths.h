@@ -6,7 +6,9 @@
 #include "kernel/curve_set.h"
 
 #include <optional>
+#include <span>
 #include <string_view>
+#include <vector>
 
 namespace groom {
 
@@ -35,6 +37,16 @@ struct HairWidths {
 /// curve's arc length (of its point index when the curve has no length), so the root point gets
 /// `root` and the tip point `tip` exactly and widths change monotonically in between.
 void taper_widths(CurveSet& curves, float root, float tip);
+
+/// taper_widths() on one curve: its points P and their widths W (same size). `scratch` is kept by
+/// the caller from curve to curve. An op that writes its curves one at a time tapers each while its
+/// points are still in cache (curl: a second pass over a whole output was 5% of the op, perf).
+void taper_curve_widths(std::span<const float3> P, std::span<float> W, float root, float tip, std::vector<double>& scratch);
+
+/// The taper apply_hair_widths() would write on an op's output whose point and curve `width`
+/// columns are those of `input` (the op carries them): widths.resolved(units_per_cm) when it
+/// tapers, nothing when it keeps the carried widths.
+std::optional<HairWidths> hair_widths_taper(const CurveSet& input, const HairWidths& widths, float units_per_cm = 1.0f);
 
 /// The last step of an op that makes hairs: when `widths` is given, or the curves carry no float
 /// point `width`, writes the taper of widths.resolved(units_per_cm); otherwise leaves the carried

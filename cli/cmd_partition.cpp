@@ -20,7 +20,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
-    std::string input, output, scalp, adjacent_file, write_adjacent, centroids, knot_density;
+    std::string input, output, scalp, adjacent_file, write_adjacent, centroids, knot_density, mediate;
     ScalpBuildParams scalp_params;
     float frequency = 0.0f, knot_length = 0.0f, knot_bias = 0.0f;
     PartitionParams params;
@@ -139,8 +139,10 @@ void setup(CommandContext& ctx)
     app->add_option("--adjacent", args->adjacent_file,
                     "Neighbours instead of searching: lines 'source,left,right' (guide indices, -1 = none); only listed guides are partitioned");
     app->add_option("--write-adjacent", args->write_adjacent, "Write the neighbours found (or given) in --adjacent's format, to edit and reuse");
-    app->add_option("--mediate", p.mediate, "Roots between the source (0) and the adjacent guide (1); 0.5 = the midpoint")->capture_default_str();
-    auto* count = app->add_option("--count", p.count, "Segments per side of each guide (>= 1)")->capture_default_str();
+    app->add_option("--mediate", args->mediate,
+                    "Roots between the source (0) and the adjacent guide (1), drawn per segment from lo,hi; 0.5 = all on the midpoint "
+                    "(the talk's); default 0.1,0.45: spread over the strip, a bare parting line in the middle tenth");
+    auto* count = app->add_option("--count", p.count, "Segments per side of each guide (>= 1); default: one every 1/200 of the typical gap between guides");
     auto* spacing = app->add_option("--spacing", p.spacing, "Arc length between segments along the guide, scene units (> 0)");
     app->add_option("--samples", p.samples, "Points per segment (>= 2)")->capture_default_str();
     add_width_options(app, args->widths);
@@ -148,7 +150,7 @@ void setup(CommandContext& ctx)
         ->excludes(args->widths.root_opt)
         ->excludes(args->widths.tip_opt);
     app->add_option("--jitter", p.jitter, "Random shift of segments along the guide, fraction of the spacing [0, 1]")->capture_default_str();
-    app->add_option("--seed", p.seed, "Random seed for --jitter")->capture_default_str();
+    app->add_option("--seed", p.seed, "Random seed for --jitter and --mediate")->capture_default_str();
     app->add_option("--max-gap", p.max_gap, "Ignore neighbours (and stations) farther than this, scene units; 0 = automatic, 4 typical gaps between guides")->capture_default_str();
     app->add_option("--max-height", p.max_height, "No segments where the guide is higher than this above the scalp, scene units (0 = no limit)")->capture_default_str();
     app->add_option("--centroids", args->centroids,
@@ -166,7 +168,14 @@ void setup(CommandContext& ctx)
         PartitionParams& params = args->params;
         check_outputs({{"-o", args->output}, {"--write-adjacent", args->write_adjacent}},
                       {args->input, args->scalp, args->adjacent_file, args->hair_region.hairline, args->hair_region.parting}, common);
-        if (spacing->count() && !count->count()) params.count = 0;
+        // 0 means automatic to the op; typed on the command line it is a mistake.
+        if (count->count() && params.count < 1) {
+            throw InvalidParam("partition: --count must be >= 1 (got " + std::to_string(params.count) + ")");
+        }
+        if (spacing->count() && !(params.spacing > 0.0f)) {
+            throw InvalidParam("partition: --spacing must be > 0 scene units (got " + format_number(params.spacing) + ")");
+        }
+        params.mediate = parse_range("partition: --mediate", args->mediate, params.mediate);
         const std::string& spec = args->centroids;
         if (spec.rfind("every:", 0) == 0) {
             params.centroids = CentroidMode::Every;

@@ -5,6 +5,7 @@
 
 #include "kernel/math/vec.h"
 #include "kernel/progress.h"
+#include "ops/float_range.h"
 
 #include <CLI/CLI.hpp>
 
@@ -117,6 +118,10 @@ CurveSet read_curve_input(const std::string& path, const CommonOptions& common, 
 
 /// Parses "x,y,z" (or "a,b" etc.) into floats, naming the option in errors.
 std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t expected_min, size_t expected_max);
+
+/// Parses "lo,hi" or a single value (lo = hi) into a range, naming the option in errors; empty
+/// text gives `fallback`.
+FloatRange parse_range(const std::string& option, const std::string& text, FloatRange fallback);
 
 /// Parses "x,y,z" (a point, a direction, a colour), naming the option in errors.
 float3 parse_float3(const std::string& option, const std::string& text);

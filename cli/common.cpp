@@ -261,4 +261,11 @@ std::vector<float> parse_floats(const std::string& option, const std::string& te
     return out;
 }
 
+FloatRange parse_range(const std::string& option, const std::string& text, FloatRange fallback)
+{
+    if (text.empty()) return fallback;
+    const std::vector<float> v = parse_floats(option, text, 1, 2);
+    return {v[0], v.size() > 1 ? v[1] : v[0]};
+}
+
 }  // namespace groom::cli

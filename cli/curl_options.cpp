@@ -23,14 +23,6 @@ int curl_shape_from_string(std::string_view text)
 
 namespace {
 
-/// "lo,hi" or a single value (lo = hi).
-FloatRange parse_range(const std::string& option, const std::string& text, FloatRange fallback)
-{
-    if (text.empty()) return fallback;
-    const std::vector<float> v = parse_floats(option, text, 1, 2);
-    return {v[0], v.size() > 1 ? v[1] : v[0]};
-}
-
 int parse_shape(const std::string& option, const std::string& text)
 {
     const int s = curl_shape_from_string(text);

@@ -8,6 +8,7 @@
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
 #include "ops/curl_shapes.h"
+#include "ops/float_range.h"
 #include "ops/hair_widths.h"
 
 #include <cstdint>
@@ -17,11 +18,6 @@
 #include <vector>
 
 namespace groom {
-
-/// A closed range [lo, hi] a value is drawn from uniformly.
-struct FloatRange {
-    float lo = 0.0f, hi = 0.0f;
-};
 
 struct CurlParams {
     /// Walker hair type "2a".."4c": the average frequency x amplitude ratio, the default amplitude

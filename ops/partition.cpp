@@ -34,16 +34,17 @@ struct Plan {
 // Output points refused beyond this even within a large `memory` budget: station counts are int.
 constexpr double kMaxOutputPoints = 2e9;
 constexpr uint64_t kJitterStream = 0x9a27;  // Rng stream for station jitter (per side: + side)
+constexpr uint64_t kMediateStream = 0x9a37;  // Rng stream for the root's place across the gap (per side: + side)
 
 }  // namespace
 
 void PartitionParams::validate() const
 {
-    require(std::isfinite(mediate) && mediate >= 0.0f && mediate <= 1.0f,
-            "`mediate` must be in [0, 1] (got " + num(mediate) + ")");
+    require(std::isfinite(mediate.lo) && std::isfinite(mediate.hi) && mediate.lo >= 0.0f && mediate.lo <= mediate.hi && mediate.hi <= 1.0f,
+            "`mediate` must be lo,hi with 0 <= lo <= hi <= 1 (got " + num(mediate.lo) + "," + num(mediate.hi) + ")");
     require(!(count != 0 && spacing != 0.0f), "`count` and `spacing` are exclusive (got both)");
-    if (spacing == 0.0f) require(count >= 1, "`count` must be >= 1 (got " + std::to_string(count) + ")");
-    else require(std::isfinite(spacing) && spacing > 0.0f, "`spacing` must be > 0 scene units (got " + num(spacing) + ")");
+    require(count >= 0, "`count` must be >= 1, or 0 for automatic (got " + std::to_string(count) + ")");
+    require(std::isfinite(spacing) && spacing >= 0.0f, "`spacing` must be > 0 scene units, or 0 for automatic (got " + num(spacing) + ")");
     require(samples >= 2, "`samples` must be >= 2 (got " + std::to_string(samples) + ")");
     widths.validate("partition");
     require(std::isfinite(jitter) && jitter >= 0.0f && jitter <= 1.0f, "`jitter` must be in [0, 1] (got " + num(jitter) + ")");
@@ -128,10 +129,18 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
         }
     });
 
+    // Neither count nor spacing: a spacing from the guides' own layout, so the density of edge hairs
+    // does not depend on the scene's units.
+    double spacing = params.spacing;
+    if (params.count == 0 && params.spacing == 0.0f) {
+        const double gap = typical_guide_gap(guides, GuidePointIndex(guides));
+        spacing = gap > 0.0 ? gap / double(kAutoSpacingPerGap) : 0.0;
+    }
     // Refuse before allocating anything when the options would make an absurd number of segments
     // (a --spacing in the wrong units, say).
     auto station_count = [&](double length) {
-        return params.count > 0 ? double(params.count) : std::max(1.0, std::floor(length / params.spacing));
+        if (params.count > 0) return double(params.count);
+        return spacing > 0.0 ? std::max(1.0, std::floor(length / spacing)) : 1.0;
     };
     double planned = 0.0;
     for (size_t c = 0; c < nc; ++c) {
@@ -168,8 +177,8 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                 if (!(length > 0.0)) continue;
                 // Stations: n of them `step` apart, centred on the source.
                 const int n = int(station_count(length));  // bounded by the check above
-                const double spacing = params.count > 0 ? length / n : double(params.spacing);
-                const double start = 0.5 * (length - (n - 1) * spacing);
+                const double step = params.count > 0 || !(spacing > 0.0) ? length / n : spacing;
+                const double start = 0.5 * (length - (n - 1) * step);
                 // Centroids along this source as arc-length fractions, sorted.
                 const std::vector<float> us = params.centroids == CentroidMode::Points ? centroid_u[c]
                                               : params.centroids == CentroidMode::Knots  ? braid_knot_parameters(params.knots, length)
@@ -179,11 +188,12 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                     if (sides[side] < 0) continue;
                     const PolylineNearest& other = *nearest[sides[side]];
                     const Rng rng(params.seed, uint64_t(ids[c]), kJitterStream + side);
+                    const Rng across(params.seed, uint64_t(ids[c]), kMediateStream + side);
                     for (int i = 0; i < n; ++i) {
                         const double jitter = params.jitter > 0.0f
-                                                  ? (double(rng.at(uint64_t(i)) >> 11) * 0x1.0p-53 - 0.5) * params.jitter * spacing
+                                                  ? (double(rng.at(uint64_t(i)) >> 11) * 0x1.0p-53 - 0.5) * params.jitter * step
                                                   : 0.0;
-                        const double s = std::clamp(start + i * spacing + jitter, 0.0, length);
+                        const double s = std::clamp(start + i * step + jitter, 0.0, length);
                         const float3 p = point_at_length(src, cum, s);
                         if (params.max_height > 0.0f && scalp.distance(p) > params.max_height) continue;
                         const PolylineNearest::Hit hit = other.closest(p);
@@ -192,9 +202,11 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                         Plan plan;
                         plan.side = side;
                         plan.station = i;
-                        // Sec. 2.2: rooted at the midpoint (or the mediated fraction) between the source
-                        // point and the nearest adjacent point, on the scalp.
-                        plan.root = scalp.closest_point(lerp(p, hit.point, params.mediate));
+                        // Sec. 2.2: rooted between the source point and the nearest adjacent point, on
+                        // the scalp, at a fraction drawn from `mediate` (exactly lo when lo = hi).
+                        const FloatRange& m = params.mediate;
+                        const float f = m.hi > m.lo ? m.lo + (m.hi - m.lo) * float(double(across.at(uint64_t(i)) >> 11) * 0x1.0p-53) : m.lo;
+                        plan.root = scalp.closest_point(lerp(p, hit.point, std::min(f, m.hi)));
                         if (params.region && !params.region->haired(plan.root)) continue;  // outside the hairline, on a parting
                         double end_s = s;
                         plan.group = i;
@@ -202,7 +214,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                             const int g = i / params.every;
                             const int members = std::min(params.every, n - g * params.every);
                             plan.group = g;
-                            end_s = start + spacing * (g * params.every + 0.5 * (members - 1));
+                            end_s = start + step * (g * params.every + 0.5 * (members - 1));
                         }
                         else if (!us.empty()) {
                             // The nearest centroid by arc length; ties to the earlier one.

@@ -10,6 +10,7 @@
 #include "kernel/progress.h"
 #include "ops/adjacency.h"
 #include "ops/braid.h"
+#include "ops/float_range.h"
 #include "ops/hair_widths.h"
 
 #include <cstdint>
@@ -33,12 +34,22 @@ struct CentroidPoint {
     float u = 0.0f;
 };
 
+/// With neither count nor spacing: segments kAutoSpacingPerGap to the typical gap between guides
+/// along each source.
+inline constexpr float kAutoSpacingPerGap = 200.0f;
+
 struct PartitionParams {
-    /// Where roots sit between the source (0) and the nearest point of the adjacent guide (1); [0, 1].
-    /// 0.5 = the midpoint (Sec. 2.2's default): the parting line between two braids.
-    float mediate = 0.5f;
+    /// Where roots sit between the source (0) and the nearest point of the adjacent guide (1), drawn
+    /// per segment from [lo, hi]; 0 <= lo <= hi <= 1. Sec. 2.2 roots every segment at the midpoint
+    /// ({0.5, 0.5}); on a head that reads as hair growing densest along the parting, with bare scalp
+    /// beside each braid (a trial's pictures). The default spreads the roots over the strip between
+    /// the braid and the parting and leaves the middle tenth bare: the parting line.
+    FloatRange mediate{0.1f, 0.45f};
     /// Segments per side of each source, spread evenly in arc length (>= 1). Exclusive with spacing.
-    int count = 24;
+    /// Both 0 (the default): a segment every kAutoSpacingPerGap-th of the typical gap between guides
+    /// (typical_guide_gap), about 2,000 a side on a head of cornrows, enough to read as hair rather
+    /// than as lines (24 a side did: a trial's pictures).
+    int count = 0;
     /// Arc length between segments along the source, scene units (> 0) when count is 0.
     float spacing = 0.0f;
     /// Points per segment (>= 2): the root, points that follow the scalp, the end on the source.

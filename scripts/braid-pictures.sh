@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The README's braid pictures: every pattern of `groom braid` seen from above (the braid's normal
-# toward the camera) and from the side, strands coloured, and a close-up of one of the demo's
-# cornrows. Needs build/groom and, for the close-up, out/demo from scripts/demo.sh.
+# toward the camera) and from the side, strands coloured, and close-ups of the demo's cornrows, alone
+# and with their edge hairs. Needs build/groom and, for the close-up, out/demo from scripts/demo.sh.
 # Usage: bash scripts/braid-pictures.sh [OUT_DIR]   (default docs/images)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -31,4 +31,9 @@ if [ -f "$root/out/demo/alisha_braids.usda" ]; then
     "$groom" render "$root/out/demo/alisha_braids.usda" --scalp "$root/out/demo/head.obj" -o "$out/cornrow_closeup.png" \
         --camera 1.2,24,1,1.2,12,1 --up 0,0,-1 --fov 22 --color-by strand --size 700 --quiet
 fi
-echo "wrote $out/braid_patterns.png and $out/cornrow_closeup.png"
+if [ -f "$root/out/demo/alisha_edges.usda" ]; then
+    # The same place with the edge hairs between the rows (`groom partition`, the demo's options).
+    "$groom" render "$root/out/demo/alisha_braids.usda" "$root/out/demo/alisha_edges.usda" --scalp "$root/out/demo/head.obj" \
+        -o "$out/partition_edges.png" --camera 1.2,24,1,1.2,12,1 --up 0,0,-1 --fov 22 --size 700 --quiet
+fi
+echo "wrote $out/braid_patterns.png, $out/cornrow_closeup.png and $out/partition_edges.png"

@@ -322,7 +322,7 @@ TEST(Hostile, BoundedOpsEstimateTheirOutputBeforeAllocating)
     // ranges, but each still estimates its output against --memory before allocating, like every op:
     // under a 2 MiB budget (the sphere scalp at --scalp-voxel 2 fits: about 1 MB of level set) each
     // is refused naming its options and the estimate, and writes nothing; the same command at its
-    // defaults fits the same budget.
+    // defaults (partition: 24 a side) fits the same budget.
     test::TempDir dir;
     const std::string mesh = sphere_mesh(dir);
     const std::vector<std::string> scalp = {"--scalp", mesh, "--scalp-voxel", "2", "--memory", "0.002", "--quiet"};
@@ -349,7 +349,7 @@ TEST(Hostile, BoundedOpsEstimateTheirOutputBeforeAllocating)
     const std::string edges = dir.file("edges.usda");
     refused(run_groom(with({"partition", rows, "-o", edges, "--count", "100000"})), edges,
             {"segments (--count or --spacing per side of each guide) x 8 --samples", "raise --spacing or lower --count / --samples"});
-    const auto fits = run_groom(with({"partition", rows, "-o", edges}));
+    const auto fits = run_groom(with({"partition", rows, "-o", edges, "--count", "24"}));  // the automatic count needs 5 MiB
     ASSERT_EQ(fits.exit_code, 0) << fits.err;
     EXPECT_GT(read_curves(edges).num_curves(), 0u);
 

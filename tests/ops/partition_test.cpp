@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <string>
 
 using namespace groom;
@@ -92,6 +93,7 @@ TEST(Partition, ThreeMeridianArcsRootAtTheMidpointOnTheSphere)
 {
     const std::vector<Arc> arcs = {{-0.3f, -0.5f, 0.5f}, {0.0f, -0.5f, 0.5f}, {0.3f, -0.5f, 0.5f}};
     PartitionParams params;
+    params.mediate = {0.5f, 0.5f};  // the talk's: every root on the midpoint
     params.count = 10;
     params.samples = 9;
     const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
@@ -108,13 +110,83 @@ TEST(Partition, ThreeMeridianArcsRootAtTheMidpointOnTheSphere)
     EXPECT_EQ(W[out.points_of(0).end - 1], kDefaultTipWidthCm);
 }
 
+namespace {
+
+/// Roots of two neighbouring rows on meridians 0 and theta of the unit sphere, seen as a groom
+/// artist sees the strip between the rows: how far each root is from the parting's midline, and
+/// which cells of the strip (4 across, from the braid at fraction 0.1 to the parting at 0.45; 10
+/// along the middle of the rows) hold a root.
+struct StripRoots {
+    double nearest_to_midline = 1e9;  ///< least |longitude - theta / 2| of a root, radians
+    int cells_across_with_roots = 0;  ///< of 4, cells across (any along) holding a root
+    int empty_cells = 0;              ///< of 2 sides x 4 x 10
+    int outside_strip = 0;            ///< roots beyond the fractions 0.1..0.45 of their side
+};
+
+StripRoots strip_roots(std::optional<FloatRange> mediate)
+{
+    const double theta = 0.3;
+    const std::vector<Arc> arcs = {{0.0f, -0.5f, 0.5f}, {float(theta), -0.5f, 0.5f}};
+    PartitionParams params;
+    if (mediate) params.mediate = *mediate;  // else the default
+    params.count = 400;
+    params.samples = 4;
+    const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
+    // Closed form: the root at fraction f from a row toward its neighbour (same latitude) projects
+    // to longitude atan2(f sin theta, 1 - f + f cos theta) from the row.
+    const auto lon_at = [&](double f) { return std::atan2(f * std::sin(theta), 1.0 - f + f * std::cos(theta)); };
+    const double lo = lon_at(0.1), hi = lon_at(0.45);
+    bool cell[2][4][10] = {};
+    StripRoots r;
+    const auto guide = out.find<int32_t>(Domain::Curve, "guide");
+    for (size_t c = 0; c < out.num_curves(); ++c) {
+        const float3 root = first_point(out, c);
+        const double lon = std::atan2(double(root.z), double(root.x));
+        r.nearest_to_midline = std::min(r.nearest_to_midline, std::fabs(lon - 0.5 * theta));
+        const double own = guide[c] == 0 ? lon : theta - lon;  // from the root's own row
+        if (own < lo - 1e-4 || own > hi + 1e-4) ++r.outside_strip;
+        const double lat = std::asin(std::clamp(double(root.y), -1.0, 1.0));
+        if (std::fabs(lat) >= 0.4) continue;
+        const int across = std::clamp(int((own - lo) / (hi - lo) * 4.0), 0, 3);
+        const int along = std::clamp(int((lat + 0.4) / 0.8 * 10.0), 0, 9);
+        cell[guide[c]][across][along] = true;
+    }
+    for (int a = 0; a < 4; ++a) {
+        bool any = false;
+        for (int side = 0; side < 2; ++side)
+            for (int b = 0; b < 10; ++b) any |= cell[side][a][b], r.empty_cells += !cell[side][a][b];
+        r.cells_across_with_roots += any;
+    }
+    return r;
+}
+
+}  // namespace
+
+TEST(Partition, DefaultRootsCoverTheStripBetweenBraidAndPartingAndLeaveTheMidlineBare)
+{
+    // What the artist sees between two cornrows: hair rooted all over the strip from each braid to
+    // the parting, and a clean bare line down the middle (the middle tenth of the gap).
+    const StripRoots d = strip_roots(std::nullopt);
+    const double theta = 0.3, bare = 0.5 * theta - std::atan2(0.45 * std::sin(theta), 0.55 + 0.45 * std::cos(theta));
+    EXPECT_GT(bare, 0.014);  // about 0.015 rad: a tenth of the gap, 0.86 degrees either side
+    EXPECT_GE(d.nearest_to_midline, bare - 1e-4) << "a root on the parting line";
+    EXPECT_EQ(d.outside_strip, 0);
+    EXPECT_EQ(d.empty_cells, 0) << "bare patches in the strip (80 cells, 400 roots a side)";
+    EXPECT_EQ(d.cells_across_with_roots, 4);
+    // The talk's default (every root on the midpoint) is what this test tells apart: every root on
+    // the parting line, one cell across holding them all.
+    const StripRoots talk = strip_roots(FloatRange{0.5f, 0.5f});
+    EXPECT_LT(talk.nearest_to_midline, 1e-4);
+    EXPECT_LE(talk.cells_across_with_roots, 1);
+}
+
 TEST(Partition, ArcsOfDifferentLengthsUseTheNearestEndAndTheMediatedFraction)
 {
     // The middle arc runs past its neighbours: past their ends the nearest adjacent point is the end.
     const std::vector<Arc> arcs = {{-0.25f, -0.3f, 0.3f}, {0.0f, -0.8f, 0.8f}, {0.35f, -0.2f, 0.4f}};
     PartitionParams params;
     params.count = 16;
-    params.mediate = 0.8f;
+    params.mediate = {0.8f, 0.8f};
     params.adjacent = {{0, 1, -1}, {1, 2, 0}, {2, -1, 1}};
     const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
     check_meridian_segments(out, arcs, params.adjacent, 16, 0.8f);
@@ -130,7 +202,7 @@ TEST(Partition, SingleNeighbourGivesOneSide)
     const std::vector<Arc> arcs = {{0.0f, -0.4f, 0.6f}, {0.4f, -0.4f, 0.6f}};
     PartitionParams params;
     params.count = 7;
-    params.mediate = 0.0f;  // roots at the source's own foot
+    params.mediate = {0.0f, 0.0f};  // roots at the source's own foot
     const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
     EXPECT_EQ(out.num_curves(), 14u);
     EXPECT_EQ(curves_of(out, 0, 0).size(), 7u);
@@ -145,7 +217,7 @@ TEST(Partition, PlaneRootsAtTheMediatedFractionAndSegmentsAreStraight)
     PartitionParams params;
     params.count = 8;
     params.samples = 6;
-    params.mediate = 0.25f;
+    params.mediate = {0.25f, 0.25f};
     const CurveSet out = partition(guides, plane, params);
     const float xs[3] = {-1.0f, 0.0f, 1.5f};
     const int nb[3][2] = {{1, -1}, {2, 0}, {-1, 1}};
@@ -179,7 +251,7 @@ TEST(Partition, SegmentsFollowTheScalpInsteadOfCuttingThroughIt)
     PartitionParams params;
     params.count = 5;
     params.samples = 12;
-    params.mediate = 1.0f;
+    params.mediate = {1.0f, 1.0f};
     const AnalyticSphere sphere({0, 0, 0}, 1.0f);
     const CurveSet out = partition(meridian_guides(arcs), sphere, params);
     float lowest = INFINITY;
@@ -192,6 +264,7 @@ TEST(Partition, EveryKGroupsConvergeOnTheirCentroid)
 {
     const CurveSet guides = straight_guides({0.0f, 1.0f});
     PartitionParams params;
+    params.mediate = {0.5f, 0.5f};  // roots on the midpoint, where the closed form below puts them
     params.count = 12;
     params.centroids = CentroidMode::Every;
     params.every = 5;
@@ -286,6 +359,7 @@ TEST(Partition, SpacingPutsStationsThatFarApartCentredOnTheSource)
 TEST(Partition, GivenAdjacencyOnlyPartitionsTheListedSources)
 {
     PartitionParams params;
+    params.mediate = {0.5f, 0.5f};  // roots on the midpoint, where the closed form below puts them
     params.count = 3;
     params.adjacent = {{1, -1, 2}};  // guide 2 declared on guide 1's right, whatever the geometry says
     const CurveSet out = partition(straight_guides({0.0f, 1.0f, 2.0f}), AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
@@ -403,13 +477,13 @@ TEST(Partition, RefusesAbsurdOutputBeforeAllocating)
 
 TEST(Partition, RejectsEachInvalidOption)
 {
-    expect_rejected([](auto& p) { p.mediate = -0.1f; }, "`mediate` must be in [0, 1] (got -0.1)");
-    expect_rejected([](auto& p) { p.mediate = 1.5f; }, "`mediate` must be in [0, 1] (got 1.5)");
-    expect_rejected([](auto& p) { p.mediate = NAN; }, "`mediate`");
-    expect_rejected([](auto& p) { p.count = 0; }, "`count` must be >= 1 (got 0)");
-    expect_rejected([](auto& p) { p.count = -3; }, "`count` must be >= 1 (got -3)");
-    expect_rejected([](auto& p) { p.spacing = 0.5f; }, "`count` and `spacing` are exclusive");
-    expect_rejected([](auto& p) { p.count = 0; p.spacing = -1; }, "`spacing` must be > 0 scene units (got -1)");
+    expect_rejected([](auto& p) { p.mediate = {-0.1f, 0.5f}; }, "`mediate` must be lo,hi with 0 <= lo <= hi <= 1 (got -0.1,0.5)");
+    expect_rejected([](auto& p) { p.mediate = {0.2f, 1.5f}; }, "`mediate` must be lo,hi with 0 <= lo <= hi <= 1 (got 0.2,1.5)");
+    expect_rejected([](auto& p) { p.mediate = {0.4f, 0.3f}; }, "`mediate` must be lo,hi with 0 <= lo <= hi <= 1 (got 0.4,0.3)");
+    expect_rejected([](auto& p) { p.mediate = {NAN, 0.5f}; }, "`mediate`");
+    expect_rejected([](auto& p) { p.count = -3; }, "`count` must be >= 1, or 0 for automatic (got -3)");
+    expect_rejected([](auto& p) { p.count = 5; p.spacing = 0.5f; }, "`count` and `spacing` are exclusive");
+    expect_rejected([](auto& p) { p.spacing = -1; }, "`spacing` must be > 0 scene units, or 0 for automatic (got -1)");
     expect_rejected([](auto& p) { p.samples = 1; }, "`samples` must be >= 2 (got 1)");
     expect_rejected([](auto& p) { p.widths.root = 0; }, "--root-width must be a finite number > 0");
     expect_rejected([](auto& p) { p.jitter = 2; }, "`jitter` must be in [0, 1] (got 2)");

@@ -139,7 +139,7 @@ void setup(CommandContext& ctx)
     app->add_option("--flyaways", a.params.flyaways, "Fraction of fibers leaving their strand in a loop, [0, 1]")->capture_default_str();
     app->add_option("--flyaway-height", a.params.flyaway_height, "How far a flyaway loop leaves its strand (0 = one strand width)")
         ->capture_default_str();
-    app->add_option("--feed-in", a.params.feed_in, "Fraction of fibers joining along the braid instead of at the root, [0, 1)")
+    app->add_option("--feed-in", a.params.feed_in, "Fraction of fibers joining along the braid instead of at the root, [0, 1); the braid starts at sqrt(1 - F) of its width and grows as they join")
         ->capture_default_str();
     app->add_option("--feed-length", a.params.feed_length, "Length over which fibers feed in, scene units (0 = three knots)")
         ->capture_default_str();

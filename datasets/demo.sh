@@ -82,7 +82,7 @@ if have cornrow-guides; then
         --count 12 --tails-out "$out/alisha_tails.usda" --tail-length 14 ${hairline:+--hairline "$hairline"}
     if have braid; then
         step "braid" groom braid "$out/alisha_guides.usda" --scalp "$scalp" -o "$out/alisha_braids.usda" \
-            --orient scalp --strands 3 --knot-length "$knot" --rest --clearance 0.05 --fibers 40 --feed-in 0.3
+            --orient scalp --strands 3 --knot-length "$knot" --rest --clearance 0.05 --fibers 40 --feed-in 0.8
         alisha+=("$out/alisha_braids.usda")
     else
         skip "groom braid is not in this build"

@@ -198,7 +198,7 @@ std::vector<StrandFiberPlan> fiber_plans(std::span<const GuidePlan> plans, std::
         for (int i = 0; i < params.strand_count(); ++i) {
             StrandFiberPlan& f = fplans[first_strand[g] + i];
             f.knot_t = float(knot / plan.length);
-            f.feed_t = float(std::min((params.feed_length > 0.0f ? double(params.feed_length) : 3.0 * knot) / plan.length, 1.0));
+            f.feed_t = float(plan.feed_t(params.feed_length));
         }
     }
     return fplans;

@@ -1,4 +1,5 @@
 #include "ops/braid_fibers.h"
+#include "ops/braid_plan.h"
 
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
@@ -143,9 +144,10 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
                 for (int64_t j = j0; j < r.size(); ++j) {
                     const int64_t q = r.begin + j;
                     const float tj = T[q];
-                    float feed_scale = 1.0f;
-                    if (p.feed_in > 0.0f) feed_scale = std::sqrt(1.0f - p.feed_in * (1.0f - std::min(tj / plan.feed_t, 1.0f)));
-                    const float rad = 0.5f * SW[q] * sec.spread[q] * feed_scale;
+                    // The strand's width already follows the hair fed in so far (feed_scale in its
+                    // amplitude scale): its disc holds the fibers present, each of the full width.
+                    const float rad = 0.5f * SW[q] * sec.spread[q];
+                    const float fed = feed_scale(p.feed_in, plan.feed_t, tj);
                     const float fl = p.flatten * sec.press[q];
                     const float cphi = c0 * cos_twist[j] - s0 * sin_twist[j], sphi = s0 * cos_twist[j] + c0 * sin_twist[j];
                     float3 off = (e1[j] * (cphi * rad * (kFiberSpreadAcross + 0.5f * fl)) + e2[j] * (sphi * rad * (1.0f - fl))) * d.rho;
@@ -168,7 +170,7 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
                     }
                     const int64_t oq = o.begin + (j - j0);
                     dP[oq] = pos;
-                    dW[oq] = p.fiber_width > 0.0f ? p.fiber_width : SW[q] * inv_sqrt_m;
+                    dW[oq] = p.fiber_width > 0.0f ? p.fiber_width : SW[q] * inv_sqrt_m / fed;
                     reach[oq] = length(pos - pts[j]);
                     strand_point[oq] = q;
                 }

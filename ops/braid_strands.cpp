@@ -23,10 +23,11 @@ float3 initial_normal(const BraidContext& ctx, const float3& root, const float3&
     return std::fabs(tangent.y) > 0.906f ? float3(0, 0, 1) : float3(0, 1, 0);  // cos 25 deg
 }
 
-/// Amplitude scale s(t): root/tip blend times the taper spline, pinched around a tie.
+/// Amplitude scale s(t): root/tip blend times the taper spline and the feed-in growth, pinched around
+/// a tie.
 float amplitude_scale(const BraidParams& p, const GuidePlan& plan, float t)
 {
-    const float blend = p.root_amplitude + (p.tip_amplitude - p.root_amplitude) * t;
+    const float blend = (p.root_amplitude + (p.tip_amplitude - p.root_amplitude) * t) * feed_scale(p.feed_in, plan.feed_t(p.feed_length), t);
     // The taper's Catmull-Rom overshoots between values (1,0,0 dips to -0.07 past its middle): held
     // at 0, as the values themselves are, else strand widths go negative (op_braid, --taper 1,0,0).
     float s = p.taper.empty() ? blend : blend * std::max(0.0f, sample_uniform_spline(p.taper, t));

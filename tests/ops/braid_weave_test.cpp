@@ -519,6 +519,36 @@ TEST(BraidWeave, LooseEndOpensAndTieWrapsTheBraid)
     EXPECT_GT(inside, 0);
 }
 
+// A cornrow picks its hair up as it goes: with feed-in it starts narrow at the hairline and reaches
+// its full width where the last fibers have joined, instead of starting at full width like a cut
+// rope (a trial's pictures). Read from the fibers: the braid's lateral extent over its first 2% against
+// its extent past the feed-in stretch (3 knots of 2, so from x = 6 on).
+TEST(BraidWeave, FedBraidStartsNarrowAndGrowsToFullWidth)
+{
+    const float length = 12.0f;
+    auto extents = [&](float feed_in) {
+        BraidParams p = plait(3);
+        p.fibers = 100;
+        p.feed_in = feed_in;
+        const CurveSet out = braid(straight_guide(length), p).curves;
+        double root = 0.0, full = 0.0;
+        for (const float3& q : out.positions()) {
+            if (q.x <= 0.02f * length) root = std::max(root, double(std::fabs(q.z)));
+            if (q.x >= 7.0f && q.x <= 11.0f) full = std::max(full, double(std::fabs(q.z)));
+        }
+        return std::pair{root, full};
+    };
+    const auto [root, full] = extents(0.84f);
+    // Closed form: the section scales by sqrt(1 - 0.84) = 0.4 at the root; fibers joining there start
+    // just beside it (1.1 half widths), and each keeps its full width.
+    EXPECT_GT(full, 0.5);
+    EXPECT_GT(root / full, 0.3);
+    EXPECT_LT(root / full, 0.55) << "root " << root << " full " << full;
+    // Without feed-in every fiber starts at the root and the braid is full width there.
+    const auto [blunt_root, blunt_full] = extents(0.0f);
+    EXPECT_GT(blunt_root / blunt_full, 0.85);
+}
+
 // Flyaways leave their strand in a loop (the requested fraction of fibers, by id); feed-in fibers join
 // along the braid from beside it, so the braid holds fewer fibers near the root.
 TEST(BraidWeave, FlyawaysAndFeedIn)

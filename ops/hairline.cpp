@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
+#include <vector>
 #include <string>
 
 namespace groom {
@@ -38,6 +40,32 @@ double drop_at(const HairlineParams& p, double deg)
 bool outermost_hit(const Surface& scalp, const float3& outside, const float3& axis, float3& hit)
 {
     return scalp.first_intersection(outside, axis, hit);
+}
+
+/// The top of an ear above the hairline at this azimuth: the drop (below the top of the head) of the
+/// last skull hit above a jump, or -1 when the horizontal rays from 0.3 head lengths below the top
+/// (above any ear) down to `drop` meet no ear. Scanning down in steps of 1% of the length, the hit
+/// moves out slowly on the side of a skull (under 1% a step there: a sphere's side at that depth moves
+/// 0.6%) and jumps out at the top of an ear, a rim standing a centimetre or two off the head: a jump
+/// of over 2%.
+double ear_top_above(const Surface& scalp, const float3& top, const float3& up, const float3& d, float reach, double length, double drop)
+{
+    const double step = 0.01 * length, jump = 0.02 * length;
+    double prev = 0.0;
+    bool have_prev = false;
+    for (double h = 0.3 * length; h < drop; h += step) {
+        const float3 a = top - up * float(h);
+        float3 hit;
+        if (!outermost_hit(scalp, a + d * reach, a, hit)) {
+            have_prev = false;
+            continue;
+        }
+        const double r = double(dot(hit - a, d));
+        if (have_prev && r - prev > jump) return h - step;
+        prev = r;
+        have_prev = true;
+    }
+    return -1.0;
 }
 
 }  // namespace
@@ -98,16 +126,48 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
         if (!(length_fb > 0.0f)) throw InvalidGeometry("hairline: measured a head length <= 0; give --head-length");
     }
 
-    CurveSet out = CurveSet::from_counts(std::vector<int64_t>{params.points});
+    // Start at the nape (azimuth -180) so the seam of the closed curve sits at the back.
+    const int n = params.points;
+    auto degrees = [&](int i) { return -180.0 + 360.0 * i / n; };
+    auto direction = [&](int i) {
+        const double rad = degrees(i) * kPi / 180.0;
+        return fwd * float(std::cos(rad)) + side * float(std::sin(rad));
+    };
+    std::vector<double> drop(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) drop[size_t(i)] = drop_at(params, degrees(i)) * length_fb;
+    // The key heights put the hairline "over the ears" at a fixed fraction of the head's length, but
+    // ears sit higher on some heads: on the Lee Perry-Smith scan the outermost hit there was the ear's
+    // bowl, and gathered hair rooted on the ear (a trial). On each side, the azimuths between the
+    // temple and the nape whose hairline would pass below an ear's top span the ear; across that span
+    // (and 4 degrees beyond) the hairline passes 2% of the head's length above the highest ear top.
+    for (const int sign : {-1, 1}) {
+        double ear_top = std::numeric_limits<double>::infinity(), first = 0.0, last = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const double deg = degrees(i) * sign;
+            if (deg <= 65.0 || deg >= 150.0) continue;
+            const double t = ear_top_above(scalp, top, up, direction(i), reach, length_fb, drop[size_t(i)]);
+            if (t < 0.0) continue;
+            first = std::isfinite(ear_top) ? std::min(first, deg) : deg;
+            last = std::isfinite(ear_top) ? std::max(last, deg) : deg;
+            ear_top = std::min(ear_top, t);
+        }
+        // An ear spans 10-30 degrees of azimuth; bumps over a wider span are something else (the
+        // sculpted curls of the Demosthenes bust raised its hairline over a third of the side).
+        if (!std::isfinite(ear_top) || last - first > 40.0) continue;
+        for (int i = 0; i < n; ++i) {
+            const double deg = degrees(i) * sign;
+            if (deg >= first - 4.0 && deg <= last + 4.0) drop[size_t(i)] = std::min(drop[size_t(i)], ear_top - 0.02 * length_fb);
+        }
+    }
+
+    CurveSet out = CurveSet::from_counts(std::vector<int64_t>{n});
     auto P = out.positions_for_write();
-    for (int i = 0; i < params.points; ++i) {
-        // Start at the nape (azimuth -180) so the seam of the closed curve sits at the back.
-        const double deg = -180.0 + 360.0 * i / params.points;
-        const double rad = deg * kPi / 180.0;
-        const float3 d = fwd * float(std::cos(rad)) + side * float(std::sin(rad));
-        const float3 a = top - up * float(drop_at(params, deg) * length_fb);
+    for (int i = 0; i < n; ++i) {
+        const double deg = degrees(i);
+        const float3 d = direction(i);
+        const float3 a = top - up * float(drop[size_t(i)]);
         if (!outermost_hit(scalp, a + d * reach, a, P[i])) {
-            throw InvalidGeometry("hairline: no scalp at azimuth " + format_number(deg) + " degrees, " + format_number(drop_at(params, deg) * length_fb) +
+            throw InvalidGeometry("hairline: no scalp at azimuth " + format_number(deg) + " degrees, " + format_number(drop[size_t(i)]) +
                                   " below the top (is --up right, and the head closed there?)");
         }
     }

@@ -5,11 +5,14 @@
 
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
+#include "kernel/io/mesh_io.h"
 #include "ops/hair_region.h"
 #include "ops/head.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace groom;
@@ -48,6 +51,110 @@ TEST(Hairline, OnASphereFollowsTheKeyHeights)
     EXPECT_GT(P[180].z - C.z, 0.5f * R);
     // It goes once around: a hair region accepts it.
     EXPECT_NO_THROW(HairRegion(sphere, h, CurveSet(), HairRegionParams{}));
+}
+
+namespace {
+
+/// A sphere with an ear: a box flap standing out of its +x side (azimuth 90 degrees, the head's
+/// left), the exact union of the two (the hairline only traces rays, by the signed distance).
+class SphereWithEar final : public Surface {
+public:
+    SphereWithEar(float radius, const float3& ear_lo, const float3& ear_hi) : sphere_({0, 0, 0}, radius), lo_(ear_lo), hi_(ear_hi) {}
+    float distance(const float3& p) const override { return std::min(sphere_.distance(p), box_distance(p)); }
+    float3 normal(const float3& p) const override { return sphere_.normal(p); }
+    float3 closest_point(const float3& p) const override { return sphere_.closest_point(p); }
+
+private:
+    float box_distance(const float3& p) const
+    {
+        const float3 c = (lo_ + hi_) * 0.5f, h = (hi_ - lo_) * 0.5f;
+        const float qx = std::fabs(p.x - c.x) - h.x, qy = std::fabs(p.y - c.y) - h.y, qz = std::fabs(p.z - c.z) - h.z;
+        const float3 out(std::max(qx, 0.0f), std::max(qy, 0.0f), std::max(qz, 0.0f));
+        return length(out) + std::min(std::max(qx, std::max(qy, qz)), 0.0f);
+    }
+    AnalyticSphere sphere_;
+    float3 lo_, hi_;
+};
+
+}  // namespace
+
+// An ear higher than the key heights expect (the Lee Perry-Smith scan's: the hairline crossed its
+// bowl and gathered hair rooted on it, a trial). On a sphere of radius 10 (head length 16) a flap
+// stands 2 units out at azimuths 84-107 degrees, from y = -2 up to y = 3.5 (0.41 head lengths below
+// the top), where the "over the ears" key puts the hairline at y = 0.6-2.5. The hairline must pass
+// above the flap, on the sphere, and stay on the closed form everywhere else.
+TEST(Hairline, PassesAboveAnEarThatStandsHigherThanTheKeys)
+{
+    const float R = 10.0f, ear_top = 3.5f;
+    const SphereWithEar head(R, {8.5f, -2.0f, -3.0f}, {11.5f, ear_top, 1.0f});
+    Bounds3 box;
+    box.extend(float3(-R, -R, -R));
+    box.extend(float3(11.5f, R, R));
+    HairlineParams p;
+    p.points = 360;
+    p.has_center = true;  // the sphere's axis (the ear would move the middle of the bounds)
+    const CurveSet h = make_hairline(head, box, p);
+    const CurveSet plain = make_hairline(AnalyticSphere({0, 0, 0}, R), box, p);
+    const auto P = h.positions(), Q = plain.positions();
+    int over_ear = 0;
+    for (int i = 0; i < 360; ++i) {
+        const float deg = -180.0f + float(i);
+        EXPECT_NEAR(length(P[i]), R, 1e-3f * R) << "azimuth " << deg << ": not on the skull (on the ear?)";
+        const bool beside_ear = P[i].x > 0.0f && P[i].z > -3.5f && P[i].z < 1.5f;
+        // Ray hits agree to the tracing's tolerance (1e-6 of the ray, 3.5e-5 here) where nothing moved.
+        if (beside_ear && std::fabs(P[i].y - Q[i].y) > 1e-3f) {
+            ++over_ear;
+            // 2% of the head's length (0.32) above the flap's top, within the 1% steps of the scan.
+            EXPECT_GT(P[i].y, ear_top) << "azimuth " << deg;
+            EXPECT_LT(P[i].y, ear_top + 0.32f + 0.17f) << "azimuth " << deg;
+        }
+        else if (!(deg > 70.0f && deg < 120.0f)) {
+            EXPECT_NEAR(distance(P[i], Q[i]), 0.0f, 1e-4f) << "azimuth " << deg << " moved, away from the ear";
+        }
+    }
+    EXPECT_GE(over_ear, 20);  // 84-107 degrees at one point a degree
+}
+
+// The scan the trial found it on: Lee Perry-Smith's ears stand above the "over the ears" key, and
+// the hairline crossed the left ear's bowl and the right ear's helix. Read from the output as a
+// viewer would: a point on the skull lies no farther out from the head's axis than the skull a little
+// above it (2-4% of the head's length higher, where the side of the head is near vertical); a point
+// on an ear stands out by the ear's depth (5.5% of the head's length on this scan, before).
+TEST(Hairline, OnARealScanNoPointLiesOnAnEar)
+{
+    GROOM_REQUIRE_SHARED(path, "lee_perry_smith/LeePerrySmith.obj");
+    const ScalpField scalp = build_scalp(read_mesh(path));
+    const CurveSet h = make_hairline(scalp, scalp.bounds(), HairlineParams{});
+    // The head's axis, top and length as make_hairline finds them (its defaults: +Y up, +Z forward).
+    const Bounds3 box = scalp.bounds();
+    const float reach = length(box.size()) + 1.0f;
+    const float3 up(0, 1, 0), fwd(0, 0, 1), side = cross(up, fwd), c = box.center();
+    float3 top, front, back;
+    ASSERT_TRUE(scalp.first_intersection(c + up * reach, c, top));
+    const float3 a0 = top - up * (0.4f * dot(top - c, up));
+    ASSERT_TRUE(scalp.first_intersection(a0 + fwd * reach, a0, front));
+    ASSERT_TRUE(scalp.first_intersection(a0 - fwd * reach, a0, back));
+    const float L = dot(front - back, fwd);
+    const auto P = h.positions();
+    const int n = int(P.size());
+    int on_ear = 0;
+    for (int i = 0; i < n; ++i) {
+        const double rad = (-180.0 + 360.0 * i / n) * 3.14159265358979323846 / 180.0;
+        const float3 d = fwd * float(std::cos(rad)) + side * float(std::sin(rad));
+        const float drop = dot(top - P[i], up);
+        const float r = dot(P[i] - (top - up * drop), d);
+        float skull = 0.0f;
+        for (const float above : {0.02f, 0.03f, 0.04f}) {
+            const float3 a = top - up * (drop - above * L);
+            float3 hit;
+            if (scalp.first_intersection(a + d * reach, a, hit)) skull = std::max(skull, dot(hit - a, d));
+        }
+        if (r - skull > 0.02f * L) {
+            ++on_ear;
+            ADD_FAILURE() << "point " << i << " stands " << (r - skull) / L << " head lengths out of the skull above it";
+        }
+    }
+    EXPECT_EQ(on_ear, 0);
 }
 
 TEST(Hairline, OnTheDefaultHeadSitsWhereAHairlineDoes)

@@ -141,7 +141,7 @@ void setup(CommandContext& ctx)
     app->add_option("--write-adjacent", args->write_adjacent, "Write the neighbours found (or given) in --adjacent's format, to edit and reuse");
     app->add_option("--mediate", args->mediate,
                     "Roots between the source (0) and the adjacent guide (1), drawn per segment from lo,hi; 0.5 = all on the midpoint "
-                    "(the talk's); default 0.1,0.45: spread over the strip, a bare parting line in the middle tenth");
+                    "(the talk's); default 0.1,0.47: spread over the strip, a bare parting line in the middle 6%");
     auto* count = app->add_option("--count", p.count, "Segments per side of each guide (>= 1); default: one every 1/200 of the typical gap between guides");
     auto* spacing = app->add_option("--spacing", p.spacing, "Arc length between segments along the guide, scene units (> 0)");
     app->add_option("--samples", p.samples, "Points per segment (>= 2)")->capture_default_str();
@@ -157,6 +157,9 @@ void setup(CommandContext& ctx)
                     "Group segments so each group ends on one point of the guide: knots (the braid's knots), every:K (K consecutive "
                     "segments), or a FILE of "
                     "lines 'guide,u' (u = arc-length fraction 0..1); default: each segment ends at its own point");
+    app->add_option("--converge", p.converge,
+                    "With --centroids: how far a group's segments converge on its centroid, 0..1 (1 = all on it, the talk's)")
+        ->capture_default_str();
     auto* frequency = app->add_option("--frequency", args->frequency, "With --centroids knots: knots per guide, as in groom braid");
     auto* knot_length = app->add_option("--knot-length", args->knot_length, "With --centroids knots: arc length of one knot, scene units, as in groom braid");
     auto* knot_bias = app->add_option("--knot-bias", args->knot_bias, "With --centroids knots: knot distribution bias (-1, 1), as in groom braid");

@@ -90,7 +90,7 @@ if have cornrow-guides; then
     fi
     if have partition; then
         step "partition" groom partition "$out/alisha_guides.usda" --scalp "$scalp" -o "$out/alisha_edges.usda" \
-            --centroids knots --knot-length "$knot" --samples 6 --max-height 1
+            --centroids knots --knot-length "$knot" --samples 6 --max-height 1 ${hairline:+--hairline "$hairline"}
         alisha+=("$out/alisha_edges.usda")
     else
         skip "groom partition (edge hairs) is not in this build"

@@ -36,6 +36,33 @@ constexpr double kMaxOutputPoints = 2e9;
 constexpr uint64_t kJitterStream = 0x9a27;  // Rng stream for station jitter (per side: + side)
 constexpr uint64_t kMediateStream = 0x9a37;  // Rng stream for the root's place across the gap (per side: + side)
 
+/// Where the hair region ends walking on the scalp from p's foot in direction `dir` (kept in the
+/// tangent plane), `step` at a time for at most `reach`: the last haired place, to a sixty-fourth of
+/// a step (bisection). False when the walk stays haired (or leaves the scalp) that far.
+bool hairline_beside(const Surface& scalp, const HairRegion& region, const float3& p, float3 dir, float step, float reach, float3& edge)
+{
+    float3 x = scalp.closest_point(p);
+    if (!region.inside_hairline(x)) return false;
+    for (float walked = 0.0f; walked < reach; walked += step) {
+        const float3 n = scalp.normal(x);
+        dir = normalize(dir - n * dot(dir, n), float3(0, 0, 0));
+        if (length_squared(dir) == 0.0f) return false;
+        const float3 next = scalp.closest_point(x + dir * step);
+        if (!isfinite(next)) return false;
+        if (!region.inside_hairline(next)) {
+            float3 in = x, out = next;
+            for (int k = 0; k < 6; ++k) {
+                const float3 mid = scalp.closest_point(lerp(in, out, 0.5f));
+                (region.inside_hairline(mid) ? in : out) = mid;
+            }
+            edge = in;
+            return true;
+        }
+        x = next;
+    }
+    return false;
+}
+
 }  // namespace
 
 void PartitionParams::validate() const
@@ -48,6 +75,7 @@ void PartitionParams::validate() const
     require(samples >= 2, "`samples` must be >= 2 (got " + std::to_string(samples) + ")");
     widths.validate("partition");
     require(std::isfinite(jitter) && jitter >= 0.0f && jitter <= 1.0f, "`jitter` must be in [0, 1] (got " + num(jitter) + ")");
+    require(std::isfinite(converge) && converge >= 0.0f && converge <= 1.0f, "`converge` must be in [0, 1] (got " + num(converge) + ")");
     require(std::isfinite(max_gap) && max_gap >= 0.0f, "`max_gap` must be >= 0 scene units, 0 = automatic (got " + num(max_gap) + ")");
     require(std::isfinite(max_height) && max_height >= 0.0f,
             "`max_height` must be >= 0 scene units, 0 = no limit (got " + num(max_height) + ")");
@@ -131,11 +159,14 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
 
     // Neither count nor spacing: a spacing from the guides' own layout, so the density of edge hairs
     // does not depend on the scene's units.
+    const bool to_hairline = params.region && params.region->has_hairline();
+    const double gap = params.count == 0 && params.spacing == 0.0f || to_hairline ? typical_guide_gap(guides, GuidePointIndex(guides)) : 0.0;
     double spacing = params.spacing;
-    if (params.count == 0 && params.spacing == 0.0f) {
-        const double gap = typical_guide_gap(guides, GuidePointIndex(guides));
-        spacing = gap > 0.0 ? gap / double(kAutoSpacingPerGap) : 0.0;
-    }
+    if (params.count == 0 && params.spacing == 0.0f) spacing = gap > 0.0 ? gap / double(kAutoSpacingPerGap) : 0.0;
+    // A side with no neighbour reaches the hairline, when there is one within this: the outermost
+    // rows' edge hairs cover the scalp out to it (without, the sides of a head of cornrows stayed bald
+    // inside the hairline, like an undercut: a trial).
+    const float hairline_reach = params.max_gap > 0.0f ? params.max_gap : float(2.0 * gap);
     // Refuse before allocating anything when the options would make an absurd number of segments
     // (a --spacing in the wrong units, say).
     auto station_count = [&](double length) {
@@ -184,9 +215,11 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                                               : params.centroids == CentroidMode::Knots  ? braid_knot_parameters(params.knots, length)
                                                                                          : std::vector<float>{};
                 const int32_t sides[2] = {adjacent[c].left, adjacent[c].right};
+                const std::vector<float3> tangents = polyline_tangents(src);
                 for (int side = 0; side < 2; ++side) {
-                    if (sides[side] < 0) continue;
-                    const PolylineNearest& other = *nearest[sides[side]];
+                    const bool beside_hairline = sides[side] < 0;
+                    if (beside_hairline && !(to_hairline && hairline_reach > 0.0f)) continue;
+                    const PolylineNearest* other = beside_hairline ? nullptr : &*nearest[sides[side]];
                     const Rng rng(params.seed, uint64_t(ids[c]), kJitterStream + side);
                     const Rng across(params.seed, uint64_t(ids[c]), kMediateStream + side);
                     for (int i = 0; i < n; ++i) {
@@ -196,17 +229,37 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                         const double s = std::clamp(start + i * step + jitter, 0.0, length);
                         const float3 p = point_at_length(src, cum, s);
                         if (params.max_height > 0.0f && scalp.distance(p) > params.max_height) continue;
-                        const PolylineNearest::Hit hit = other.closest(p);
-                        if (hit.segment < 0) continue;
-                        if (params.max_gap > 0.0f && hit.distance > params.max_gap) continue;
+                        PolylineNearest::Hit hit;
+                        if (other) {
+                            hit = other->closest(p);
+                            if (hit.segment < 0) continue;
+                            if (params.max_gap > 0.0f && hit.distance > params.max_gap) continue;
+                        }
+                        else {
+                            // No neighbour on this side: the hairline, straight out sideways on the scalp.
+                            const float3 n = scalp.normal(p);
+                            const float3 left = left_direction(n, tangent_at_length(src, cum, tangents, s));
+                            if (!hairline_beside(scalp, *params.region, p, side == 0 ? left : -left, 0.05f * hairline_reach, hairline_reach,
+                                                 hit.point)) {
+                                continue;
+                            }
+                        }
                         Plan plan;
                         plan.side = side;
                         plan.station = i;
                         // Sec. 2.2: rooted between the source point and the nearest adjacent point, on
                         // the scalp, at a fraction drawn from `mediate` (exactly lo when lo = hi).
                         const FloatRange& m = params.mediate;
-                        const float f = m.hi > m.lo ? m.lo + (m.hi - m.lo) * float(double(across.at(uint64_t(i)) >> 11) * 0x1.0p-53) : m.lo;
-                        plan.root = scalp.closest_point(lerp(p, hit.point, std::min(f, m.hi)));
+                        // Density rising linearly toward hi (the square root of a uniform draw): every
+                        // hair covers the scalp from its root to the braid, so with uniform roots the
+                        // cover thinned to nothing at the parting and the bare line read three times
+                        // wider than the gap left (a trial); this way a third of the hairs still cross
+                        // 80% of the way out.
+                        const double u = std::sqrt(double(across.at(uint64_t(i)) >> 11) * 0x1.0p-53);
+                        // Toward the hairline there is no parting to leave bare: roots reach the edge.
+                        const float hi = other ? m.hi : 1.0f;
+                        const float f = hi > m.lo ? m.lo + (hi - m.lo) * float(u) : m.lo;
+                        plan.root = scalp.closest_point(lerp(p, hit.point, std::min(f, hi)));
                         if (params.region && !params.region->haired(plan.root)) continue;  // outside the hairline, on a parting
                         double end_s = s;
                         plan.group = i;
@@ -225,6 +278,10 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                             plan.group = best;
                             end_s = us[best] * length;
                         }
+                        // A group's hairs end spread over (1 - converge) of their stations' span around
+                        // its centroid: all on one point, they fanned out of each knot like a starburst,
+                        // with bare notches between the fans (a trial's close-ups).
+                        if (end_s != s) end_s = std::clamp(end_s + (s - end_s) * double(1.0f - params.converge), 0.0, length);
                         plan.end = end_s == s ? p : point_at_length(src, cum, end_s);
                         plans[c].push_back(plan);
                     }

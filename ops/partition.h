@@ -43,8 +43,9 @@ struct PartitionParams {
     /// per segment from [lo, hi]; 0 <= lo <= hi <= 1. Sec. 2.2 roots every segment at the midpoint
     /// ({0.5, 0.5}); on a head that reads as hair growing densest along the parting, with bare scalp
     /// beside each braid (a trial's pictures). The default spreads the roots over the strip between
-    /// the braid and the parting and leaves the middle tenth bare: the parting line.
-    FloatRange mediate{0.1f, 0.45f};
+    /// the braid and the parting, denser toward the parting (see partition()), and leaves the middle
+    /// 6% bare: the parting line.
+    FloatRange mediate{0.1f, 0.47f};
     /// Segments per side of each source, spread evenly in arc length (>= 1). Exclusive with spacing.
     /// Both 0 (the default): a segment every kAutoSpacingPerGap-th of the typical gap between guides
     /// (typical_guide_gap), about 2,000 a side on a head of cornrows, enough to read as hair rather
@@ -69,6 +70,10 @@ struct PartitionParams {
     float max_height = 0.0f;
 
     CentroidMode centroids = CentroidMode::Stations;
+    /// With centroids: how far a group's segments converge on its centroid, [0, 1]. 1 = all end on
+    /// the centroid (the talk's); 0 = each ends at its own station. Between, the ends spread over
+    /// (1 - converge) of the group's span around the centroid, so the hair combs into each knot.
+    float converge = 0.6f;
     int every = 0;                               ///< stations per group for CentroidMode::Every (>= 1)
     std::vector<CentroidPoint> centroid_points;  ///< for CentroidMode::Points; guides absent get Stations
     /// For CentroidMode::Knots: the knot placement of `groom braid` (frequency or knot_length, and the

@@ -6,6 +6,8 @@
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
+#include "ops/hair_region.h"
+#include "tests/ops/circle_on_sphere.h"
 #include "tests/ops/guide_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -114,13 +116,16 @@ namespace {
 
 /// Roots of two neighbouring rows on meridians 0 and theta of the unit sphere, seen as a groom
 /// artist sees the strip between the rows: how far each root is from the parting's midline, and
-/// which cells of the strip (4 across, from the braid at fraction 0.1 to the parting at 0.45; 10
+/// which cells of the strip (4 across, from the braid at fraction 0.1 to the parting at 0.47; 10
 /// along the middle of the rows) hold a root.
 struct StripRoots {
     double nearest_to_midline = 1e9;  ///< least |longitude - theta / 2| of a root, radians
     int cells_across_with_roots = 0;  ///< of 4, cells across (any along) holding a root
     int empty_cells = 0;              ///< of 2 sides x 4 x 10
-    int outside_strip = 0;            ///< roots beyond the fractions 0.1..0.45 of their side
+    int outside_strip = 0;            ///< roots beyond the fractions 0.1..0.47 of their side
+    /// Share of the hairs that cover the last quarter of the strip before the parting: a hair covers
+    /// the scalp from its root to the braid, so those rooted in that quarter.
+    double cover_near_parting = 0.0;
 };
 
 StripRoots strip_roots(std::optional<FloatRange> mediate)
@@ -129,15 +134,16 @@ StripRoots strip_roots(std::optional<FloatRange> mediate)
     const std::vector<Arc> arcs = {{0.0f, -0.5f, 0.5f}, {float(theta), -0.5f, 0.5f}};
     PartitionParams params;
     if (mediate) params.mediate = *mediate;  // else the default
-    params.count = 400;
+    params.count = 2000;
     params.samples = 4;
     const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
     // Closed form: the root at fraction f from a row toward its neighbour (same latitude) projects
     // to longitude atan2(f sin theta, 1 - f + f cos theta) from the row.
     const auto lon_at = [&](double f) { return std::atan2(f * std::sin(theta), 1.0 - f + f * std::cos(theta)); };
-    const double lo = lon_at(0.1), hi = lon_at(0.45);
+    const double lo = lon_at(0.1), hi = lon_at(0.47);
     bool cell[2][4][10] = {};
     StripRoots r;
+    int64_t near_parting = 0;
     const auto guide = out.find<int32_t>(Domain::Curve, "guide");
     for (size_t c = 0; c < out.num_curves(); ++c) {
         const float3 root = first_point(out, c);
@@ -148,9 +154,11 @@ StripRoots strip_roots(std::optional<FloatRange> mediate)
         const double lat = std::asin(std::clamp(double(root.y), -1.0, 1.0));
         if (std::fabs(lat) >= 0.4) continue;
         const int across = std::clamp(int((own - lo) / (hi - lo) * 4.0), 0, 3);
+        near_parting += across == 3;
         const int along = std::clamp(int((lat + 0.4) / 0.8 * 10.0), 0, 9);
         cell[guide[c]][across][along] = true;
     }
+    r.cover_near_parting = out.num_curves() > 0 ? double(near_parting) / double(out.num_curves()) * (1.0 / 0.8) : 0.0;  // of those along the middle 80%
     for (int a = 0; a < 4; ++a) {
         bool any = false;
         for (int side = 0; side < 2; ++side)
@@ -165,19 +173,68 @@ StripRoots strip_roots(std::optional<FloatRange> mediate)
 TEST(Partition, DefaultRootsCoverTheStripBetweenBraidAndPartingAndLeaveTheMidlineBare)
 {
     // What the artist sees between two cornrows: hair rooted all over the strip from each braid to
-    // the parting, and a clean bare line down the middle (the middle tenth of the gap).
+    // the parting, and a clean bare line down the middle (the middle 6% of the gap).
     const StripRoots d = strip_roots(std::nullopt);
-    const double theta = 0.3, bare = 0.5 * theta - std::atan2(0.45 * std::sin(theta), 0.55 + 0.45 * std::cos(theta));
-    EXPECT_GT(bare, 0.014);  // about 0.015 rad: a tenth of the gap, 0.86 degrees either side
+    const double theta = 0.3, bare = 0.5 * theta - std::atan2(0.47 * std::sin(theta), 0.53 + 0.47 * std::cos(theta));
+    EXPECT_GT(bare, 0.0085);  // about 0.009 rad: 6% of the gap, 0.5 degrees either side
     EXPECT_GE(d.nearest_to_midline, bare - 1e-4) << "a root on the parting line";
     EXPECT_EQ(d.outside_strip, 0);
-    EXPECT_EQ(d.empty_cells, 0) << "bare patches in the strip (80 cells, 400 roots a side)";
+    EXPECT_EQ(d.empty_cells, 0) << "bare patches in the strip (80 cells, 2000 roots a side)";
+    // Roots denser toward the parting (density rising linearly: 7/16 of them in the last quarter), so
+    // the cover does not thin out to nothing there (uniform roots: a quarter).
+    EXPECT_GT(d.cover_near_parting, 0.38);
+    EXPECT_LT(d.cover_near_parting, 0.50);
     EXPECT_EQ(d.cells_across_with_roots, 4);
     // The talk's default (every root on the midpoint) is what this test tells apart: every root on
     // the parting line, one cell across holding them all.
     const StripRoots talk = strip_roots(FloatRange{0.5f, 0.5f});
     EXPECT_LT(talk.nearest_to_midline, 1e-4);
     EXPECT_LE(talk.cells_across_with_roots, 1);
+}
+
+// The outermost row of a head has no neighbour on its outer side; with a hairline its edge hairs
+// reach the hairline (without, the sides of a cornrowed head stayed bald inside the hairline, like an
+// undercut: a trial). Two rows along latitudes 0.3 and 0.6 of the unit sphere, the hairline the
+// equator: the lower row's outer side is rooted from near it down to the equator and never below; the
+// upper row's outer side finds no hairline within two gaps (toward the pole) and gets nothing.
+TEST(Partition, OuterSideOfTheLastRowReachesTheHairline)
+{
+    std::vector<std::vector<float3>> rows;
+    for (const float lat : {0.3f, 0.6f}) {
+        std::vector<float3> row;
+        for (int k = 0; k <= 100; ++k) row.push_back(on_sphere(lat, -0.5f + float(k) / 100.0f));
+        rows.push_back(row);
+    }
+    CurveSet guides = CurveSet::from_counts(std::vector<int64_t>{101, 101});
+    auto G = guides.positions_for_write();
+    for (size_t c = 0; c < 2; ++c)
+        for (size_t k = 0; k < 101; ++k) G[c * 101 + k] = rows[c][k];
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    const HairRegion region(sphere, circle_on_sphere({0, 0, 0}, 1.0f, {0, 1, 0}, 0.0f, 360), CurveSet(), HairRegionParams{});
+    PartitionParams params;
+    params.count = 200;
+    params.samples = 4;
+    params.region = &region;
+    const CurveSet out = partition(guides, sphere, params);
+    const auto guide = out.find<int32_t>(Domain::Curve, "guide");
+    int below_row = 0, near_hairline = 0, beyond = 0, above_top = 0;
+    for (size_t c = 0; c < out.num_curves(); ++c) {
+        const double lat = std::asin(std::clamp(double(first_point(out, c).y), -1.0, 1.0));
+        if (guide[c] == 0 && lat < 0.3) {
+            ++below_row;
+            near_hairline += lat < 0.3 * 0.25;  // the quarter of the strip next to the hairline
+            beyond += lat < -1e-3;
+        }
+        above_top += guide[c] == 1 && lat > 0.6;
+    }
+    EXPECT_EQ(below_row, 200);  // every station of the outer side (the hairline is 0.3 away, within reach)
+    EXPECT_GT(near_hairline, 200 / 8) << "the roots stop short of the hairline";
+    EXPECT_EQ(beyond, 0) << "roots past the hairline";
+    EXPECT_EQ(above_top, 0) << "the top row's outer side has no hairline within reach";
+    // Without a hairline the outer sides get nothing, as before.
+    params.region = nullptr;
+    const CurveSet inner = partition(guides, sphere, params);
+    EXPECT_EQ(inner.num_curves(), 400u);  // the two inner sides only
 }
 
 TEST(Partition, ArcsOfDifferentLengthsUseTheNearestEndAndTheMediatedFraction)
@@ -268,18 +325,25 @@ TEST(Partition, EveryKGroupsConvergeOnTheirCentroid)
     params.count = 12;
     params.centroids = CentroidMode::Every;
     params.every = 5;
-    const CurveSet out = partition(guides, AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
-    const auto group = out.find<int32_t>(Domain::Curve, "group");
-    const auto curves = curves_of(out, 0, 0);
-    ASSERT_EQ(curves.size(), 12u);
-    for (int i = 0; i < 12; ++i) {
-        const int g = i / 5;
-        EXPECT_EQ(group[curves[i]], g);
-        // Stations 1/3 apart from 1/6; a group's centroid is its middle station (the last has 2).
-        const int members = std::min(5, 12 - 5 * g);
-        const float z = 1.0f / 6.0f + (5 * g + 0.5f * (members - 1)) / 3.0f;
-        EXPECT_NEAR3(last_point(out, curves[i]), float3(0, 0.2f, z), 1e-5f);
-        EXPECT_NEAR3(first_point(out, curves[i]), float3(0.5f, 0, 1.0f / 6.0f + i / 3.0f), 1e-5f);
+    for (const float converge : {1.0f, 0.6f, 0.0f}) {
+        params.converge = converge;
+        const CurveSet out = partition(guides, AnalyticPlane({0, 0, 0}, {0, 1, 0}), params);
+        const auto group = out.find<int32_t>(Domain::Curve, "group");
+        const auto curves = curves_of(out, 0, 0);
+        ASSERT_EQ(curves.size(), 12u);
+        for (int i = 0; i < 12; ++i) {
+            const int g = i / 5;
+            EXPECT_EQ(group[curves[i]], g);
+            // Stations 1/3 apart from 1/6; a group's centroid is its middle station (the last has 2).
+            // Ends: converge 1 on the centroid (the talk's), 0 at the own station, between: the
+            // station's offset from the centroid times 1 - converge.
+            const int members = std::min(5, 12 - 5 * g);
+            const float centroid = 1.0f / 6.0f + (5 * g + 0.5f * (members - 1)) / 3.0f, station = 1.0f / 6.0f + i / 3.0f;
+            const float z = centroid + (station - centroid) * (1.0f - converge);
+            SCOPED_TRACE(converge);
+            EXPECT_NEAR3(last_point(out, curves[i]), float3(0, 0.2f, z), 1e-5f);
+            EXPECT_NEAR3(first_point(out, curves[i]), float3(0.5f, 0, station), 1e-5f);
+        }
     }
 }
 
@@ -292,6 +356,7 @@ TEST(Partition, KnotCentroidsAreTheBraidsKnotCentres)
     PartitionParams params;
     params.count = 16;  // stations at z = 0.125, 0.375, ...
     params.centroids = CentroidMode::Knots;
+    params.converge = 1.0f;  // every segment on its centroid, where the closed form puts it
     for (int run = 0; run < 2; ++run) {
         // F = 4 given directly, or as 1-unit knots on the 4-unit guide: centres at z = 0.5, 1.5, 2.5, 3.5.
         params.knots.frequency.reset();
@@ -327,6 +392,7 @@ TEST(Partition, GivenCentroidsGatherTheNearestSegments)
     PartitionParams params;
     params.count = 10;
     params.centroids = CentroidMode::Points;
+    params.converge = 1.0f;  // every segment on its centroid, where the closed form puts it
     params.centroid_points = {{0, 0.75f}, {0, 0.25f}};  // any order; guide 1 has none
     const CurveSet out = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
     const auto group = out.find<int32_t>(Domain::Curve, "group");

@@ -2,6 +2,7 @@
 #include "cli/command.h"
 #include "cli/region_options.h"
 #include "cli/scalp_options.h"
+#include "cli/scene_scale.h"
 #include "cli/width_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
@@ -145,7 +146,8 @@ void setup(CommandContext& ctx)
     auto* count = app->add_option("--count", p.count, "Segments per side of each guide (>= 1); default: one every 1/200 of the typical gap between guides");
     auto* spacing = app->add_option("--spacing", p.spacing, "Arc length between segments along the guide, scene units (> 0)");
     app->add_option("--samples", p.samples, "Points per segment (>= 2)")->capture_default_str();
-    add_width_options(app, args->widths);
+    add_width_options(app, args->widths, "the defaults x --units-per-cm");
+    app->add_option("--units-per-cm", p.units_per_cm, "Scene units per centimetre, for the default widths (0.01 for metres)")->capture_default_str();
     args->width_opt = app->add_option("--width", args->width, "One hair diameter root to tip (--root-width W --tip-width W), scene units, > 0")
         ->excludes(args->widths.root_opt)
         ->excludes(args->widths.tip_opt);
@@ -217,6 +219,7 @@ void setup(CommandContext& ctx)
         if (params.centroids == CentroidMode::Points) params.centroid_points = read_centroids(spec, guides.num_curves());
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        if (!params.widths.given()) warn_scene_scale(common, "partition", scalp->bounds(), params.units_per_cm, "the default widths");
 
         if (params.adjacent.empty()) {
             params.adjacent = find_adjacent_guides(guides, *scalp, params.max_gap, progress.get());

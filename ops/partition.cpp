@@ -74,6 +74,7 @@ void PartitionParams::validate() const
     require(std::isfinite(spacing) && spacing >= 0.0f, "`spacing` must be > 0 scene units, or 0 for automatic (got " + num(spacing) + ")");
     require(samples >= 2, "`samples` must be >= 2 (got " + std::to_string(samples) + ")");
     widths.validate("partition");
+    require(std::isfinite(units_per_cm) && units_per_cm > 0.0f, "`units_per_cm` must be a finite number > 0 (got " + num(units_per_cm) + ")");
     require(std::isfinite(jitter) && jitter >= 0.0f && jitter <= 1.0f, "`jitter` must be in [0, 1] (got " + num(jitter) + ")");
     require(std::isfinite(converge) && converge >= 0.0f && converge <= 1.0f, "`converge` must be in [0, 1] (got " + num(converge) + ")");
     require(std::isfinite(max_gap) && max_gap >= 0.0f, "`max_gap` must be >= 0 scene units, 0 = automatic (got " + num(max_gap) + ")");
@@ -334,7 +335,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     });
     carry_curve_attributes(guides, dst, src_curve);
     // New hairs: always the taper asked for, never a guide's (braid-sized) curve width.
-    apply_hair_widths(dst, params.widths.resolved());
+    apply_hair_widths(dst, params.widths.resolved(params.units_per_cm));
     add_root_uvs(dst, scalp);
     return dst;
 }

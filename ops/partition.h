@@ -58,6 +58,8 @@ struct PartitionParams {
     /// Point `width`, tapered root to tip (--root-width, --tip-width; --width W for both); unset ends
     /// take the human-hair defaults (ops/hair_widths.h).
     HairWidths widths;
+    /// Scene units per centimetre, for the default widths (a head in metres: 0.01); > 0.
+    float units_per_cm = 1.0f;
     /// Random shift of each station along the source, as a fraction of the spacing; [0, 1].
     float jitter = 0.0f;
     uint64_t seed = 0;

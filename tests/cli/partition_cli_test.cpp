@@ -189,6 +189,7 @@ TEST(PartitionCli, RejectsBadOptionsAndFilesWithoutWritingOutput)
     expect_error({"--mediate", "0.1,0.2,0.3"}, 2, "--mediate: expected 1 to 2 comma-separated numbers, got 3");
     expect_error({"--count", "0"}, 2, "--count must be >= 1 (got 0)");
     expect_error({"--spacing", "0"}, 2, "--spacing must be > 0 scene units (got 0)");
+    expect_error({"--units-per-cm", "-1"}, 2, "--units-per-cm must be a finite number > 0 (got -1)");
     expect_error({"--count", "3", "--spacing", "0.1"}, 2, "--count and --spacing are exclusive");
     expect_error({"--samples", "1"}, 2, "--samples must be >= 2 (got 1)");
     expect_error({"--width", "-1"}, 2, "--width must be > 0");

@@ -110,6 +110,13 @@ TEST(Partition, ThreeMeridianArcsRootAtTheMidpointOnTheSphere)
     const auto W = out.find<float>(Domain::Point, "width");
     EXPECT_EQ(W[out.points_of(0).begin], kDefaultRootWidthCm);
     EXPECT_EQ(W[out.points_of(0).end - 1], kDefaultTipWidthCm);
+    // A scene in millimetres: the default widths in its units (the Lee Perry-Smith scan's edge hairs
+    // were rods of 0.4 mm before partition took --units-per-cm, a trial).
+    params.units_per_cm = 10.0f;
+    const CurveSet mm = partition(meridian_guides(arcs), AnalyticSphere({0, 0, 0}, 1.0f), params);
+    const auto Wmm = mm.find<float>(Domain::Point, "width");
+    EXPECT_FLOAT_EQ(Wmm[mm.points_of(0).begin], 10.0f * kDefaultRootWidthCm);
+    EXPECT_FLOAT_EQ(Wmm[mm.points_of(0).end - 1], 10.0f * kDefaultTipWidthCm);
 }
 
 namespace {
@@ -547,6 +554,7 @@ TEST(Partition, RejectsEachInvalidOption)
     expect_rejected([](auto& p) { p.mediate = {0.2f, 1.5f}; }, "`mediate` must be lo,hi with 0 <= lo <= hi <= 1 (got 0.2,1.5)");
     expect_rejected([](auto& p) { p.mediate = {0.4f, 0.3f}; }, "`mediate` must be lo,hi with 0 <= lo <= hi <= 1 (got 0.4,0.3)");
     expect_rejected([](auto& p) { p.mediate = {NAN, 0.5f}; }, "`mediate`");
+    expect_rejected([](auto& p) { p.units_per_cm = 0.0f; }, "`units_per_cm` must be a finite number > 0 (got 0)");
     expect_rejected([](auto& p) { p.count = -3; }, "`count` must be >= 1, or 0 for automatic (got -3)");
     expect_rejected([](auto& p) { p.count = 5; p.spacing = 0.5f; }, "`count` and `spacing` are exclusive");
     expect_rejected([](auto& p) { p.spacing = -1; }, "`spacing` must be > 0 scene units, or 0 for automatic (got -1)");

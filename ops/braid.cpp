@@ -322,7 +322,7 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
     std::vector<int64_t> hair_strand_point;
     if (M > 0) {
         FiberStats fs;
-        hair = braid_fibers(strands, sec, fiber_plans(plans, first_strand, params, strands.num_curves()), params, weave, fs,
+        hair = braid_fibers(strands, sec, fiber_plans(plans, first_strand, params, strands.num_curves()), params, weave, scalp, fs,
                             offset_reach, hair_strand_point, progress);
         report.flyaways = fs.flyaways;
         report.fed_in = fs.fed_in;

@@ -61,8 +61,8 @@ int64_t first_sample(const FiberDraw& d, std::span<const float> t)
 }  // namespace
 
 CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::span<const StrandFiberPlan> plans,
-                      const BraidParams& p, const BraidWeave& weave, FiberStats& stats, std::vector<float>& reach,
-                      std::vector<int64_t>& strand_point, Progress* progress)
+                      const BraidParams& p, const BraidWeave& weave, const Surface* scalp, FiberStats& stats,
+                      std::vector<float>& reach, std::vector<int64_t>& strand_point, Progress* progress)
 {
     const int64_t M = p.fibers;
     const int64_t nc = int64_t(strands.num_curves());
@@ -101,6 +101,14 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
     // A rope's or twist's fibers turn against the lay of its plies; a plait's strands twist gently.
     const double twist = double(p.fiber_twist) * (weave.winding() != 0 ? weave.winding() : -1);
     const float inv_sqrt_m = 1.0f / std::sqrt(float(M));
+    const bool on_scalp = p.orient == BraidOrient::Scalp;
+    // A root on the scalp, at the clearance plus half the fiber's width (the later push then leaves it).
+    auto onto_scalp = [&](const float3& x, float width) {
+        if (!on_scalp || !scalp) return x;
+        float3 n, c;
+        scalp->query(x, n, c);
+        return c + n * (p.clearance + 0.5f * width);
+    };
     const ProgressStep step(progress, "braid fibers", nc);
     parallel_for(nc, 16, [&](int64_t begin, int64_t end) {
         std::vector<float3> e1, e2;
@@ -141,6 +149,10 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
                 const IndexRange o = dst.points_of(oc);
                 const float blend_t = 0.35f * plan.knot_t;
                 const float c0 = std::cos(d.phi), s0 = std::sin(d.phi);
+                float3 start_root{};
+                // The join starts at the fiber's first point (the strand sample at or after join_t),
+                // so that point is the root itself.
+                const float join_from = d.feeds ? std::max(d.join_t, T[r.begin + j0]) : 0.0f;
                 for (int64_t j = j0; j < r.size(); ++j) {
                     const int64_t q = r.begin + j;
                     const float tj = T[q];
@@ -148,6 +160,7 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
                     // amplitude scale): its disc holds the fibers present, each of the full width.
                     const float rad = 0.5f * SW[q] * sec.spread[q];
                     const float fed = feed_scale(p.feed_in, plan.feed_t, tj);
+                    const float fiber_width = p.fiber_width > 0.0f ? p.fiber_width : SW[q] * inv_sqrt_m / fed;
                     const float fl = p.flatten * sec.press[q];
                     const float cphi = c0 * cos_twist[j] - s0 * sin_twist[j], sphi = s0 * cos_twist[j] + c0 * sin_twist[j];
                     float3 off = (e1[j] * (cphi * rad * (kFiberSpreadAcross + 0.5f * fl)) + e2[j] * (sphi * rad * (1.0f - fl))) * d.rho;
@@ -160,17 +173,36 @@ CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::s
                         }
                     }
                     float3 pos = pts[j] + off;
-                    if (d.feeds && tj - d.join_t < blend_t) {
+                    // A cornrow lies on the scalp (its normal is the section's up): hair joining it
+                    // comes from the scalp, level with the braid's underside. Elsewhere, from below.
+                    const float down = on_scalp ? 1.0f : 0.6f;
+                    if (d.feeds && tj - join_from < blend_t) {
                         // Joining: from beside the braid and below it, eased into the fiber's place.
-                        const float3 root = sec.centre[q] + sec.lateral[q] * (d.side * 1.1f * sec.half_width[q]) -
-                                            sec.up[q] * (0.6f * sec.half_height[q]);
-                        const float v = std::clamp((tj - d.join_t) / blend_t, 0.0f, 1.0f);
+                        const float3 root = onto_scalp(sec.centre[q] + sec.lateral[q] * (d.side * 1.1f * sec.half_width[q]) -
+                                                           sec.up[q] * (down * sec.half_height[q]),
+                                                       fiber_width);
+                        const float v = std::clamp((tj - join_from) / blend_t, 0.0f, 1.0f);
                         const float e = v * v * (3.0f - 2.0f * v);
                         pos = root + (pos - root) * e;
                     }
+                    else if (on_scalp && j0 == 0 && tj < blend_t) {
+                        // A cornrow's first stitch gathers hair growing from the scalp around it: each
+                        // fiber rises from the scalp, its root 1.4 times as far out across the braid
+                        // as its place in the first section, instead of all starting in one cut
+                        // section (a paintbrush, a trial's close-ups of the hairline).
+                        const int64_t q0 = r.begin;
+                        if (j == 0) {
+                            start_root = onto_scalp(sec.centre[q0] + sec.lateral[q0] * (1.4f * dot(pos - sec.centre[q0], sec.lateral[q0])) -
+                                                        sec.up[q0] * sec.half_height[q0],
+                                                    fiber_width);
+                        }
+                        const float v = std::clamp(tj / blend_t, 0.0f, 1.0f);
+                        const float e = v * v * (3.0f - 2.0f * v);
+                        pos = start_root + (pos - start_root) * e;
+                    }
                     const int64_t oq = o.begin + (j - j0);
                     dP[oq] = pos;
-                    dW[oq] = p.fiber_width > 0.0f ? p.fiber_width : SW[q] * inv_sqrt_m / fed;
+                    dW[oq] = fiber_width;
                     reach[oq] = length(pos - pts[j]);
                     strand_point[oq] = q;
                 }

@@ -6,6 +6,7 @@
 // thread count or guide order.
 #pragma once
 
+#include "fields/surface.h"
 #include "kernel/curve_set.h"
 #include "kernel/progress.h"
 #include "ops/braid.h"
@@ -55,9 +56,10 @@ struct FiberStats {
 /// params.fibers fibers per strand (curve c * M + f for strand c), each from the strand point its
 /// first point sits on to the tip. Writes point P, width; curve fiber, id (strand id * M + f); carries
 /// the strands' other attributes. `reach` gets, per output point, its distance from its strand point;
-/// `strand_point` the strand point it was built from.
+/// `strand_point` the strand point it was built from. `scalp` (cornrows only): where hair joining the
+/// braid, and the first stitch's hair, is rooted (on it at the clearance); null: beside the braid.
 CurveSet braid_fibers(const CurveSet& strands, const StrandSections& sec, std::span<const StrandFiberPlan> plans,
-                      const BraidParams& params, const BraidWeave& weave, FiberStats& stats, std::vector<float>& reach,
-                      std::vector<int64_t>& strand_point, Progress* progress);
+                      const BraidParams& params, const BraidWeave& weave, const Surface* scalp, FiberStats& stats,
+                      std::vector<float>& reach, std::vector<int64_t>& strand_point, Progress* progress);
 
 }  // namespace groom

@@ -224,6 +224,56 @@ TEST(Braid, HelixTwistMatchesTorsion)
 
 // Cornrows on an exact sphere: y along the sphere normal, x in its tangent plane (under 1 degree), no
 // point inside, every section resting at the clearance, and the counts asked for.
+// A cornrow's hair grows from the scalp: the fibers that start at its first stitch rise from the scalp
+// around it, and fibers fed in later join from the scalp beside it, instead of starting in mid-air
+// as cut ends (a paintbrush at the hairline and stubs along the sides: a trial's close-ups). Read
+// from the output: every fiber's first point lies on the scalp (within the clearance, half its
+// width and the lifts' rounding), and the first stitch's roots spread wider than the braid there.
+TEST(Braid, CornrowFibersStartOnTheScalp)
+{
+    const float R = 10.0f;
+    const AnalyticSphere sphere({0, 0, 0}, R);
+    std::vector<float3> arc;
+    for (int k = 0; k <= 100; ++k) {
+        const double th = (40.0 + 60.0 * k / 100.0) * kPi / 180.0;
+        arc.emplace_back(float(R * std::cos(th)), float(R * std::sin(th)), 0.0f);
+    }
+    BraidParams p;
+    p.orient = BraidOrient::Scalp;
+    p.knot_length = 1.5f;
+    p.width = 0.4f;
+    p.rest = true;
+    p.clearance = 0.02f;
+    p.fibers = 30;
+    p.feed_in = 0.5f;
+    const BraidResult res = braid(make_curves({arc}), p, &sphere);
+    const CurveSet& out = res.curves;
+    const auto W = out.find<float>(Domain::Point, attr::width);
+    const auto P = out.positions();
+    int at_start = 0, fed = 0;
+    float start_lo = 1e9f, start_hi = -1e9f;
+    for (size_t c = 0; c < out.num_curves(); ++c) {
+        const IndexRange r = out.points_of(c);
+        const float3 root = P[r.begin];
+        EXPECT_LE(sphere.distance(root), p.clearance + 0.5f * W[r.begin] + 0.01f) << "fiber " << c << " starts above the scalp";
+        // Fibers of the first stitch start at the arc's first point (angle 40 degrees); the fed-in
+        // ones further along.
+        const double angle = std::atan2(double(root.y), double(root.x)) * 180.0 / kPi;
+        if (angle < 40.5) {
+            ++at_start;
+            start_lo = std::min(start_lo, root.z), start_hi = std::max(start_hi, root.z);
+        }
+        else {
+            ++fed;
+        }
+    }
+    EXPECT_GT(at_start, 0);
+    EXPECT_GT(fed, 0);
+    // Across the braid (z): the first stitch's roots spread over more than its width (2 x 0.4 at
+    // full size, sqrt(1 - 0.5) of it at the root).
+    EXPECT_GT(start_hi - start_lo, 0.8f * 0.707f);
+}
+
 TEST(Braid, CornrowsOnSphereFollowScalp)
 {
     const float R = 10.0f;

@@ -32,6 +32,8 @@ using namespace groom;
 
 namespace {
 
+using CurveSetPtr = std::shared_ptr<CurveSet>;
+
 // --- errors ---------------------------------------------------------------------------------------
 
 PyObject* g_error = nullptr;        // groom.Error(Exception)
@@ -243,7 +245,7 @@ void append_options(std::vector<std::string>& args, const py::kwargs& kw, const 
         if (name == "output" || name == "o") raise(true, name + ": the result is returned; write it with groom.write(result, path)");
         if (py::isinstance<CurveSet>(v)) {
             const std::string path = prefix + name;
-            store_memory_curves(path, v.cast<const CurveSet&>());
+            store_memory_curves(path, *v.cast<CurveSetPtr>());
             stored.push_back(path);
             args.push_back("--" + name);
             args.push_back(path);
@@ -319,7 +321,7 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
     if (py::isinstance<Scalp>(scalp) && kw.contains("scalp_voxel") && !kw["scalp_voxel"].is_none()) {
         // The field is built already: the voxel asked for would be silently dropped.
         warn(command + ": scalp_voxel is for a scalp given as a mesh path; this groom.Scalp keeps its voxel (" +
-             format_number(scalp.cast<const Scalp&>().field->voxel_size()) + "): load it with groom.Scalp.load(mesh, voxel=...) instead");
+             format_number(scalp.cast<std::shared_ptr<Scalp>>()->field->voxel_size()) + "): load it with groom.Scalp.load(mesh, voxel=...) instead");
     }
     const std::string id = std::to_string(g_call++);
     const std::string out_path = "mem:out" + id, scalp_path = "mem:scalp" + id;
@@ -354,7 +356,7 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
     if (!scalp.is_none()) {
         args.push_back("--scalp");
         if (py::isinstance<Scalp>(scalp)) {
-            store_memory_scalp(scalp_path, scalp.cast<const Scalp&>().field);
+            store_memory_scalp(scalp_path, scalp.cast<std::shared_ptr<Scalp>>()->field);
             args.push_back(scalp_path);
         }
         else {
@@ -477,54 +479,70 @@ PYBIND11_MODULE(groom, m)
         g_param_error = cls;
     }
 
-    py::class_<AttributeView>(m, "AttributeView", "The columns of one domain, dict-like; values are numpy views")
+    // An object made by __new__ without __init__ (CurveSet, Scalp, AttributeView) has no holder; every
+    // method takes the holder, so pybind11 refuses it, in its own terms ("Unable to cast from non-held
+    // to held instance"), which name nothing a user wrote. As a reference it read unmade memory and
+    // crashed the interpreter.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        }
+        catch (const py::cast_error& e) {
+            if (std::string(e.what()).find("non-held to held") == std::string::npos) throw;
+            PyErr_SetString(PyExc_TypeError, "groom: this object holds nothing (it was made by __new__ without __init__); make "
+                                             "curves with groom.CurveSet(points, counts) or groom.read(path), a scalp with "
+                                             "groom.Scalp.load(path)");
+        }
+    });
+
+    py::class_<AttributeView, std::shared_ptr<AttributeView>>(m, "AttributeView", "The columns of one domain, dict-like; values are numpy views")
         .def("keys",
-             [](const AttributeView& v) {
+             [](const std::shared_ptr<AttributeView>& v) {
                  std::vector<std::string> k;
-                 for (const Attribute& a : v.cs->attributes(v.domain).all()) k.push_back(a.name);
+                 for (const Attribute& a : v->cs->attributes(v->domain).all()) k.push_back(a.name);
                  return k;
              })
-        .def("__iter__", [](const AttributeView& v) {
+        .def("__iter__", [](const std::shared_ptr<AttributeView>& v) {
             std::vector<std::string> k;
-            for (const Attribute& a : v.cs->attributes(v.domain).all()) k.push_back(a.name);
+            for (const Attribute& a : v->cs->attributes(v->domain).all()) k.push_back(a.name);
             return py::iter(py::cast(k));
         })
-        .def("__len__", [](const AttributeView& v) { return v.cs->attributes(v.domain).count(); })
-        .def("__contains__", [](const AttributeView& v, const std::string& k) { return v.cs->attributes(v.domain).find(k) != nullptr; })
+        .def("__len__", [](const std::shared_ptr<AttributeView>& v) { return v->cs->attributes(v->domain).count(); })
+        .def("__contains__", [](const std::shared_ptr<AttributeView>& v, const std::string& k) { return v->cs->attributes(v->domain).find(k) != nullptr; })
         .def("__getitem__",
-             [](const AttributeView& v, const std::string& k) {
-                 Attribute* a = v.cs->attributes(v.domain).find(k);
-                 if (!a) throw py::key_error(std::string(domain_name(v.domain)) + " attribute '" + k + "' does not exist");
-                 return column_view(*a, v.owner);
+             [](const std::shared_ptr<AttributeView>& v, const std::string& k) {
+                 Attribute* a = v->cs->attributes(v->domain).find(k);
+                 if (!a) throw py::key_error(std::string(domain_name(v->domain)) + " attribute '" + k + "' does not exist");
+                 return column_view(*a, v->owner);
              })
-        .def("__setitem__", [](AttributeView& v, const std::string& k, py::handle value) { set_column(*v.cs, v.domain, k, value); })
-        .def("__delitem__", [](AttributeView& v, const std::string& k) {
-            if (v.domain == Domain::Point && k == attr::P) raise(true, "point attribute 'P' (the positions) cannot be removed");
-            if (!v.cs->attributes(v.domain).remove(k)) throw py::key_error(k);
+        .def("__setitem__", [](const std::shared_ptr<AttributeView>& v, const std::string& k, py::handle value) { set_column(*v->cs, v->domain, k, value); })
+        .def("__delitem__", [](const std::shared_ptr<AttributeView>& v, const std::string& k) {
+            if (v->domain == Domain::Point && k == attr::P) raise(true, "point attribute 'P' (the positions) cannot be removed");
+            if (!v->cs->attributes(v->domain).remove(k)) throw py::key_error(k);
         });
 
     py::class_<CurveSet, std::shared_ptr<CurveSet>>(m, "CurveSet",
                                                     "Curves: an (n, 3) float32 `points` array and `counts` points per curve, "
                                                     "plus named point, curve and detail attributes")
         .def(py::init(&make_curves), py::arg("points"), py::arg("counts"))
-        .def_property_readonly("num_curves", &CurveSet::num_curves)
-        .def_property_readonly("num_points", &CurveSet::num_points)
-        .def("__len__", &CurveSet::num_curves)
+        .def_property_readonly("num_curves", [](const CurveSetPtr& cs) { return cs->num_curves(); })
+        .def_property_readonly("num_points", [](const CurveSetPtr& cs) { return cs->num_points(); })
+        .def("__len__", [](const CurveSetPtr& cs) { return cs->num_curves(); })
         .def_property(
-            "points", [](py::object self) { return column_view(*self.cast<CurveSet&>().attributes(Domain::Point).find(attr::P), self); },
-            [](CurveSet& cs, py::handle v) { set_column(cs, Domain::Point, std::string(attr::P), v); },
+            "points", [](py::object self) { return column_view(*self.cast<CurveSetPtr>()->attributes(Domain::Point).find(attr::P), self); },
+            [](const CurveSetPtr& cs, py::handle v) { set_column(*cs, Domain::Point, std::string(attr::P), v); },
             "(num_points, 3) float32 view of the positions: writing to it moves the points")
         .def_property_readonly("offsets",
-                               [](const CurveSet& cs) {
-                                   const auto o = cs.offsets();
+                               [](const CurveSetPtr& cs) {
+                                   const auto o = cs->offsets();
                                    py::array_t<int64_t> out(py::ssize_t(o.size()), o.data());
                                    out.attr("setflags")(py::arg("write") = false);  // a copy: writing to it would change nothing
                                    return out;
                                })
         .def_property_readonly("counts",
-                               [](const CurveSet& cs) {
-                                   py::array_t<int64_t> out(py::ssize_t(cs.num_curves()));
-                                   for (size_t c = 0; c < cs.num_curves(); ++c) out.mutable_at(c) = cs.points_in(c);
+                               [](const CurveSetPtr& cs) {
+                                   py::array_t<int64_t> out(py::ssize_t(cs->num_curves()));
+                                   for (size_t c = 0; c < cs->num_curves(); ++c) out.mutable_at(c) = cs->points_in(c);
                                    out.attr("setflags")(py::arg("write") = false);  // a copy: writing to it would change nothing
                                    return out;
                                })
@@ -534,12 +552,12 @@ PYBIND11_MODULE(groom, m)
                                [](py::object self) { return AttributeView{self.cast<std::shared_ptr<CurveSet>>(), self, Domain::Curve}; })
         .def_property_readonly("detail_attributes",
                                [](py::object self) { return AttributeView{self.cast<std::shared_ptr<CurveSet>>(), self, Domain::Detail}; })
-        .def("copy", [](const CurveSet& cs) { return std::make_shared<CurveSet>(cs); })
-        .def("__copy__", [](const CurveSet& cs) { return std::make_shared<CurveSet>(cs); })
-        .def("__deepcopy__", [](const CurveSet& cs, py::dict) { return std::make_shared<CurveSet>(cs); }, py::arg("memo"))
-        .def(py::pickle([](const CurveSet& cs) { return curves_state(cs); }, [](const py::tuple& state) { return curves_from_state(state); }))
-        .def("__repr__", [](const CurveSet& cs) {
-            return "<groom.CurveSet " + std::to_string(cs.num_curves()) + " curves, " + std::to_string(cs.num_points()) + " points>";
+        .def("copy", [](const CurveSetPtr& cs) { return std::make_shared<CurveSet>(*cs); })
+        .def("__copy__", [](const CurveSetPtr& cs) { return std::make_shared<CurveSet>(*cs); })
+        .def("__deepcopy__", [](const CurveSetPtr& cs, py::dict) { return std::make_shared<CurveSet>(*cs); }, py::arg("memo"))
+        .def(py::pickle([](const CurveSetPtr& cs) { return curves_state(*cs); }, [](const py::tuple& state) { return curves_from_state(state); }))
+        .def("__repr__", [](const CurveSetPtr& cs) {
+            return "<groom.CurveSet " + std::to_string(cs->num_curves()) + " curves, " + std::to_string(cs->num_points()) + " points>";
         });
 
     m.def(
@@ -547,15 +565,16 @@ PYBIND11_MODULE(groom, m)
         py::arg("path"), "Reads a curve file (.usda .obj .ply .hair); a str or a pathlib.Path");
     m.def(
         "write",
-        [](const CurveSet& cs, const std::filesystem::path& path) {
+        [](const CurveSetPtr& cs, const std::filesystem::path& path) {
+            if (!cs) throw py::type_error("write: curves is None; expected a groom.CurveSet");
             guarded([&] {
-                write_curves(cs, path.string());
+                write_curves(*cs, path.string());
                 return 0;
             });
         },
         py::arg("curves"), py::arg("path"), "Writes curves atomically (format by extension)");
 
-    py::class_<Scalp>(m, "Scalp", "The scalp as a signed distance field (OpenVDB level set)")
+    py::class_<Scalp, std::shared_ptr<Scalp>>(m, "Scalp", "The scalp as a signed distance field (OpenVDB level set)")
         .def_static(
             "load",
             [](const std::filesystem::path& path, float voxel) {
@@ -593,11 +612,11 @@ PYBIND11_MODULE(groom, m)
                 });
             },
             py::arg("vertices"), py::arg("faces"), py::arg("voxel") = 0.0f)
-        .def_property_readonly("voxel_size", [](const Scalp& s) { return s.field->voxel_size(); })
+        .def_property_readonly("voxel_size", [](const std::shared_ptr<Scalp>& s) { return s->field->voxel_size(); })
         .def(
             "distance",
-            [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
-                return s.map_points(p, 1, [](float d, const float3&, const float3&, float* o) { o[0] = d; });
+            [](const std::shared_ptr<Scalp>& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
+                return s->map_points(p, 1, [](float d, const float3&, const float3&, float* o) { o[0] = d; });
             },
             py::arg("points"),
             "Signed distance of each point, (n,) float32; negative inside. Within 3 voxels of the surface this is the level "
@@ -605,14 +624,14 @@ PYBIND11_MODULE(groom, m)
             "exact distance to the mesh. The same numbers as `groom probe`; a smaller voxel= tightens them near the surface.")
         .def(
             "normal",
-            [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
-                return s.map_points(p, 3, [](float, const float3& n, const float3&, float* o) { o[0] = n.x, o[1] = n.y, o[2] = n.z; });
+            [](const std::shared_ptr<Scalp>& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
+                return s->map_points(p, 3, [](float, const float3& n, const float3&, float* o) { o[0] = n.x, o[1] = n.y, o[2] = n.z; });
             },
             py::arg("points"), "Unit outward normal at each point's closest surface point, (n, 3)")
         .def(
             "closest",
-            [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
-                return s.map_points(p, 3, [](float, const float3&, const float3& c, float* o) { o[0] = c.x, o[1] = c.y, o[2] = c.z; });
+            [](const std::shared_ptr<Scalp>& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
+                return s->map_points(p, 3, [](float, const float3&, const float3& c, float* o) { o[0] = c.x, o[1] = c.y, o[2] = c.z; });
             },
             py::arg("points"),
             "Closest point on the scalp to each point, (n, 3): the point minus distance x normal. Within 3 voxels of the "
@@ -620,8 +639,8 @@ PYBIND11_MODULE(groom, m)
             "the exact closest point on the mesh. A smaller voxel= tightens it.")
         .def(
             "inside",
-            [](const Scalp& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
-                py::array d = s.map_points(p, 1, [](float dist, const float3&, const float3&, float* o) { o[0] = dist; });
+            [](const std::shared_ptr<Scalp>& s, py::array_t<float, py::array::c_style | py::array::forcecast> p) {
+                py::array d = s->map_points(p, 1, [](float dist, const float3&, const float3&, float* o) { o[0] = dist; });
                 return py::array(d.attr("__lt__")(0.0f));
             },
             py::arg("points"), "Whether each point is inside the scalp, (n,) bool");

@@ -210,6 +210,24 @@ def test_none_for_the_curves_is_a_type_error_not_a_crash(sphere):
         groom.gather([None], scalp=sphere)
 
 
+def test_objects_made_without_init_are_refused_not_a_crash(sphere, tmp_path):
+    # CurveSet.__new__(CurveSet) without __init__ read unmade memory: .points, repr(), len() and
+    # groom.write segfaulted the interpreter (as did Scalp's and AttributeView's methods).
+    empty = groom.CurveSet.__new__(groom.CurveSet)
+    for call in (lambda: empty.points, lambda: repr(empty), lambda: len(empty), lambda: empty.counts, lambda: empty.copy(),
+                 lambda: empty.point_attributes, lambda: groom.write(empty, str(tmp_path / "x.usda")), lambda: groom.curl(empty)):
+        with pytest.raises(TypeError, match=r"__new__ without __init__.*groom.CurveSet\(points, counts\)"):
+            call()
+    assert not (tmp_path / "x.usda").exists()
+    no_scalp = groom.Scalp.__new__(groom.Scalp)
+    for call in (lambda: no_scalp.distance([[0, 0, 0]]), lambda: no_scalp.voxel_size,
+                 lambda: groom.curl(straight_guides(points=8, length=1.5), scalp=no_scalp)):
+        with pytest.raises(TypeError, match="groom.Scalp.load"):
+            call()
+    with pytest.raises(TypeError, match="__new__ without __init__"):
+        groom.AttributeView.__new__(groom.AttributeView).keys()
+
+
 def test_warnings_reach_python_as_groom_warnings(sphere):
     """The CLI's unit warnings were dropped (every command ran --quiet): a head in metres got straight
     'curls' with no word why. The sphere is 2 units across, outside a head's 10-300 cm."""

@@ -89,7 +89,9 @@ std::vector<Command> commands = {
     {"project", InputKind::Curves, true},
     {"cull", InputKind::Curves, true},        {"hairline", InputKind::None, true},
     {"parting", InputKind::None, true},       {"cornrow-guides", InputKind::None, true},
-    {"braid", InputKind::Curves, false},      {"partition", InputKind::Curves, true},
+    {"braid", InputKind::Curves, false},
+    // The automatic density (a segment every 1/200 of the gap between guides) is thousands a side.
+    {"partition", InputKind::Curves, true, "mem:out", {}, {{"--count", "8", {"--spacing"}}}},
     {"populate", InputKind::Curves, false},   {"curl", InputKind::Curves, false},
     {"generate", InputKind::Curves, true, "mem:out", {}, {{"--count", "50"}}},
     {"puff", InputKind::None, true, "mem:out", {},

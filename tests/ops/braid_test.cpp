@@ -51,6 +51,18 @@ double angle_deg(const float3& a, const float3& b)
     return std::acos(c) * 180.0 / kPi;
 }
 
+/// 101 points of the circle of radius r about the origin from angle a0 to a1 degrees, measured from
+/// axis u toward axis v.
+std::vector<float3> circle_arc(double r, double a0, double a1, const float3& u, const float3& v)
+{
+    std::vector<float3> arc;
+    for (int k = 0; k <= 100; ++k) {
+        const double th = (a0 + (a1 - a0) * k / 100.0) * kPi / 180.0;
+        arc.push_back(u * float(r * std::cos(th)) + v * float(r * std::sin(th)));
+    }
+    return arc;
+}
+
 }  // namespace
 
 // On a straight guide the frames are exact, so every strand point must sit at guide(t) + x(t) b + y(t) n
@@ -233,11 +245,7 @@ TEST(Braid, CornrowFibersStartOnTheScalp)
 {
     const float R = 10.0f;
     const AnalyticSphere sphere({0, 0, 0}, R);
-    std::vector<float3> arc;
-    for (int k = 0; k <= 100; ++k) {
-        const double th = (40.0 + 60.0 * k / 100.0) * kPi / 180.0;
-        arc.emplace_back(float(R * std::cos(th)), float(R * std::sin(th)), 0.0f);
-    }
+    const std::vector<float3> arc = circle_arc(R, 40.0, 100.0, {1, 0, 0}, {0, 1, 0});
     BraidParams p;
     p.orient = BraidOrient::Scalp;
     p.knot_length = 1.5f;
@@ -358,11 +366,7 @@ TEST(Braid, RestLowersFloatingCornrowsOntoTheScalp)
 {
     const float R = 5.0f;
     const AnalyticSphere sphere({0, 0, 0}, R);
-    std::vector<float3> arc;
-    for (int k = 0; k <= 100; ++k) {
-        const double th = (30.0 + 60.0 * k / 100.0) * kPi / 180.0;
-        arc.emplace_back(float((R + 1) * std::cos(th)), 0.0f, float((R + 1) * std::sin(th)));
-    }
+    const std::vector<float3> arc = circle_arc(R + 1, 30.0, 90.0, {1, 0, 0}, {0, 0, 1});
     const CurveSet guides = make_curves({arc});
     BraidParams p;
         p.pattern = BraidPattern::Lissajous;  // the closed form below is the talk's

@@ -3,6 +3,7 @@
 // Without --hairline the default hairline of `groom hairline` is used.
 #include "cli/command.h"
 #include "cli/scalp_options.h"
+#include "cli/scene_scale.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
@@ -20,6 +21,7 @@ struct Args {
     std::string up = "0,1,0", forward = "0,0,1", crown, hang = "0,0,0";
     ScalpBuildParams scalp_params;
     SectionsParams params;
+    float units_per_cm = 1.0f;
 };
 
 void setup(CommandContext& ctx)
@@ -58,12 +60,21 @@ void setup(CommandContext& ctx)
     app->add_option("--seed", p.seed, "Seeds the guides' jitter and the roots")->capture_default_str();
     app->add_option("--up", args->up, "X,Y,Z: the head's up direction")->capture_default_str();
     app->add_option("--forward", args->forward, "X,Y,Z: the direction the face looks")->capture_default_str();
+    app->add_option("--units-per-cm", args->units_per_cm,
+                    "Scene units per centimetre: scales every default length (--parting-gap, --step, --length, --bend, --clearance, "
+                    "--layer), which are centimetres; lengths typed are scene units")
+        ->capture_default_str();
     add_scalp_build_options(app, args->scalp_params);
     const CommonOptions& common = *ctx.common;
-    ctx.run = [args, &common] {
+    ctx.run = [args, app, &common] {
         check_outputs({{"-o", args->output}, {"--partings-out", args->partings_out}, {"--roots-out", args->roots_out}},
                       {args->scalp, args->hairline}, common);
-        SectionsParams params = args->params;
+        SectionsParams params = args->params;  // a copy: a command run once per frame scales it once
+        const float u = args->units_per_cm;
+        if (!(u > 0.0f) || !std::isfinite(u)) throw InvalidParam("sections: --units-per-cm must be a finite number > 0 (got " + format_number(u) + ")");
+        scale_default_lengths(*app, u,
+                              {{"--parting-gap", &params.parting_gap}, {"--step", &params.step}, {"--length", &params.length},
+                               {"--bend", &params.bend}, {"--clearance", &params.clearance}, {"--layer", &params.layer}});
         params.layout = parse_section_layout(args->layout);
         params.guide = parse_section_guide(args->guide);
         params.up = parse_float3("--up", args->up);
@@ -80,6 +91,7 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        warn_scene_scale(common, "sections", scalp->bounds(), u, "the default lengths (parting gap, guide length, clearance)");
         CurveSet hairline;
         if (args->hairline.empty()) {
             HairlineParams hp;

@@ -59,6 +59,44 @@ TEST(SectionsCli, HairlineFileRowsAndRadial)
     EXPECT_EQ(read_curves(dir.file("radial.usda")).num_curves(), 9u);
 }
 
+// Scene units: the default head in millimetres (scaled by 10) with --units-per-cm 10 gets the
+// guides of the centimetre head, scaled by 10 (every default length is centimetres: the 30 cm free
+// length hung 30 units below a head in millimetres before); typed lengths stay scene units.
+TEST(SectionsCli, UnitsPerCmScalesTheDefaultLengths)
+{
+    test::TempDir dir;
+    ASSERT_EQ(run_groom({"head", "-o", dir.file("head.obj"), "--resolution", "32"}).exit_code, 0);
+    ASSERT_EQ(run_groom({"head", "-o", dir.file("mm.obj"), "--resolution", "32", "--scale", "10"}).exit_code, 0);
+    auto sections = [&](const std::string& scalp, const std::string& out, std::vector<std::string> extra) {
+        std::vector<std::string> args{"sections", "--scalp", scalp, "-o", dir.file(out), "--cols", "4", "--points", "8", "-q"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto r = run_groom(args);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return read_curves(dir.file(out));
+    };
+    const CurveSet cm = sections(dir.file("head.obj"), "cm.usda", {});
+    const CurveSet mm = sections(dir.file("mm.obj"), "mm.usda", {"--units-per-cm", "10"});
+    ASSERT_EQ(cm.num_curves(), mm.num_curves());
+    double worst = 0.0, reach = 0.0;
+    for (size_t c = 0; c < cm.num_curves(); ++c) {
+        const float3 a = cm.positions()[cm.points_of(c).end - 1] * 10.0f, b = mm.positions()[mm.points_of(c).end - 1];
+        worst = std::max(worst, double(distance(a, b)));
+        reach = std::max(reach, double(distance(mm.positions()[mm.points_of(c).begin], b)));
+    }
+    EXPECT_GT(reach, 100.0);        // the free part hangs 30 cm = 300 mm below (more than 100 mm)
+    EXPECT_LT(worst, 0.02 * reach);  // the same guides, up to the two level sets' voxels
+    // What the user typed is scene units: --length 50 in the millimetre head is 50 mm.
+    const CurveSet typed = sections(dir.file("mm.obj"), "typed.usda", {"--units-per-cm", "10", "--length", "50"});
+    double longest = 0.0;
+    for (size_t c = 0; c < typed.num_curves(); ++c) {
+        longest = std::max(longest, double(distance(typed.positions()[typed.points_of(c).begin], typed.positions()[typed.points_of(c).end - 1])));
+    }
+    EXPECT_LT(longest, 120.0);
+    const auto bad = run_groom({"sections", "--scalp", dir.file("head.obj"), "-o", dir.file("x.usda"), "--units-per-cm", "0"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("--units-per-cm must be a finite number > 0 (got 0)"), std::string::npos) << bad.err;
+}
+
 TEST(SectionsCli, BadOptionsAreUsageErrorsNamingTheOption)
 {
     test::TempDir dir;

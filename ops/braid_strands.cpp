@@ -117,7 +117,9 @@ LiftStats braid_guide(const BraidContext& ctx, const GuidePlan& plan, std::span<
         const double A = double(plan.A) * s, B = double(plan.B) * s;
         const float w = plan.strand_width * s;
         // With fibers the strand is an ellipse about w/2 across, filled with fibers of their own width.
-        const float fiber_w = p.fibers > 0 ? (p.fiber_width > 0.0f ? p.fiber_width : w * inv_sqrt_m) : 0.0f;
+        // Each fiber keeps its full width while the section grows with the hair fed in (braid_fibers).
+        const float fed = feed_scale(p.feed_in, plan.feed_t(p.feed_length), t[j]);
+        const float fiber_w = p.fibers > 0 ? (p.fiber_width > 0.0f ? p.fiber_width : w * inv_sqrt_m / fed) : 0.0f;
         section_reach[j] = p.fibers > 0 ? float(0.5 * w * (kFiberSpreadAcross + 0.5 * p.flatten) * spread) + 0.5f * fiber_w : 0.5f * w;
         for (int i = 0; i < N; ++i) {
             WeaveOffset o = loose ? end_offset[i] : ctx.weave.at(i, u);

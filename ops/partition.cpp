@@ -36,24 +36,29 @@ constexpr double kMaxOutputPoints = 2e9;
 constexpr uint64_t kJitterStream = 0x9a27;  // Rng stream for station jitter (per side: + side)
 constexpr uint64_t kMediateStream = 0x9a37;  // Rng stream for the root's place across the gap (per side: + side)
 
-/// Where the hair region ends walking on the scalp from p's foot in direction `dir` (kept in the
-/// tangent plane), `step` at a time for at most `reach`: the last haired place, to a sixty-fourth of
-/// a step (bisection). False when the walk stays haired (or leaves the scalp) that far.
-bool hairline_beside(const Surface& scalp, const HairRegion& region, const float3& p, float3 dir, float step, float reach, float3& edge)
+/// Where the hair region ends (the hairline, or a parting's bare line) walking on the scalp from p's
+/// foot in direction `dir` (kept in the tangent plane), in kHairlineSteps steps of reach /
+/// kHairlineSteps: the last haired place, to a sixty-fourth of a step (bisection). False when the
+/// walk stays haired (or leaves the scalp) that far. A fixed count of steps: a step of reach / 20
+/// added to a running length rounded to nothing for a tiny reach (--max-gap 1e-45) and never ended.
+constexpr int kHairlineSteps = 20;
+bool hairline_beside(const Surface& scalp, const HairRegion& region, const float3& p, float3 dir, float reach, float3& edge)
 {
+    const float step = reach / float(kHairlineSteps);
+    if (!(step > 0.0f) || !std::isfinite(step)) return false;
     float3 x = scalp.closest_point(p);
-    if (!region.inside_hairline(x)) return false;
-    for (float walked = 0.0f; walked < reach; walked += step) {
+    if (!region.haired(x)) return false;
+    for (int k = 0; k < kHairlineSteps; ++k) {
         const float3 n = scalp.normal(x);
         dir = normalize(dir - n * dot(dir, n), float3(0, 0, 0));
         if (length_squared(dir) == 0.0f) return false;
         const float3 next = scalp.closest_point(x + dir * step);
         if (!isfinite(next)) return false;
-        if (!region.inside_hairline(next)) {
+        if (!region.haired(next)) {
             float3 in = x, out = next;
-            for (int k = 0; k < 6; ++k) {
+            for (int b = 0; b < 6; ++b) {
                 const float3 mid = scalp.closest_point(lerp(in, out, 0.5f));
-                (region.inside_hairline(mid) ? in : out) = mid;
+                (region.haired(mid) ? in : out) = mid;
             }
             edge = in;
             return true;
@@ -163,7 +168,9 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     const bool to_hairline = params.region && params.region->has_hairline();
     const double gap = params.count == 0 && params.spacing == 0.0f || to_hairline ? typical_guide_gap(guides, GuidePointIndex(guides)) : 0.0;
     double spacing = params.spacing;
-    if (params.count == 0 && params.spacing == 0.0f) spacing = gap > 0.0 ? gap / double(kAutoSpacingPerGap) : 0.0;
+    // With no gap to measure (a single guide), the automatic count is kAutoCountWithoutGap a side.
+    const bool automatic = params.count == 0 && params.spacing == 0.0f;
+    if (automatic) spacing = gap > 0.0 ? gap / double(kAutoSpacingPerGap) : 0.0;
     // A side with no neighbour reaches the hairline, when there is one within this: the outermost
     // rows' edge hairs cover the scalp out to it (without, the sides of a head of cornrows stayed bald
     // inside the hairline, like an undercut: a trial).
@@ -172,14 +179,19 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     // (a --spacing in the wrong units, say).
     auto station_count = [&](double length) {
         if (params.count > 0) return double(params.count);
-        return spacing > 0.0 ? std::max(1.0, std::floor(length / spacing)) : 1.0;
+        if (!(spacing > 0.0)) return double(kAutoCountWithoutGap);
+        return std::max(1.0, std::floor(length / spacing));
     };
+    // Every side that can get segments counts: a side with a neighbour, and with a hairline a side
+    // without one (it walks to the hairline; uncounted, --spacing 1e-9 there overflowed the station
+    // count past the memory check, a review).
+    const bool walks = to_hairline && hairline_reach > 0.0f;
     double planned = 0.0;
     for (size_t c = 0; c < nc; ++c) {
         if (!listed[c]) continue;
         const IndexRange r = guides.points_of(c);
         const double length = polyline_length(P.subspan(r.begin, r.size()));
-        planned += station_count(length) * ((adjacent[c].left >= 0) + (adjacent[c].right >= 0));
+        planned += station_count(length) * ((adjacent[c].left >= 0 || walks) + (adjacent[c].right >= 0 || walks));
     }
     // Per segment: its plan, its points (position, width) and its curve columns (guide, side, group,
     // id, source curve, root UV, and every curve column of the guides, carried).
@@ -219,7 +231,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                 const std::vector<float3> tangents = polyline_tangents(src);
                 for (int side = 0; side < 2; ++side) {
                     const bool beside_hairline = sides[side] < 0;
-                    if (beside_hairline && !(to_hairline && hairline_reach > 0.0f)) continue;
+                    if (beside_hairline && !walks) continue;
                     const PolylineNearest* other = beside_hairline ? nullptr : &*nearest[sides[side]];
                     const Rng rng(params.seed, uint64_t(ids[c]), kJitterStream + side);
                     const Rng across(params.seed, uint64_t(ids[c]), kMediateStream + side);
@@ -240,8 +252,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                             // No neighbour on this side: the hairline, straight out sideways on the scalp.
                             const float3 n = scalp.normal(p);
                             const float3 left = left_direction(n, tangent_at_length(src, cum, tangents, s));
-                            if (!hairline_beside(scalp, *params.region, p, side == 0 ? left : -left, 0.05f * hairline_reach, hairline_reach,
-                                                 hit.point)) {
+                            if (!hairline_beside(scalp, *params.region, p, side == 0 ? left : -left, hairline_reach, hit.point)) {
                                 continue;
                             }
                         }

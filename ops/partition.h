@@ -37,6 +37,8 @@ struct CentroidPoint {
 /// With neither count nor spacing: segments kAutoSpacingPerGap to the typical gap between guides
 /// along each source.
 inline constexpr float kAutoSpacingPerGap = 200.0f;
+/// The automatic count a side when there is no gap to measure (fewer than two guides).
+inline constexpr int kAutoCountWithoutGap = 24;
 
 struct PartitionParams {
     /// Where roots sit between the source (0) and the nearest point of the adjacent guide (1), drawn
@@ -48,8 +50,8 @@ struct PartitionParams {
     FloatRange mediate{0.1f, 0.47f};
     /// Segments per side of each source, spread evenly in arc length (>= 1). Exclusive with spacing.
     /// Both 0 (the default): a segment every kAutoSpacingPerGap-th of the typical gap between guides
-    /// (typical_guide_gap), about 2,000 a side on a head of cornrows, enough to read as hair rather
-    /// than as lines (24 a side did: a trial's pictures).
+    /// (typical_guide_gap), about 2,500 a side on a head of cornrows, enough to read as hair rather
+    /// than as lines (24 a side did: a trial's pictures); kAutoCountWithoutGap a side for one guide.
     int count = 0;
     /// Arc length between segments along the source, scene units (> 0) when count is 0.
     float spacing = 0.0f;

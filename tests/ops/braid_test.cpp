@@ -234,8 +234,6 @@ TEST(Braid, HelixTwistMatchesTorsion)
     EXPECT_GT(checked, 800);
 }
 
-// Cornrows on an exact sphere: y along the sphere normal, x in its tangent plane (under 1 degree), no
-// point inside, every section resting at the clearance, and the counts asked for.
 // A cornrow's hair grows from the scalp: the fibers that start at its first stitch rise from the scalp
 // around it, and fibers fed in later join from the scalp beside it, instead of starting in mid-air
 // as cut ends (a paintbrush at the hairline and stubs along the sides: a trial's close-ups). Read
@@ -264,6 +262,7 @@ TEST(Braid, CornrowFibersStartOnTheScalp)
         const IndexRange r = out.points_of(c);
         const float3 root = P[r.begin];
         EXPECT_LE(sphere.distance(root), p.clearance + 0.5f * W[r.begin] + 0.01f) << "fiber " << c << " starts above the scalp";
+        EXPECT_GE(sphere.distance(root), p.clearance + 0.5f * W[r.begin] - 1e-3f) << "fiber " << c << " starts sunk in the scalp";
         // Fibers of the first stitch start at the arc's first point (angle 40 degrees); the fed-in
         // ones further along.
         const double angle = std::atan2(double(root.y), double(root.x)) * 180.0 / kPi;
@@ -282,6 +281,8 @@ TEST(Braid, CornrowFibersStartOnTheScalp)
     EXPECT_GT(start_hi - start_lo, 0.8f * 0.707f);
 }
 
+// Cornrows on an exact sphere: y along the sphere normal, x in its tangent plane (under 1 degree), no
+// point inside, every section resting at the clearance, and the counts asked for.
 TEST(Braid, CornrowsOnSphereFollowScalp)
 {
     const float R = 10.0f;

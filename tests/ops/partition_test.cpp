@@ -238,10 +238,72 @@ TEST(Partition, OuterSideOfTheLastRowReachesTheHairline)
     EXPECT_GT(near_hairline, 200 / 8) << "the roots stop short of the hairline";
     EXPECT_EQ(beyond, 0) << "roots past the hairline";
     EXPECT_EQ(above_top, 0) << "the top row's outer side has no hairline within reach";
+    // The same bytes at any thread count (the walk is per station).
+    {
+        ThreadLimit one(1);
+        const CurveSet serial = partition(guides, sphere, params);
+        ASSERT_EQ(serial.num_points(), out.num_points());
+        EXPECT_EQ(std::memcmp(serial.positions().data(), out.positions().data(), out.num_points() * sizeof(float3)), 0);
+    }
+    // A parting between the row and the hairline (latitude 0.15, bare 0.02 either side) ends the walk
+    // there: no root beyond it, no hair drawn across it.
+    const HairRegion parted(sphere, circle_on_sphere({0, 0, 0}, 1.0f, {0, 1, 0}, 0.0f, 360),
+                            circle_on_sphere({0, 0, 0}, 1.0f, {0, 1, 0}, std::sin(0.15f), 360), HairRegionParams{{0, 1, 0}, 0.04f});
+    params.region = &parted;
+    const CurveSet stopped = partition(guides, sphere, params);
+    const auto stopped_guide = stopped.find<int32_t>(Domain::Curve, "guide");
+    int crossed = 0, outer = 0;
+    for (size_t c = 0; c < stopped.num_curves(); ++c) {
+        const double lat = std::asin(std::clamp(double(first_point(stopped, c).y), -1.0, 1.0));
+        if (stopped_guide[c] == 0 && lat < 0.3) ++outer, crossed += lat < 0.15;
+    }
+    EXPECT_EQ(outer, 200);
+    EXPECT_EQ(crossed, 0) << "roots past the parting";
+    // A reach that rounds to nothing (--max-gap 1e-45) ends at once with no walk (it looped forever).
+    params.region = &region;
+    params.max_gap = 1e-45f;
+    EXPECT_EQ(partition(guides, sphere, params).num_curves(), 0u);  // no neighbour within 1e-45 either
+    params.max_gap = 0.0f;
     // Without a hairline the outer sides get nothing, as before.
     params.region = nullptr;
     const CurveSet inner = partition(guides, sphere, params);
     EXPECT_EQ(inner.num_curves(), 400u);  // the two inner sides only
+    // A side walked to the hairline counts in the size check: --spacing 1e-9 on one row is refused
+    // before anything is made (uncounted, its station count overflowed an int).
+    const CurveSet one_row = CurveSet::from_counts(std::vector<int64_t>{101});
+    {
+        CurveSet row = one_row;
+        auto R = row.positions_for_write();
+        for (size_t k = 0; k < 101; ++k) R[k] = rows[0][k];
+        PartitionParams tiny;
+        tiny.region = &region;
+        tiny.count = 0;
+        tiny.spacing = 1e-9f;
+        tiny.max_gap = 0.5f;
+        EXPECT_THROW(partition(row, sphere, tiny), LimitExceeded);
+        // One row: no gap to measure, so the automatic count is kAutoCountWithoutGap a side (it was 1).
+        PartitionParams automatic;
+        automatic.region = &region;
+        automatic.max_gap = 0.5f;
+        automatic.samples = 4;
+        EXPECT_EQ(partition(row, sphere, automatic).num_curves(), size_t(kAutoCountWithoutGap));  // the lower side only
+    }
+}
+
+// The automatic density: one segment every 1/200 of the typical gap between guides (the median
+// distance from a guide's middle to the nearest other guide: here the chord 2 sin(0.15) between
+// meridians 0.3 apart).
+TEST(Partition, AutomaticCountIsTwoHundredToTheGap)
+{
+    const std::vector<Arc> arcs = {{0.0f, -0.5f, 0.5f}, {0.3f, -0.5f, 0.5f}};
+    const CurveSet guides = meridian_guides(arcs);
+    PartitionParams params;
+    params.samples = 3;
+    const CurveSet out = partition(guides, AnalyticSphere({0, 0, 0}, 1.0f), params);
+    const double gap = 2.0 * std::sin(0.15), length = polyline_length(guides.positions().subspan(0, 201));
+    const size_t per_side = size_t(std::floor(length / (gap / kAutoSpacingPerGap)));
+    EXPECT_NEAR(double(per_side), 668.0, 2.0);
+    EXPECT_EQ(out.num_curves(), 2 * per_side);
 }
 
 TEST(Partition, ArcsOfDifferentLengthsUseTheNearestEndAndTheMediatedFraction)

@@ -171,8 +171,14 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
             }
             const float3 root = roots[g];
             const float3 nr = scalp.normal(root);
-            const float handle = params.bend * distance(tip, root);
-            const float3 p1 = root + nr * handle, p2 = tip - d * handle;
+            // The tip's handle shrinks with the tip's height on the cap (d . axis): at the top the guide
+            // arrives along the sphere's normal, the clean silhouette; toward the cap's rim, arriving
+            // along the normal meant coming down from inside the ball, so the hair rose as a column
+            // from the base and overhung it at the rim: a stalk under a ledge, a "cupcake" (a trial's
+            // pictures). There it arrives from the base instead, fanning out.
+            const float span = distance(tip, root);
+            const float tip_handle = kPuffTipHandle * std::clamp(dot(d, axis), 0.0f, 1.0f);
+            const float3 p1 = root + nr * (params.bend * span), p2 = tip - d * (tip_handle * span);
             // Dense samples, then even arc-length spacing; resampling keeps root and tip exactly.
             std::vector<float3> dense(size_t(np) * 8);
             for (size_t k = 0; k < dense.size(); ++k) dense[k] = bezier(root, p1, p2, tip, float(k) / float(dense.size() - 1));

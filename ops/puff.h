@@ -14,6 +14,11 @@
 
 namespace groom {
 
+/// The tip's tangent length of a puff guide at the top of the cap, as a fraction of its root-to-tip
+/// distance: long enough that the guide arrives along the sphere's normal (the silhouette). It
+/// shrinks with the tip's height on the cap, to nothing at and below the equator.
+inline constexpr float kPuffTipHandle = 0.4f;
+
 struct PuffParams {
     /// The region on the scalp: roots lie within `radius` of c0, the point of the scalp closest to
     /// `center` (--center X,Y,Z, --radius r; scene units, radius > 0).
@@ -30,8 +35,9 @@ struct PuffParams {
     float cap_angle = 110.0f;
     /// Points per guide, evenly spaced in arc length (--guide-points; >= 4).
     int guide_points = 16;
-    /// Length of each guide's end tangents (root: scalp normal, tip: sphere normal) as a fraction of
-    /// its root-to-tip distance; larger bends the guides later (--bend; (0, 1]).
+    /// Length of each guide's root tangent (along the scalp normal) as a fraction of its root-to-tip
+    /// distance; larger bends the guides later (--bend; (0, 1]). The tip's tangent (along the sphere's
+    /// normal) is kPuffTipHandle of the distance times the tip's height on the cap (see puff_guides).
     float bend = 0.4f;
     int64_t first_id = 0;   ///< guide ids are first_id .. first_id + rows*cols - 1 (--first-id), >= 0;
                             ///< hair ids follow on from the last guide id
@@ -58,7 +64,9 @@ struct PuffParams {
 /// onto the scalp, roots one guide. The same cell, mapped onto the sphere's cap by the equal-area
 /// map 1 - cos(theta) = rho^2 (1 - cos(cap_angle)), gives its tip direction d, so tips cover the cap
 /// evenly and keep the grid's neighbourhoods (no guide crosses another). Each guide is the cubic
-/// Bezier root -> tip with root tangent the scalp normal and tip tangent d, resampled to
+/// Bezier root -> tip with root tangent the scalp normal (bend x the root-to-tip distance) and tip
+/// tangent d (kPuffTipHandle x that distance x max(0, d . axis): along the normal at the top of the
+/// cap, from the base toward its rim), resampled to
 /// guide_points points evenly spaced in arc length; its tip is sphere_center + sphere_radius * d
 /// (on the sphere to float rounding). Interior points inside the scalp are moved onto it (keep_outside,
 /// fields/keep_outside.h, clearance 0).

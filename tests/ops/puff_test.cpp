@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 using namespace groom;
@@ -68,9 +69,13 @@ TEST_P(PuffGuides, TipsLieOnTheSphere)
         const auto pts = curve(g, c);
         ASSERT_EQ(pts.size(), size_t(p.guide_points));
         EXPECT_LT(std::fabs(distance(pts.back(), p.sphere_center) - p.sphere_radius), 1e-4f * p.sphere_radius) << c;
-        // The guide arrives along the sphere's outward normal.
+        // The guide arrives along the sphere's outward normal on the top of the cap (the clean
+        // silhouette), and toward the rim from the base's side, never from outside the ball.
         const float3 last = normalize(pts.back() - pts[pts.size() - 2]);
-        EXPECT_GT(dot(last, normalize(pts.back() - p.sphere_center)), 0.98f) << c;
+        const float3 normal = normalize(pts.back() - p.sphere_center);
+        const float height = dot(normal, normalize(p.sphere_center - normalize(p.center) * kHeadR));
+        if (height > 0.8f) EXPECT_GT(dot(last, normal), 0.95f) << c << " at height " << height;
+        EXPECT_GT(dot(last, normal), 0.0f) << c;
     }
 }
 
@@ -167,6 +172,40 @@ TEST(Puff, SingleGuideGoesStraightToTheTop)
     }
     EXPECT_NEAR(curve(g, 0)[0].y, 10.0f, 1e-5f);
     EXPECT_NEAR(curve(g, 0).back().y, 21.0f, 1e-5f);
+}
+
+// A puff is a ball sitting on its base, not a cupcake: with the guides leaving the scalp straight
+// along its normal for 40% of their way (the old default bend), the hair rose as a column as wide as
+// the base and fanned out only higher up, a smooth stalk under a ledge (a trial's pictures). Read
+// from the guides, as the silhouette: how far out from the axis they reach at heights a quarter and
+// half of the way from the base to the cap's lowest tips, against the straight fan (each guide's chord
+// from root to tip) at the same heights.
+TEST(Puff, GuidesFanOutFromTheBaseWithoutAStalk)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    const PuffParams p = top_puff();  // base radius 3 at the pole (y = 10), sphere (0, 15, 0) radius 6, cap 110 degrees
+    const CurveSet g = puff_guides(head, p);
+    const double rim_y = 15.0 + 6.0 * std::cos(110.0 * 3.14159265358979 / 180.0);
+    // Radius from the axis where the polyline crosses height y, the largest over the guides.
+    auto reach_at = [&](double y, bool chord) {
+        double reach = 0.0;
+        for (size_t c = 0; c < g.num_curves(); ++c) {
+            const auto all = curve(g, c);
+            const std::vector<float3> pts = chord ? std::vector<float3>{all.front(), all.back()} : std::vector<float3>(all.begin(), all.end());
+            for (size_t i = 1; i < pts.size(); ++i) {
+                if ((pts[i - 1].y - y) * (pts[i].y - y) > 0.0) continue;
+                const double t = pts[i].y != pts[i - 1].y ? (y - pts[i - 1].y) / double(pts[i].y - pts[i - 1].y) : 0.0;
+                const float3 q = lerp(pts[i - 1], pts[i], float(t));
+                reach = std::max(reach, std::sqrt(double(q.x) * q.x + double(q.z) * q.z));
+            }
+        }
+        return reach;
+    };
+    for (const double f : {0.25, 0.5}) {
+        const double y = 10.0 + f * (rim_y - 10.0);
+        const double reach = reach_at(y, false), fan = reach_at(y, true);
+        EXPECT_GT(reach, 0.88 * fan) << "a stalk: at " << f << " of the way up the guides reach " << reach << ", their chords " << fan;
+    }
 }
 
 TEST(Puff, GuideAttributes)

@@ -78,7 +78,7 @@ void setup(CommandContext& ctx)
         check_output(args->output, {args->scalp}, common);
         EdgesParams params = args->params;
         const float u = args->units_per_cm;
-        if (!(u > 0.0f) || !std::isfinite(u)) throw InvalidParam("edges: --units-per-cm must be a finite number > 0 (got " + format_number(u) + ")");
+        check_units_per_cm("edges", u);
         // The defaults are a head in centimetres; a scene in other units gets them scaled, while
         // every length the user typed is taken as given (scene units).
         scale_default_lengths(*app, u,

@@ -71,7 +71,7 @@ void setup(CommandContext& ctx)
                       {args->scalp, args->hairline}, common);
         SectionsParams params = args->params;  // a copy: a command run once per frame scales it once
         const float u = args->units_per_cm;
-        if (!(u > 0.0f) || !std::isfinite(u)) throw InvalidParam("sections: --units-per-cm must be a finite number > 0 (got " + format_number(u) + ")");
+        check_units_per_cm("sections", u);
         scale_default_lengths(*app, u,
                               {{"--parting-gap", &params.parting_gap}, {"--step", &params.step}, {"--length", &params.length},
                                {"--bend", &params.bend}, {"--clearance", &params.clearance}, {"--layer", &params.layer}});

@@ -4,6 +4,7 @@
 #include "kernel/math/polyline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace groom::cli {
@@ -21,6 +22,13 @@ void warn_scene_scale(const CommonOptions& common, const std::string& command, c
                      " are centimetres x --units-per-cm " + format_number(units_per_cm) + ", for a head, bust or body " +
                      format_number(lo) + " to " + format_number(hi) + " units across: if the scene is in other units pass " +
                      "--units-per-cm (0.01 for metres, 10 for millimetres)");
+}
+
+void check_units_per_cm(const std::string& command, float units_per_cm)
+{
+    if (!(units_per_cm > 0.0f) || !std::isfinite(units_per_cm)) {
+        throw InvalidParam(command + ": --units-per-cm must be a finite number > 0 (got " + format_number(units_per_cm) + ")");
+    }
 }
 
 void scale_default_lengths(const CLI::App& app, float units_per_cm, std::initializer_list<std::pair<const char*, float*>> lengths)

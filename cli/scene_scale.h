@@ -21,6 +21,9 @@ namespace groom::cli {
 void warn_scene_scale(const CommonOptions& common, const std::string& command, const Bounds3& scalp, float units_per_cm,
                       const std::string& what);
 
+/// Throws InvalidParam "<command>: --units-per-cm must be a finite number > 0 (got ...)".
+void check_units_per_cm(const std::string& command, float units_per_cm);
+
 /// Multiplies each length whose option (`--lift`, ...) was not typed by `units_per_cm`: its default
 /// is centimetres, while a length the user typed is taken as scene units (edges, gather).
 void scale_default_lengths(const CLI::App& app, float units_per_cm, std::initializer_list<std::pair<const char*, float*>> lengths);

@@ -88,23 +88,20 @@ std::optional<HairWidths> hair_widths_taper(const CurveSet& input, const HairWid
 
 void apply_hair_widths(CurveSet& curves, const HairWidths& widths, float units_per_cm)
 {
-    if (!widths.given()) {
-        if (!curves.find<float>(Domain::Point, attr::width).empty()) return;
-        // A width per curve (a constant or uniform USD width) is still the input's width: keep it, per point.
-        const auto cw = curves.find<float>(Domain::Curve, attr::width);
-        if (!cw.empty()) {
-            const std::vector<float> per_curve(cw.begin(), cw.end());
-            curves.attributes(Domain::Curve).remove(attr::width);
-            auto W = curves.add<float>(Domain::Point, attr::width);
-            for (size_t c = 0; c < curves.num_curves(); ++c) {
-                const IndexRange pr = curves.points_of(c);
-                for (int64_t i = pr.begin; i < pr.end; ++i) W[i] = per_curve[c];
-            }
-            return;
-        }
+    if (const std::optional<HairWidths> w = hair_widths_taper(curves, widths, units_per_cm)) {
+        taper_widths(curves, *w->root, *w->tip);
+        return;
     }
-    const HairWidths w = widths.resolved(units_per_cm);
-    taper_widths(curves, *w.root, *w.tip);
+    if (!curves.find<float>(Domain::Point, attr::width).empty()) return;
+    // A width per curve (a constant or uniform USD width) is still the input's width: keep it, per point.
+    const auto cw = curves.find<float>(Domain::Curve, attr::width);
+    const std::vector<float> per_curve(cw.begin(), cw.end());
+    curves.attributes(Domain::Curve).remove(attr::width);
+    auto W = curves.add<float>(Domain::Point, attr::width);
+    for (size_t c = 0; c < curves.num_curves(); ++c) {
+        const IndexRange pr = curves.points_of(c);
+        for (int64_t i = pr.begin; i < pr.end; ++i) W[i] = per_curve[c];
+    }
 }
 
 }  // namespace groom

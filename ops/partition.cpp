@@ -165,11 +165,11 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
 
     // Neither count nor spacing: a spacing from the guides' own layout, so the density of edge hairs
     // does not depend on the scene's units.
-    const bool to_hairline = params.region && params.region->has_hairline();
-    const double gap = params.count == 0 && params.spacing == 0.0f || to_hairline ? typical_guide_gap(guides, GuidePointIndex(guides)) : 0.0;
-    double spacing = params.spacing;
     // With no gap to measure (a single guide), the automatic count is kAutoCountWithoutGap a side.
     const bool automatic = params.count == 0 && params.spacing == 0.0f;
+    const bool to_hairline = params.region && params.region->has_hairline();
+    const double gap = automatic || to_hairline ? typical_guide_gap(guides, GuidePointIndex(guides)) : 0.0;
+    double spacing = params.spacing;
     if (automatic) spacing = gap > 0.0 ? gap / double(kAutoSpacingPerGap) : 0.0;
     // A side with no neighbour reaches the hairline, when there is one within this: the outermost
     // rows' edge hairs cover the scalp out to it (without, the sides of a head of cornrows stayed bald
@@ -228,7 +228,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                                               : params.centroids == CentroidMode::Knots  ? braid_knot_parameters(params.knots, length)
                                                                                          : std::vector<float>{};
                 const int32_t sides[2] = {adjacent[c].left, adjacent[c].right};
-                const std::vector<float3> tangents = polyline_tangents(src);
+                const std::vector<float3> tangents = walks ? polyline_tangents(src) : std::vector<float3>{};  // for the walk only
                 for (int side = 0; side < 2; ++side) {
                     const bool beside_hairline = sides[side] < 0;
                     if (beside_hairline && !walks) continue;

@@ -43,6 +43,8 @@ GatherPuff read_puff(const std::string& path)
     puff.base_radius = radius[0];
     puff.sphere_center = sc[0];
     puff.sphere_radius = sr[0];
+    const auto cap = all.find<float>(Domain::Detail, "puff_cap_angle");  // absent from puffs written before it was kept
+    if (!cap.empty()) puff.cap_angle = cap[0];
     const auto kind = all.find<int32_t>(Domain::Curve, "kind");
     if (kind.empty()) {
         puff.guides = all;

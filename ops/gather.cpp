@@ -77,6 +77,10 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
         if (!(p.base_radius > 0.0f) || !(p.sphere_radius > 0.0f) || !isfinite(p.base) || !isfinite(p.sphere_center)) {
             throw InvalidGeometry("gather: puff " + std::to_string(k) + " has no valid base or sphere (puff_radius and puff_sphere_radius must be > 0)");
         }
+        if (!(p.cap_angle >= 0.0f && p.cap_angle < 180.0f)) {
+            throw InvalidGeometry("gather: puff " + std::to_string(k) + "'s puff_cap_angle must be in (0, 180) degrees, or absent (got " +
+                                  format_number(p.cap_angle) + ")");
+        }
     }
     const size_t np = puffs.size();
     // Ids first_id .. first_id + hairs + bands - 1 must not pass int64 (they would wrap to negative).
@@ -173,19 +177,38 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
     for (int64_t i = 0; i < nh; ++i) members[owner[i]].push_back(i);
     for (size_t k = 0; k < np; ++k) {
         if (members[k].empty()) continue;
-        std::vector<float3> at, normals;
+        // Each hair enters at its point of the base's rim but follows the puff's guides from a point
+        // of the base drawn area-uniformly along the same direction (from the centre out to the
+        // rim). Following the rim's guides, as the hair at the rim would alone, sent every gathered
+        // hair to the cap's rim along the same few paths: one thin sheet of 24,000 parallel hairs, a
+        // smooth cone under the demo's puffs with a sharp edge where their tips all met the ball.
+        const GatherPuff& puff = puffs[k];
+        std::vector<float3> at, normals, blend_at;
         for (int64_t i : members[k]) {
-            at.push_back(flat[i].points.back());
+            const float3 rim = flat[i].points.back();
+            at.push_back(rim);
             normals.push_back(flat[i].normals.back());
+            Rng rng(params.curl.seed, uint64_t(params.first_id + i), 12);
+            blend_at.push_back(scalp.closest_point(puff.base + (rim - puff.base) * std::sqrt(rng.uniform())));
         }
         GenerateParams gen;
         gen.neighbours = params.neighbours;
         gen.power = params.power;
         gen.points = params.hair_points;
-        CurveSet centres = generate_at_roots(puffs[k].guides, scalp, at, normals, gen);
+        CurveSet centres = generate_at_roots(puff.guides, scalp, at, normals, gen, nullptr, blend_at);
         auto ids = centres.find_for_write<int64_t>(Domain::Curve, attr::id);
         for (size_t j = 0; j < members[k].size(); ++j) ids[j] = params.first_id + members[k][j];  // the curl's randomness
-        warp_tips_to_sphere(centres, puffs[k].sphere_center, puffs[k].sphere_radius);
+        if (puff.cap_angle > 0.0f) {
+            // Its tip at the cap's point for the point of the base it follows (PuffCap), as the
+            // puff's own hairs end at their roots' points.
+            const PuffCap cap = PuffCap::make(scalp, puff.base, puff.base_radius, puff.sphere_center, puff.sphere_radius, puff.cap_angle);
+            std::vector<float3> tips(blend_at.size());
+            for (size_t j = 0; j < tips.size(); ++j) tips[j] = cap.tip_for(blend_at[j]);
+            warp_tips_to(centres, tips);
+        }
+        else {
+            warp_tips_to_sphere(centres, puff.sphere_center, puff.sphere_radius);
+        }
         keep_outside(centres, scalp, KeepOutside{});
         CurlParams curl_params = params.curl;
         curl_params.preserve_length = false;

@@ -26,6 +26,9 @@ struct GatherPuff {
     float base_radius = 0.0f; ///< radius of that region, scene units, > 0
     float3 sphere_center{};
     float sphere_radius = 0.0f;
+    /// The cap its guides' tips cover, degrees (detail `puff_cap_angle`); 0 for a puff written
+    /// without it: each hair's tip then goes onto the sphere straight out from its centre.
+    float cap_angle = 0.0f;
 };
 
 struct GatherParams {

@@ -268,7 +268,8 @@ GrowRun prepare_run(const CurveSet& guides, const Surface& scalp, std::span<cons
 
 /// Hairs [r0, r1) of the roots, grown (generate_at_roots' body for one part of the run).
 CurveSet grow(const GrowRun& run, const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
-              std::span<const float3> normals, const GenerateParams& params, int64_t r0, int64_t r1, Progress* progress)
+              std::span<const float3> normals, std::span<const float3> blend_at, const GenerateParams& params, int64_t r0, int64_t r1,
+              Progress* progress)
 {
     const PreparedGuides& pg = run.pg;
     const PointIndex& index = run.index;
@@ -293,15 +294,16 @@ CurveSet grow(const GrowRun& run, const CurveSet& guides, const Surface& scalp, 
         for (int64_t c = b; c < e; ++c) {
             const int64_t r = r0 + c;  // the hair's index among all roots
             const float3 x = roots[r];
+            const float3 q = blend_at.empty() ? x : blend_at[r];  // where the hair takes its guides from
             float3* out = P.data() + c * np;
-            index.nearest(x, query, hits);
+            index.nearest(q, query, hits);
             const int64_t g0 = hits.front().index;
             ids[c] = params.first_id + r;
             nearest_guide[c] = int32_t(g0);
             src_curve[c] = g0;
             std::copy_n(pg.source_point.data() + g0 * np, np, src_point.data() + c * np);
 
-            if (hits.front().distance == 0.0) {
+            if (hits.front().distance == 0.0 && blend_at.empty()) {
                 // A root on a guide's root is that guide: weight 1, copied exactly.
                 std::copy_n(pg.positions.data() + g0 * np, np, out);
                 continue;
@@ -329,6 +331,10 @@ CurveSet grow(const GrowRun& run, const CurveSet& guides, const Surface& scalp, 
             if (!(total > 0.0)) {  // no guide beyond the K, or all K tie with the next one
                 for (int j = 0; j < k; ++j) w[j] = 1.0 / hits[j].distance;
                 total = weigh();
+            }
+            if (!(total > 0.0)) {  // a blend point on a guide's root (blend_at): that guide alone
+                w.assign(size_t(k), 0.0);
+                w[0] = total = 1.0;
             }
             const float3 n = normals.empty() ? scalp.normal(x) : normalize(normals[r], scalp.normal(x));
             for (int i = 0; i < np; ++i) out[i] = float3();
@@ -370,11 +376,15 @@ std::pair<int64_t, int64_t> run_range(const GenerateParams& params, int64_t all)
 }  // namespace
 
 CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
-                           std::span<const float3> normals, const GenerateParams& params, Progress* progress)
+                           std::span<const float3> normals, const GenerateParams& params, Progress* progress,
+                           std::span<const float3> blend_at)
 {
+    if (!blend_at.empty() && blend_at.size() != roots.size()) {
+        throw InvalidParam("generate: " + std::to_string(blend_at.size()) + " blend points for " + std::to_string(roots.size()) + " roots");
+    }
     const GrowRun run = prepare_run(guides, scalp, roots, normals, params);
     const auto [r0, r1] = run_range(params, int64_t(roots.size()));
-    return grow(run, guides, scalp, roots, normals, params, r0, r1, progress);
+    return grow(run, guides, scalp, roots, normals, blend_at, params, r0, r1, progress);
 }
 
 namespace {
@@ -423,7 +433,7 @@ void generate_blocks(const CurveSet& guides, const Surface& scalp, const RootSam
     hand_over_curve_blocks(
         ends,
         [&](int64_t c0, int64_t c1) {
-            CurveSet block = grow(run, guides, scalp, roots.positions, roots.normals, params, r0 + c0, r0 + c1, nullptr);
+            CurveSet block = grow(run, guides, scalp, roots.positions, roots.normals, {}, params, r0 + c0, r0 + c1, nullptr);
             step.advance(c1 - c0);
             return block;
         },

@@ -118,8 +118,13 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
 /// A root exactly on a guide's root (distance 0) takes that guide alone, copied bit for bit. Points
 /// (all but the root) closer to the scalp than params.clearance are moved out to it by keep_outside
 /// (fields/keep_outside.h: one move each, no margin).
+/// With `blend_at` (#roots, or empty): hair i takes its guides and weights at blend_at[i] instead of
+/// at its root, and their shapes are carried to its root and normal as above (gather: a hair entering
+/// a puff at its base's rim follows the guides of a point inside the base, so the gathered hair fills
+/// the ball instead of all following the rim's guides as one sheet).
 /// Uses params: neighbours, power, points, clearance, first_id. Attributes as for generate().
 CurveSet generate_at_roots(const CurveSet& guides, const Surface& scalp, std::span<const float3> roots,
-                           std::span<const float3> normals, const GenerateParams& params, Progress* progress = nullptr);
+                           std::span<const float3> normals, const GenerateParams& params, Progress* progress = nullptr,
+                           std::span<const float3> blend_at = {});
 
 }  // namespace groom

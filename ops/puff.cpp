@@ -112,16 +112,12 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     // The region: a disc in the tangent plane at c0; the cap: around the axis from c0 to the centre.
     const float3 c0 = scalp.closest_point(params.center);
     const float3 n0 = scalp.normal(c0);
-    const float3 u = any_perpendicular(n0), v = cross(n0, u);
     if (!(dot(params.sphere_center - c0, n0) > 0.0f)) {
         throw InvalidParam("puff: `sphere_center` " + str(params.sphere_center) + " must lie above the region, on the outer side of the scalp at " +
                            str(c0) + " (normal " + str(n0) + ")");
     }
-    const float3 axis = normalize(params.sphere_center - c0, n0);
-    float3 ut = u - axis * dot(u, axis);
-    ut = length(ut) > 1e-3f ? normalize(ut) : any_perpendicular(axis);
-    const float3 vt = cross(axis, ut);
-    const double cos_cap = std::cos(double(params.cap_angle) * kPi / 180.0);
+    const PuffCap cap = PuffCap::make(scalp, c0, params.radius, params.sphere_center, params.sphere_radius, params.cap_angle);
+    const float3 u = cap.u, v = cap.v, axis = cap.axis;
 
     // Cell centres of the rows x cols grid, mapped to the disc.
     std::vector<double> disc_x(ng), disc_y(ng);
@@ -158,13 +154,8 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     auto guide = dst.add<int32_t>(Domain::Curve, "guide");
     parallel_for(ng, 16, [&](int64_t b, int64_t e) {
         for (int64_t g = b; g < e; ++g) {
-            // Equal-area map of the disc radius onto the cap's polar angle.
-            const double rho = std::hypot(disc_x[g], disc_y[g]);
-            const double cos_t = 1.0 - rho * rho * (1.0 - cos_cap);
-            const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-            const double ax = rho > 0.0 ? disc_x[g] / rho : 0.0, ay = rho > 0.0 ? disc_y[g] / rho : 0.0;
-            const float3 d = normalize(axis * float(cos_t) + (ut * float(ax) + vt * float(ay)) * float(sin_t));
-            const float3 tip = params.sphere_center + d * params.sphere_radius;
+            const float3 tip = cap.tip_at(disc_x[g], disc_y[g]);
+            const float3 d = normalize(tip - params.sphere_center);
             if (scalp.distance(tip) < 0.0f) {
                 throw InvalidParam("puff: guide tip " + str(tip) + " on the sphere lies inside the scalp; lower `cap_angle` (got " +
                                    str(params.cap_angle) + ") or move `sphere_center` away from the head");
@@ -209,6 +200,7 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     dst.add<float>(Domain::Detail, "puff_radius")[0] = params.radius;
     dst.add<float3>(Domain::Detail, "puff_sphere_center")[0] = params.sphere_center;
     dst.add<float>(Domain::Detail, "puff_sphere_radius")[0] = params.sphere_radius;
+    dst.add<float>(Domain::Detail, "puff_cap_angle")[0] = params.cap_angle;
     apply_hair_widths(dst, params.curl.widths, params.curl.units_per_cm);
     add_root_uvs(dst, scalp);
     return dst;
@@ -236,7 +228,13 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     gen.first_id = params.first_id + int64_t(result.guides.num_curves());
     CurveSet centres = generate(result.guides, scalp, sample, gen, progress);
 
-    warp_tips_to_sphere(centres, params.sphere_center, params.sphere_radius);
+    {
+        const PuffCap cap = PuffCap::make(scalp, gen.region_center, params.radius, params.sphere_center, params.sphere_radius, params.cap_angle);
+        const auto P = centres.positions();
+        std::vector<float3> tips(centres.num_curves());
+        for (size_t c = 0; c < tips.size(); ++c) tips[c] = cap.tip_for(P[size_t(centres.points_of(c).begin)]);
+        warp_tips_to(centres, tips);
+    }
     keep_outside(centres, scalp, KeepOutside{});
 
     CurlParams curl_params = params.curl;
@@ -253,7 +251,44 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     return result;
 }
 
-void warp_tips_to_sphere(CurveSet& centres, const float3& C, float R)
+PuffCap PuffCap::make(const Surface& scalp, const float3& base, float radius, const float3& sphere_center, float sphere_radius,
+                      float cap_angle_degrees)
+{
+    PuffCap cap;
+    cap.base = base;
+    const float3 n0 = scalp.normal(base);
+    cap.u = any_perpendicular(n0);
+    cap.v = cross(n0, cap.u);
+    cap.axis = normalize(sphere_center - base, n0);
+    cap.ut = cap.u - cap.axis * dot(cap.u, cap.axis);
+    cap.ut = length(cap.ut) > 1e-3f ? normalize(cap.ut) : any_perpendicular(cap.axis);
+    cap.vt = cross(cap.axis, cap.ut);
+    cap.radius = radius;
+    cap.cos_cap = std::cos(double(cap_angle_degrees) * kPi / 180.0);
+    cap.sphere_center = sphere_center;
+    cap.sphere_radius = sphere_radius;
+    return cap;
+}
+
+float3 PuffCap::tip_at(double dx, double dy) const
+{
+    const double rho = std::hypot(dx, dy);
+    const double cos_t = 1.0 - rho * rho * (1.0 - cos_cap);
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    const double ax = rho > 0.0 ? dx / rho : 0.0, ay = rho > 0.0 ? dy / rho : 0.0;
+    const float3 d = normalize(axis * float(cos_t) + (ut * float(ax) + vt * float(ay)) * float(sin_t));
+    return sphere_center + d * sphere_radius;
+}
+
+float3 PuffCap::tip_for(const float3& x) const
+{
+    double dx = double(dot(x - base, u)) / double(radius), dy = double(dot(x - base, v)) / double(radius);
+    const double rho = std::hypot(dx, dy);
+    if (rho > 1.0) dx /= rho, dy /= rho;
+    return tip_at(dx, dy);
+}
+
+void warp_tips_to(CurveSet& centres, std::span<const float3> targets)
 {
     // A warp that vanishes with its derivative at the root: the root and its direction stay.
     auto P = centres.positions_for_write();
@@ -263,15 +298,27 @@ void warp_tips_to_sphere(CurveSet& centres, const float3& C, float R)
             if (r.size() < 2) continue;
             const auto pts = P.subspan(r.begin, r.size());
             const auto cum = cumulative_lengths(pts);
-            const float3 tip = pts.back();
-            const float3 shift = C + normalize(tip - C, normalize(tip - pts.front())) * R - tip;
+            const float3 shift = targets[size_t(c)] - pts.back();
             for (size_t i = 1; i < pts.size(); ++i) {
                 const float s = cum.back() > 0.0 ? float(cum[i] / cum.back()) : 1.0f;
                 pts[i] += shift * (s * s);
             }
-            pts.back() = C + normalize(tip - C, normalize(tip - pts.front())) * R;  // exact, not up to rounding
+            pts.back() = targets[size_t(c)];  // exact, not up to rounding
         }
     });
+}
+
+void warp_tips_to_sphere(CurveSet& centres, const float3& C, float R)
+{
+    const auto P = centres.positions();
+    std::vector<float3> targets(centres.num_curves());
+    for (size_t c = 0; c < targets.size(); ++c) {
+        const IndexRange r = centres.points_of(c);
+        if (r.size() < 2) continue;
+        const float3 tip = P[size_t(r.end - 1)];
+        targets[c] = C + normalize(tip - C, normalize(tip - P[size_t(r.begin)])) * R;
+    }
+    warp_tips_to(centres, targets);
 }
 
 double min_curve_separation(const CurveSet& curves)

@@ -73,7 +73,7 @@ struct PuffParams {
 /// Writes point P, point `width` (curl.widths), curve int64 `id`, int32 `kind` (0 = guide), int32
 /// `guide` (its own index), and
 /// the detail attributes `groom gather` reads: float3 `puff_base` (c0), float `puff_radius`, float3
-/// `puff_sphere_center`, float `puff_sphere_radius`.
+/// `puff_sphere_center`, float `puff_sphere_radius`, float `puff_cap_angle` (degrees).
 /// Throws InvalidParam (params; a tip that would lie inside the scalp), InvalidGeometry (the region
 /// has no scalp within `radius` of c0 along the grid, or guides would cross).
 CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* progress = nullptr);
@@ -88,9 +88,10 @@ struct PuffResult {
 ///
 /// Hair roots are drawn area-uniformly from the scalp within `radius` of c0 (by `sample`, seeded
 /// from curl.seed); each hair's centreline is interpolated from its nearest guides by
-/// generate_at_roots() (so it follows them), its tip is then moved onto the sphere along the
-/// direction from the sphere centre (a smooth warp, p += (tip' - tip) s^2 for arc-length fraction
-/// s, which keeps the root and the root direction), and it is curled by curl(); curled points that
+/// generate_at_roots() (so it follows them), its tip is then moved to its root's point of the cap
+/// (PuffCap::tip_for: tips cover the cap as evenly as the roots cover the base, out to its rim) by a
+/// smooth warp (p += (tip' - tip) s^2 for arc-length fraction s, which keeps the root and the root
+/// direction), and it is curled by curl(); curled points that
 /// fall inside the scalp are then moved onto it (keep_outside on the curves, clearance 0: roots stay).
 /// A curl moves points at most curl_reach(curl) off the centreline, so every hair tip lies within
 /// that distance of the sphere.
@@ -104,6 +105,35 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
 /// amplitude (the hair type's radius x units_per_cm x 1.2 when unset) times the largest radius of a
 /// unit cross-section (2^(1/2 - 1/n) for a Lame curve with exponent n > 2, else 1), plus the largest offset.
 float curl_reach(const CurlParams& params);
+
+/// The equal-area map from a puff's base onto its sphere's cap (Sec. 3.2's "tips cover the cap"):
+/// a point of the base's disc (the tangent plane at the base, `radius` across) at polar radius rho of
+/// the radius and azimuth phi ends at the sphere's point at polar angle theta around the axis from the
+/// base to the sphere's centre, 1 - cos(theta) = rho^2 (1 - cos(cap_angle)), azimuth phi. Guides take
+/// their tips from it (puff_guides); so do the hairs, from their roots (puff) or from the point of
+/// the base whose guides they follow (gather): blending guides only ever reached the outermost
+/// guides' tips, so every hair rooted outside their ring ended on that one circle, a sharp edge
+/// around the ball with bare sphere below it.
+struct PuffCap {
+    float3 base, u, v;     ///< the disc's centre (on the scalp) and its axes in the tangent plane
+    float3 axis, ut, vt;   ///< the cap's axis and the axes its azimuth is measured on
+    float radius = 0.0f;
+    double cos_cap = -1.0;
+    float3 sphere_center;
+    float sphere_radius = 0.0f;
+
+    /// The cap of a puff based at `base` (a scalp point), as puff_guides lays it out.
+    static PuffCap make(const Surface& scalp, const float3& base, float radius, const float3& sphere_center, float sphere_radius,
+                        float cap_angle_degrees);
+    /// The sphere point of the disc point (dx, dy), in units of the radius (|(dx, dy)| <= 1).
+    float3 tip_at(double dx, double dy) const;
+    /// The sphere point for the base point nearest x: x projected into the disc, clamped to its rim.
+    float3 tip_for(const float3& x) const;
+};
+
+/// Moves each curve's tip to targets[c] (#curves) by the warp p += (tip' - tip) s^2, s the arc-length
+/// fraction, which keeps the root and the root direction. Curves with fewer than 2 points are left.
+void warp_tips_to(CurveSet& centres, std::span<const float3> targets);
 
 /// Moves each curve's tip onto the sphere (C, R) along the direction from C (for a tip at C: along the
 /// curve's root-to-tip direction) by the warp p += (tip' - tip) s^2, s the arc-length fraction, which

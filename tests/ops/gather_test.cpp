@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -65,7 +66,7 @@ CurveSet centre_parting()
     return p;
 }
 
-GatherPuff make_puff(const AnalyticSphere& head, float side)
+PuffParams puff_params(float side)
 {
     PuffParams p;
     p.center = kC + normalize(float3(0.6f * side, 0.8f, 0)) * kR;
@@ -74,12 +75,19 @@ GatherPuff make_puff(const AnalyticSphere& head, float side)
     p.sphere_radius = 4.0f;
     p.rows = p.cols = 4;
     p.cap_angle = 140.0f;
+    return p;
+}
+
+GatherPuff make_puff(const AnalyticSphere& head, float side)
+{
+    const PuffParams p = puff_params(side);
     GatherPuff g;
     g.guides = puff_guides(head, p);
     g.base = g.guides.find<float3>(Domain::Detail, "puff_base")[0];
     g.base_radius = g.guides.find<float>(Domain::Detail, "puff_radius")[0];
     g.sphere_center = g.guides.find<float3>(Domain::Detail, "puff_sphere_center")[0];
     g.sphere_radius = g.guides.find<float>(Domain::Detail, "puff_sphere_radius")[0];
+    g.cap_angle = g.guides.find<float>(Domain::Detail, "puff_cap_angle")[0];
     return g;
 }
 
@@ -180,6 +188,61 @@ TEST(Gather, CoversTheHairedScalpFlatAndIntoThePuffs)
             EXPECT_GT(distance(BP[i], g.base), g.base_radius);
         }
     }
+}
+
+// A puff seen from the side: the gathered hair must fill the ball, not run as one sheet from the
+// base's rim to the cap's rim. Each gathered hair enters at the rim; when every one followed the
+// rim's guides, all their tips met the ball on one circle, the outermost guides' (and their bodies
+// made a smooth cone under it with a sharp edge: the demo's Izzy). Read from the tips: where each
+// lands on the cap, as the equal-area coordinate u = (1 - cos theta) / (1 - cos cap), against the
+// puff's own hairs (rooted area-uniformly over the base, so spread as the guides allow).
+TEST(Gather, GatheredHairFillsThePuffNotOneSheet)
+{
+    const AnalyticSphere head(kC, kR);
+    const std::vector<GatherPuff> puffs{make_puff(head, -1), make_puff(head, 1)};
+    HairRegionParams rp;
+    rp.parting_gap = 0.3f;
+    const HairRegion region(head, level_hairline(), centre_parting(), rp);
+    const GatherParams params = small_params();
+    const GatherResult r = gather(head, whole_sphere(), puffs, region, params);
+
+    PuffParams own_params = puff_params(1);
+    own_params.hairs = 3000;
+    own_params.hair_points = params.hair_points;
+    own_params.curl = params.curl;
+    const CurveSet own = puff(head, whole_sphere(), own_params).hairs;
+
+    const GatherPuff& g = puffs[1];
+    const float3 axis = normalize(g.sphere_center - g.base);
+    const float cap = own_params.cap_angle * kPi / 180.0f;
+    auto tips_u = [&](const CurveSet& cs, std::span<const int32_t> puff_of) {
+        std::vector<float> u;
+        const auto P = cs.positions();
+        for (size_t c = 0; c < cs.num_curves(); ++c) {
+            if (!puff_of.empty() && puff_of[c] != 1) continue;
+            const float3 tip = P[cs.points_of(c).end - 1];
+            u.push_back((1.0f - dot(normalize(tip - g.sphere_center), axis)) / (1.0f - std::cos(cap)));
+        }
+        std::sort(u.begin(), u.end());
+        return u;
+    };
+    const std::vector<float> own_u = tips_u(own, {});
+    const std::vector<float> gathered_u = tips_u(r.hairs, r.hairs.find<int32_t>(Domain::Curve, "puff"));
+    ASSERT_GT(gathered_u.size(), 1000u);
+    const float own_median = own_u[own_u.size() / 2];
+    const size_t below = size_t(std::lower_bound(gathered_u.begin(), gathered_u.end(), own_median) - gathered_u.begin());
+    // Half of the puff's own tips lie inside its median; all of the gathered ones on one outer circle
+    // put none there.
+    EXPECT_GE(below, gathered_u.size() * 30 / 100) << below << " of " << gathered_u.size()
+                                                    << " gathered tips inside the median of the puff's own (u " << own_median << ")";
+    // Nor a ring: no band of the cap a tenth of the own tips' spread wide holds more than a third of them.
+    const float spread = own_u[own_u.size() * 95 / 100] - own_u[own_u.size() * 5 / 100];
+    size_t most = 0;
+    for (size_t a = 0, b = 0; a < gathered_u.size(); ++a) {
+        while (b < gathered_u.size() && gathered_u[b] < gathered_u[a] + 0.1f * spread) ++b;
+        most = std::max(most, b - a);
+    }
+    EXPECT_LE(most, gathered_u.size() / 3) << most << " of " << gathered_u.size() << " gathered tips in one band of the cap " << 0.1f * spread << " wide";
 }
 
 TEST(Gather, SectionsWithoutAPuffGrowNothingAndThreadsDoNotMatter)

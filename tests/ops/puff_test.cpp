@@ -417,6 +417,33 @@ TEST_P(PuffHairs, SilhouetteNothingInsideAndDirectionsFollowGuides)
     EXPECT_GT(worst_tip, 0.0f);  // the curls do move the tips: the bound is not trivially met
 }
 
+// Tips as a person sees the ball: covered from the top down to the cap's rim, as evenly as the roots
+// cover the base. Blending the guides alone never reached past their outermost ring (5/6 of the disc
+// for the 6 x 7 grid, u = 0.69 below), so every hair rooted outside it ended on that one circle: a
+// sharp edge around the ball, with bare sphere under it. Read as the tips' equal-area coordinate
+// u = (1 - cos theta) / (1 - cos cap) around the cap's axis, uniform over the cap's area.
+TEST_P(PuffHairs, TipsCoverTheCapToItsRim)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    const PuffParams p = params(4000);
+    const PuffResult r = puff(head, test::sphere_cap_sampler(kHeadC, kHeadR), p);
+    const float3 c0 = normalize(p.center) * kHeadR;
+    const float3 axis = normalize(p.sphere_center - c0);
+    const double one_minus_cos_cap = 1.0 - std::cos(double(p.cap_angle) * 3.141592653589793 / 180.0);
+    std::vector<int> fifth(5, 0);
+    for (size_t c = 0; c < r.hairs.num_curves(); ++c) {
+        const float3 d = normalize(curve(r.hairs, c).back() - p.sphere_center);
+        const double u = (1.0 - double(dot(d, axis))) / one_minus_cos_cap;
+        fifth[size_t(std::clamp(int(u * 5.0), 0, 4))]++;
+    }
+    // Each fifth of the cap's area holds a fifth of the tips (800), within 25% (the curls move tips
+    // by up to their reach, 0.35 on a sphere of radius 6, about 3 degrees).
+    for (int k = 0; k < 5; ++k) {
+        EXPECT_GE(fifth[size_t(k)], 600) << "fifth " << k << " of the cap (by area) holds " << fifth[size_t(k)] << " of 4000 tips";
+        EXPECT_LE(fifth[size_t(k)], 1000) << "fifth " << k << " of the cap (by area) holds " << fifth[size_t(k)] << " of 4000 tips";
+    }
+}
+
 TEST_P(PuffHairs, AttributesAndIds)
 {
     const AnalyticSphere head(kHeadC, kHeadR);

@@ -91,6 +91,19 @@ GatherPuff make_puff(const AnalyticSphere& head, float side)
     return g;
 }
 
+/// Two puffs on the sphere, the level hairline and the centre parting, 0.3 of bare scalp each side.
+struct TwoPuffs {
+    AnalyticSphere head{kC, kR};
+    std::vector<GatherPuff> puffs{make_puff(head, -1), make_puff(head, 1)};
+    HairRegion region{head, level_hairline(), centre_parting(), [] {
+                          HairRegionParams rp;
+                          rp.parting_gap = 0.3f;
+                          return rp;
+                      }()};
+
+    GatherResult grow(const GatherParams& params) const { return gather(head, whole_sphere(), puffs, region, params); }
+};
+
 GatherParams small_params()
 {
     GatherParams p;
@@ -115,13 +128,11 @@ TEST(Gather, PuffsCarryTheirBaseAndSphere)
 
 TEST(Gather, CoversTheHairedScalpFlatAndIntoThePuffs)
 {
-    const AnalyticSphere head(kC, kR);
-    const std::vector<GatherPuff> puffs{make_puff(head, -1), make_puff(head, 1)};
-    HairRegionParams rp;
-    rp.parting_gap = 0.3f;
-    const HairRegion region(head, level_hairline(), centre_parting(), rp);
+    const TwoPuffs scene;
+    const std::vector<GatherPuff>& puffs = scene.puffs;
+    const HairRegion& region = scene.region;
     const GatherParams params = small_params();
-    const GatherResult r = gather(head, whole_sphere(), puffs, region, params);
+    const GatherResult r = scene.grow(params);
     ASSERT_EQ(r.hairs.num_curves(), size_t(params.hairs));
     EXPECT_EQ(r.roots_without_puff, 0);
 
@@ -198,21 +209,17 @@ TEST(Gather, CoversTheHairedScalpFlatAndIntoThePuffs)
 // puff's own hairs (rooted area-uniformly over the base, so spread as the guides allow).
 TEST(Gather, GatheredHairFillsThePuffNotOneSheet)
 {
-    const AnalyticSphere head(kC, kR);
-    const std::vector<GatherPuff> puffs{make_puff(head, -1), make_puff(head, 1)};
-    HairRegionParams rp;
-    rp.parting_gap = 0.3f;
-    const HairRegion region(head, level_hairline(), centre_parting(), rp);
+    const TwoPuffs scene;
     const GatherParams params = small_params();
-    const GatherResult r = gather(head, whole_sphere(), puffs, region, params);
+    const GatherResult r = scene.grow(params);
 
     PuffParams own_params = puff_params(1);
     own_params.hairs = 3000;
     own_params.hair_points = params.hair_points;
     own_params.curl = params.curl;
-    const CurveSet own = puff(head, whole_sphere(), own_params).hairs;
+    const CurveSet own = puff(scene.head, whole_sphere(), own_params).hairs;
 
-    const GatherPuff& g = puffs[1];
+    const GatherPuff& g = scene.puffs[1];
     const float3 axis = normalize(g.sphere_center - g.base);
     const float cap = own_params.cap_angle * kPi / 180.0f;
     auto tips_u = [&](const CurveSet& cs, std::span<const int32_t> puff_of) {

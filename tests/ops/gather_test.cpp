@@ -293,6 +293,34 @@ TEST(Gather, RejectsBadParamsAndMissingPuffs)
     }
 }
 
+// A puff written before `puff_cap_angle` was kept still gathers: each tip goes straight out onto the
+// sphere, as it did. A cap angle outside (0, 180) is refused, naming the attribute.
+TEST(Gather, PuffWithoutItsCapAngleAndABadOne)
+{
+    TwoPuffs scene;
+    for (GatherPuff& g : scene.puffs) g.cap_angle = 0.0f;
+    GatherParams params = small_params();
+    params.hairs = 500;
+    const GatherResult r = scene.grow(params);
+    ASSERT_EQ(r.hairs.num_curves(), 500u);
+    const auto P = r.hairs.positions();
+    const auto puff_of = r.hairs.find<int32_t>(Domain::Curve, "puff");
+    const float reach = curl_reach(params.curl);
+    for (size_t c = 0; c < r.hairs.num_curves(); ++c) {
+        const GatherPuff& g = scene.puffs[puff_of[c]];
+        EXPECT_LE(std::fabs(distance(P[r.hairs.points_of(c).end - 1], g.sphere_center) - g.sphere_radius), reach + 1e-3f) << c;
+    }
+    scene.puffs[1].cap_angle = 200.0f;
+    try {
+        scene.grow(params);
+        FAIL() << "a cap angle of 200 degrees was accepted";
+    }
+    catch (const InvalidGeometry& e) {
+        EXPECT_NE(std::string(e.what()).find("puff_cap_angle"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("200"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Gather, RealScanEveryHairReachesItsBaseOnTheScalp)
 {
     // Lee Perry-Smith's scan: ears and a real nape, where a walk on the scalp can stall behind an ear.

@@ -202,8 +202,9 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
             // Its tip at the cap's point for the point of the base it follows (PuffCap), as the
             // puff's own hairs end at their roots' points.
             const PuffCap cap = PuffCap::make(scalp, puff.base, puff.base_radius, puff.sphere_center, puff.sphere_radius, puff.cap_angle);
+            const auto P = centres.positions();
             std::vector<float3> tips(blend_at.size());
-            for (size_t j = 0; j < tips.size(); ++j) tips[j] = cap.tip_for(blend_at[j]);
+            for (size_t j = 0; j < tips.size(); ++j) tips[j] = cap.tip_for(blend_at[j], P[size_t(centres.points_of(j).end - 1)]);
             warp_tips_to(centres, tips);
         }
         else {

@@ -232,7 +232,10 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
         const PuffCap cap = PuffCap::make(scalp, gen.region_center, params.radius, params.sphere_center, params.sphere_radius, params.cap_angle);
         const auto P = centres.positions();
         std::vector<float3> tips(centres.num_curves());
-        for (size_t c = 0; c < tips.size(); ++c) tips[c] = cap.tip_for(P[size_t(centres.points_of(c).begin)]);
+        for (size_t c = 0; c < tips.size(); ++c) {
+            const IndexRange r = centres.points_of(c);
+            tips[c] = cap.tip_for(P[size_t(r.begin)], P[size_t(r.end - 1)]);
+        }
         warp_tips_to(centres, tips);
     }
     keep_outside(centres, scalp, KeepOutside{});
@@ -280,12 +283,18 @@ float3 PuffCap::tip_at(double dx, double dy) const
     return sphere_center + d * sphere_radius;
 }
 
-float3 PuffCap::tip_for(const float3& x) const
+float3 PuffCap::tip_for(const float3& x, const float3& blended) const
 {
     double dx = double(dot(x - base, u)) / double(radius), dy = double(dot(x - base, v)) / double(radius);
-    const double rho = std::hypot(dx, dy);
-    if (rho > 1.0) dx /= rho, dy /= rho;
-    return tip_at(dx, dy);
+    const double len = std::hypot(dx, dy);
+    if (len > 1.0) dx /= len, dy /= len;
+    const double rho = std::min(len, 1.0);
+    const float3 b = blended - sphere_center;
+    const float3 side = b - axis * dot(b, axis);
+    if (!(length(side) > 1e-6f * sphere_radius)) return tip_at(dx, dy);
+    const double cos_t = 1.0 - rho * rho * (1.0 - cos_cap);
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    return sphere_center + normalize(axis * float(cos_t) + normalize(side) * float(sin_t)) * sphere_radius;
 }
 
 void warp_tips_to(CurveSet& centres, std::span<const float3> targets)

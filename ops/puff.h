@@ -127,8 +127,12 @@ struct PuffCap {
                         float cap_angle_degrees);
     /// The sphere point of the disc point (dx, dy), in units of the radius (|(dx, dy)| <= 1).
     float3 tip_at(double dx, double dy) const;
-    /// The sphere point for the base point nearest x: x projected into the disc, clamped to its rim.
-    float3 tip_for(const float3& x) const;
+    /// The sphere point for a hair following the guides at base point x, whose blended tip is
+    /// `blended`: the polar angle from x's distance from the centre in the disc (clamped to the rim),
+    /// the azimuth the blended guides give it (so it never depends on how the disc's axes were
+    /// chosen, which a later transform of the puff may change; x's own azimuth where the blended tip
+    /// lies on the axis).
+    float3 tip_for(const float3& x, const float3& blended) const;
 };
 
 /// Moves each curve's tip to targets[c] (#curves) by the warp p += (tip' - tip) s^2, s the arc-length

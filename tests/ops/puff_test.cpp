@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -441,6 +443,38 @@ TEST_P(PuffHairs, TipsCoverTheCapToItsRim)
     for (int k = 0; k < 5; ++k) {
         EXPECT_GE(fifth[size_t(k)], 600) << "fifth " << k << " of the cap (by area) holds " << fifth[size_t(k)] << " of 4000 tips";
         EXPECT_LE(fifth[size_t(k)], 1000) << "fifth " << k << " of the cap (by area) holds " << fifth[size_t(k)] << " of 4000 tips";
+    }
+}
+
+// A hair's tip on the cap depends on where it follows the guides and on the direction they give it,
+// not on the disc axes PuffCap picked: `groom transform` may rotate a puff's file, and `groom
+// gather` then rebuilds the cap from the rotated scalp, whose axes any_perpendicular picks anew.
+TEST(Puff, CapTipDoesNotDependOnTheDiscAxes)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    const PuffParams p = side_puff();  // its axis leans off the normal, where the choice of axes shows
+    const float3 base = normalize(p.center) * kHeadR;
+    const PuffCap a = PuffCap::make(head, base, p.radius, p.sphere_center, p.sphere_radius, p.cap_angle);
+    PuffCap b = a;
+    const float turn = 0.6f;  // the disc's axes turned by 0.6 radians about the normal, the cap's made as make() does
+    b.u = a.u * std::cos(turn) + a.v * std::sin(turn);
+    b.v = a.v * std::cos(turn) - a.u * std::sin(turn);
+    b.ut = normalize(b.u - b.axis * dot(b.u, b.axis));
+    b.vt = cross(b.axis, b.ut);
+    for (const std::array<float, 2> o : {std::array<float, 2>{1.0f, 0.5f}, {-2.0f, 1.5f}, {0.3f, -2.9f}}) {
+        const float3 x = base + a.u * o[0] + a.v * o[1];
+        const float3 blended = p.sphere_center + normalize(a.axis * 0.4f + a.ut * o[0] + a.vt * o[1]) * p.sphere_radius;
+        const float3 ta = a.tip_for(x, blended), tb = b.tip_for(x, blended);
+        EXPECT_LT(distance(ta, tb), 1e-5f * p.sphere_radius) << ta.x << "," << ta.y << "," << ta.z << " against " << tb.x << "," << tb.y << "," << tb.z;
+        // On the sphere, at the equal-area polar angle of x's distance from the base's centre.
+        EXPECT_NEAR(distance(ta, p.sphere_center), p.sphere_radius, 1e-5f * p.sphere_radius);
+        const double rho = std::min(1.0, std::hypot(double(o[0]), double(o[1])) / double(p.radius));
+        const double cos_t = 1.0 - rho * rho * (1.0 - std::cos(double(p.cap_angle) * 3.141592653589793 / 180.0));
+        EXPECT_NEAR(dot(normalize(ta - p.sphere_center), a.axis), cos_t, 1e-5);
+        // The azimuth the blended tip gives.
+        const float3 side = blended - p.sphere_center - a.axis * dot(blended - p.sphere_center, a.axis);
+        const float3 tside = ta - p.sphere_center - a.axis * dot(ta - p.sphere_center, a.axis);
+        EXPECT_GT(dot(normalize(side), normalize(tside)), 1.0f - 1e-5f);
     }
 }
 

@@ -201,11 +201,7 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
         if (puff.cap_angle > 0.0f) {
             // Its tip at the cap's point for the point of the base it follows (PuffCap), as the
             // puff's own hairs end at their roots' points.
-            const PuffCap cap = PuffCap::make(scalp, puff.base, puff.base_radius, puff.sphere_center, puff.sphere_radius, puff.cap_angle);
-            const auto P = centres.positions();
-            std::vector<float3> tips(blend_at.size());
-            for (size_t j = 0; j < tips.size(); ++j) tips[j] = cap.tip_for(blend_at[j], P[size_t(centres.points_of(j).end - 1)]);
-            warp_tips_to(centres, tips);
+            PuffCap::make(scalp, puff.base, puff.base_radius, puff.sphere_center, puff.sphere_radius, puff.cap_angle).warp_onto(centres, blend_at);
         }
         else {
             warp_tips_to_sphere(centres, puff.sphere_center, puff.sphere_radius);

@@ -228,16 +228,7 @@ PuffResult puff(const Surface& scalp, const RootSampler& sample, const PuffParam
     gen.first_id = params.first_id + int64_t(result.guides.num_curves());
     CurveSet centres = generate(result.guides, scalp, sample, gen, progress);
 
-    {
-        const PuffCap cap = PuffCap::make(scalp, gen.region_center, params.radius, params.sphere_center, params.sphere_radius, params.cap_angle);
-        const auto P = centres.positions();
-        std::vector<float3> tips(centres.num_curves());
-        for (size_t c = 0; c < tips.size(); ++c) {
-            const IndexRange r = centres.points_of(c);
-            tips[c] = cap.tip_for(P[size_t(r.begin)], P[size_t(r.end - 1)]);
-        }
-        warp_tips_to(centres, tips);
-    }
+    PuffCap::make(scalp, gen.region_center, params.radius, params.sphere_center, params.sphere_radius, params.cap_angle).warp_onto(centres);
     keep_outside(centres, scalp, KeepOutside{});
 
     CurlParams curl_params = params.curl;
@@ -273,14 +264,18 @@ PuffCap PuffCap::make(const Surface& scalp, const float3& base, float radius, co
     return cap;
 }
 
+float3 PuffCap::at(double rho, const float3& side) const
+{
+    const double cos_t = 1.0 - rho * rho * (1.0 - cos_cap);
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    return sphere_center + normalize(axis * float(cos_t) + side * float(sin_t)) * sphere_radius;
+}
+
 float3 PuffCap::tip_at(double dx, double dy) const
 {
     const double rho = std::hypot(dx, dy);
-    const double cos_t = 1.0 - rho * rho * (1.0 - cos_cap);
-    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
     const double ax = rho > 0.0 ? dx / rho : 0.0, ay = rho > 0.0 ? dy / rho : 0.0;
-    const float3 d = normalize(axis * float(cos_t) + (ut * float(ax) + vt * float(ay)) * float(sin_t));
-    return sphere_center + d * sphere_radius;
+    return at(rho, ut * float(ax) + vt * float(ay));
 }
 
 float3 PuffCap::tip_for(const float3& x, const float3& blended) const
@@ -288,13 +283,22 @@ float3 PuffCap::tip_for(const float3& x, const float3& blended) const
     double dx = double(dot(x - base, u)) / double(radius), dy = double(dot(x - base, v)) / double(radius);
     const double len = std::hypot(dx, dy);
     if (len > 1.0) dx /= len, dy /= len;
-    const double rho = std::min(len, 1.0);
     const float3 b = blended - sphere_center;
     const float3 side = b - axis * dot(b, axis);
     if (!(length(side) > 1e-6f * sphere_radius)) return tip_at(dx, dy);
-    const double cos_t = 1.0 - rho * rho * (1.0 - cos_cap);
-    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-    return sphere_center + normalize(axis * float(cos_t) + normalize(side) * float(sin_t)) * sphere_radius;
+    return at(std::min(len, 1.0), normalize(side));
+}
+
+void PuffCap::warp_onto(CurveSet& centres, std::span<const float3> follows) const
+{
+    const auto P = centres.positions();
+    std::vector<float3> tips(centres.num_curves());
+    for (size_t c = 0; c < tips.size(); ++c) {
+        const IndexRange r = centres.points_of(c);
+        if (r.size() < 2) continue;
+        tips[c] = tip_for(follows.empty() ? P[size_t(r.begin)] : follows[c], P[size_t(r.end - 1)]);
+    }
+    warp_tips_to(centres, tips);
 }
 
 void warp_tips_to(CurveSet& centres, std::span<const float3> targets)

@@ -133,6 +133,14 @@ struct PuffCap {
     /// chosen, which a later transform of the puff may change; x's own azimuth where the blended tip
     /// lies on the axis).
     float3 tip_for(const float3& x, const float3& blended) const;
+    /// Each curve's tip warped (warp_tips_to) to tip_for(follows[c], its tip); `follows` (#curves,
+    /// or empty for each curve's root): the base point whose guides it follows.
+    void warp_onto(CurveSet& centres, std::span<const float3> follows = {}) const;
+
+private:
+    /// The sphere point at the disc radius rho (polar angle by the equal-area map) toward the unit
+    /// direction `side`, perpendicular to the axis.
+    float3 at(double rho, const float3& side) const;
 };
 
 /// Moves each curve's tip to targets[c] (#curves) by the warp p += (tip' - tip) s^2, s the arc-length

@@ -150,20 +150,71 @@ struct Centreline {
         return lerp(points[size_t(j)], points[size_t(j1)], f);
     }
 
-    /// Centre c and frame (normal n, binormal b) at arc length s, interpolated between grid points.
-    void at(double s, float3& c, float3& n, float3& b) const
+    /// Centres and frames (normal, binormal) at the arc lengths `s`, interpolated between grid points,
+    /// into `at`: 9 floats a point (centre, normal, binormal). Each is
+    ///     c = lerp of the grid's centres, t = renormalize(lerp of the tangents),
+    ///     n = renormalize(lerp of the normals less their part along t), b = t x n
+    /// (neighbouring frames differ by a small turn, so the blends are within 1e-3 of unit length and
+    /// renormalize needs no square root; the frames of a sharp bend take the exact path). The points
+    /// are interpolated by a loop without a branch, which GCC runs four at a time, and the few that
+    /// need the exact path are done again one at a time: the same operations on each value as one
+    /// point at a time, so the same bits. One at a time, pass 2 of curl_curve was a third of
+    /// curling Sintel's hair (rdtsc), and this part of it about a third of that.
+    void frames_at(std::span<const double> s, std::vector<int32_t>& lo, std::vector<int32_t>& hi, std::vector<float>& frac,
+                   std::vector<float>& at, std::vector<uint8_t>& far) const
     {
-        int64_t j = 0, j1 = 0;
-        float f = 0.0f;
-        spot(s, j, j1, f);
-        c = lerp(points[size_t(j)], points[size_t(j1)], f);
-        // Neighbouring frames differ by a small turn, so their blends are within 1e-3 of unit
-        // length and renormalize needs no square root (the frames of a sharp bend take the exact path).
-        const float3 t = renormalize(lerp(frames[size_t(j)].t, frames[size_t(j1)].t, f), frames[size_t(j)].t);
-        float3 nn = lerp(frames[size_t(j)].n, frames[size_t(j1)].n, f);
-        nn = renormalize(nn - t * dot(nn, t), frames[size_t(j)].n);
-        n = nn;
-        b = cross(t, nn);
+        const size_t m = s.size();
+        lo.resize(m);
+        hi.resize(m);
+        frac.resize(m);
+        at.resize(9 * m);
+        for (size_t k = 0; k < m; ++k) {
+            int64_t j = 0, j1 = 0;
+            spot(s[k], j, j1, frac[k]);
+            lo[k] = int32_t(j), hi[k] = int32_t(j1);
+        }
+        far.resize(m);
+        interpolate(m, points.data(), frames.data(), lo.data(), hi.data(), frac.data(), at.data(), far.data());
+        // The rare blend that is not within 1e-3 of unit length (a sharp bend) takes renormalize's
+        // exact path: the point again, one at a time.
+        for (size_t k = 0; k < m; ++k) {
+            if (!far[k]) continue;
+            const int32_t j = lo[k], j1 = hi[k];
+            const float f = frac[k];
+            const float3 t = renormalize(lerp(frames[size_t(j)].t, frames[size_t(j1)].t, f), frames[size_t(j)].t);
+            float3 n = lerp(frames[size_t(j)].n, frames[size_t(j1)].n, f);
+            n = renormalize(n - t * dot(n, t), frames[size_t(j)].n);
+            const float3 b = cross(t, n);
+            float* q = at.data() + 9 * k;
+            q[3] = n.x, q[4] = n.y, q[5] = n.z, q[6] = b.x, q[7] = b.y, q[8] = b.z;
+        }
+    }
+
+private:
+    /// frames_at's loop, renormalize's path without a square root for every point (far[k] = 1 where
+    /// a blend's squared length is not within 1e-3 of 1 and that path does not apply). The arguments
+    /// are restrict-qualified parameters (GCC does not vectorise it with restrict locals), and it
+    /// copies the points and frames (nor with references to them).
+    static void interpolate(size_t m, const float3* __restrict P, const Frame* __restrict F, const int32_t* __restrict lo,
+                            const int32_t* __restrict hi, const float* __restrict frac, float* __restrict out, uint8_t* __restrict far)
+    {
+        for (size_t k = 0; k < m; ++k) {
+            const float f = frac[k];
+            const float3 p0 = P[lo[k]], p1 = P[hi[k]], t0 = F[lo[k]].t, t1 = F[hi[k]].t, n0 = F[lo[k]].n, n1 = F[hi[k]].n;
+            float tx = t0.x + (t1.x - t0.x) * f, ty = t0.y + (t1.y - t0.y) * f, tz = t0.z + (t1.z - t0.z) * f;
+            const float tl2 = tx * tx + ty * ty + tz * tz, tg = 1.5f - 0.5f * tl2;
+            tx = tx * tg, ty = ty * tg, tz = tz * tg;
+            float nx = n0.x + (n1.x - n0.x) * f, ny = n0.y + (n1.y - n0.y) * f, nz = n0.z + (n1.z - n0.z) * f;
+            const float d = nx * tx + ny * ty + nz * tz;
+            nx = nx - tx * d, ny = ny - ty * d, nz = nz - tz * d;
+            const float nl2 = nx * nx + ny * ny + nz * nz, ng = 1.5f - 0.5f * nl2;
+            nx = nx * ng, ny = ny * ng, nz = nz * ng;
+            far[k] = uint8_t(!((tl2 > 0.999f) & (tl2 < 1.001f) & (nl2 > 0.999f) & (nl2 < 1.001f)));
+            float* q = out + 9 * k;
+            q[0] = p0.x + (p1.x - p0.x) * f, q[1] = p0.y + (p1.y - p0.y) * f, q[2] = p0.z + (p1.z - p0.z) * f;
+            q[3] = nx, q[4] = ny, q[5] = nz;
+            q[6] = ty * nz - tz * ny, q[7] = tz * nx - tx * nz, q[8] = tx * ny - ty * nx;
+        }
     }
 };
 
@@ -271,19 +322,27 @@ float3 curled_point(const CurveDraws& d, const CurlParams& p, const float3& c, c
     return c + n * (env * q.x) + b * (env * q.y);
 }
 
+/// What curl_curve keeps from curve to curve (a worker's).
+struct CurlScratch {
+    std::vector<float3> grid;
+    std::vector<double> chord, short_by;
+    std::vector<int32_t> lo, hi;
+    std::vector<float> frac, at;
+    std::vector<uint8_t> far;
+};
+
 /// Curls the centreline over arc lengths [0, end] with as many points as it has, evenly spaced:
 /// out[j], and its centreline arc length s_of[j].
-void curl_prefix(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double end, std::vector<float3>& out,
+void curl_prefix(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double end, CurlScratch& w, std::vector<float3>& out,
                  std::vector<double>& s_of)
 {
     const int64_t n = int64_t(cl.points.size());
     const double ds2 = end / double(n - 1);
+    for (int64_t j = 0; j < n; ++j) s_of[size_t(j)] = double(j) * ds2;
+    cl.frames_at(s_of, w.lo, w.hi, w.frac, w.at, w.far);
     for (int64_t j = 0; j < n; ++j) {
-        const double s = double(j) * ds2;
-        float3 c, nn, bb;
-        cl.at(s, c, nn, bb);
-        out[size_t(j)] = curled_point(d, p, c, nn, bb, s);
-        s_of[size_t(j)] = s;
+        const float* q = w.at.data() + 9 * j;
+        out[size_t(j)] = curled_point(d, p, {q[0], q[1], q[2]}, {q[3], q[4], q[5]}, {q[6], q[7], q[8]}, s_of[size_t(j)]);
     }
 }
 
@@ -319,13 +378,15 @@ double predicted_cut(std::span<const double> chord, std::span<const double> shor
 }
 
 /// The curled curve: as many points as the centreline into `out`, their centreline arc lengths into
-/// `s_of` (`grid`, `chord` and `short_by` are scratch). Pass 1 curls the centreline on its own grid,
+/// `s_of` (`w`: scratch). Pass 1 curls the centreline on its own grid,
 /// and (Sec. 3.1 says nothing of length; real curls shrink, the curl index) predicts where the curled
 /// hair reaches the input's length `in_len`: it then covers only that part of its centreline, which
 /// pass 2 re-samples with all the points. Without length preservation pass 1 is the result.
-void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double in_len, std::vector<float3>& grid,
-                std::vector<double>& chord, std::vector<double>& short_by, std::vector<float3>& out, std::vector<double>& s_of)
+void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double in_len, CurlScratch& w, std::vector<float3>& out,
+                std::vector<double>& s_of)
 {
+    std::vector<float3>& grid = w.grid;
+    std::vector<double>&chord = w.chord, &short_by = w.short_by;
     const int64_t n = int64_t(cl.points.size());
     grid.resize(size_t(n));
     chord.clear();
@@ -343,16 +404,19 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
             break;
         }
     }
-    // Each chord's bend: the mean of the second differences at its two ends, where they exist.
-    auto bend = [&](int64_t m) { return double(length_squared(grid[size_t(m - 1)] - grid[size_t(m)] * 2.0f + grid[size_t(m + 1)])); };
-    short_by.resize(chord.size());
-    for (size_t i = 0; i < chord.size(); ++i) {
-        double sum = 0.0;
-        int count = 0;
-        for (int64_t m : {int64_t(i), int64_t(i) + 1}) {
-            if (m >= 1 && m + 1 < evaluated) sum += bend(m), ++count;
-        }
+    // Each chord's bend: the mean of the squared second differences at its two ends, where they
+    // exist (each point's once: short_by holds them until it holds the chords' shortfalls).
+    const size_t nc = chord.size();
+    short_by.resize(nc);
+    auto bend = [&](size_t m) { return double(length_squared(grid[m - 1] - grid[m] * 2.0f + grid[m + 1])); };
+    double before = 0.0;  // the bend at chord i's first end (point i), where it exists
+    for (size_t i = 0; i < nc; ++i) {
+        const bool at_start = i >= 1, at_end = int64_t(i) + 2 < evaluated;
+        const double after = at_end ? bend(i + 1) : 0.0;
+        const int count = int(at_start) + int(at_end);
+        const double sum = at_start ? (at_end ? before + after : before) : after;
         short_by[i] = count > 0 && chord[i] > 0.0 ? sum / double(count) / (24.0 * chord[i]) : 0.0;
+        before = after;
     }
     out.resize(size_t(n));
     s_of.resize(size_t(n));
@@ -362,7 +426,7 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
         for (int64_t j = 0; j < n; ++j) s_of[size_t(j)] = double(j) * cl.ds;
         return;
     }
-    curl_prefix(cl, d, p, s_end, out, s_of);
+    curl_prefix(cl, d, p, s_end, w, out, s_of);
     // Correct the cut on pass 2's own polyline (at most twice) until the length is within 0.2%.
     for (int iter = 0; iter < 2; ++iter) {
         double len = 0.0, cut = -1.0;
@@ -375,7 +439,7 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
         }
         if (std::fabs(len - in_len) <= 2e-3 * in_len) break;
         s_end = cut >= 0.0 ? cut : std::min(cl.length, s_end * in_len / std::max(len, 1e-30));
-        curl_prefix(cl, d, p, s_end, out, s_of);
+        curl_prefix(cl, d, p, s_end, w, out, s_of);
     }
 }
 
@@ -586,8 +650,9 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
     parallel_for(c1 - c0, 64, [&](int64_t b, int64_t e) {
         Centreline cl;
         CurveDraws draws;
-        std::vector<float3> grid, out;
-        std::vector<double> in_cum, s_of, chord, short_by, taper_scratch;
+        CurlScratch scratch;
+        std::vector<float3> out;
+        std::vector<double> in_cum, s_of, taper_scratch;
         auto write_taper = [&](const IndexRange& d) {
             if (taper) {
                 taper_curve_widths(dP.subspan(size_t(d.begin), size_t(d.size())), dwidth.subspan(size_t(d.begin), size_t(d.size())), *taper->root,
@@ -620,7 +685,7 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
             const int64_t n = d.size();
             build_centreline(in, n, cl);
             draw_curve(params, plan.res, uint64_t(ids[size_t(k)]), plan.frequency[size_t(c)], cl.length, draws);
-            curl_curve(cl, draws, params, in_len, grid, chord, short_by, out, s_of);
+            curl_curve(cl, draws, params, in_len, scratch, out, s_of);
 
             if (scalp) {
                 // No curled point inside the scalp (fields/keep_outside.h): pulled back toward its

@@ -250,6 +250,9 @@ int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform
             cs = remove_curves(cs, remove);
         }
         if (pose) transform_curves(cs, *pose, false);
+        // Which part this is, for `groom merge` to put the parts in order and see one missing or
+        // given twice (a shell's glob lists shard 10 before shard 2). Merge removes it again.
+        if (plan.shards > 1) cs.set_detail_string(kShardDetail, std::to_string(plan.shard) + "/" + std::to_string(plan.shards));
         write_curves(cs, outs[k].path, batch);
     }
     batch.commit();

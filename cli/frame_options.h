@@ -43,4 +43,9 @@ struct ShardRequest {
 };
 ShardRequest& current_shard();
 
+/// The detail string every output of a `--shard I/N` run carries: "I/N". `groom merge` reads it to
+/// order the parts and refuses a set with one missing or repeated, then drops it, so the merged
+/// file is the whole run's, byte for byte. Formats without detail values (.hair) lose it.
+inline constexpr const char* kShardDetail = "shard";
+
 }  // namespace groom::cli

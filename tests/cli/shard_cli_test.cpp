@@ -118,3 +118,49 @@ TEST(Shard, BadShardsAreRefused)
     EXPECT_NE(r.err.find("make hair"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x.usda")));
 }
+
+// A farm's shards come back as a shell lists them (`m.s*.usda`: shard 10 before shard 2), and a
+// failed job leaves one out: merge orders them by the tag each carries and refuses a set with one
+// missing, one twice, or a file that is no shard, leaving no output.
+TEST(Shard, MergeOrdersShardsAndRefusesMissingOrRepeatedOnes)
+{
+    test::TempDir dir;
+    const std::string guides = write_guides(dir), whole = dir.file("whole.usda");
+    const std::vector<std::string> run{"curl", guides, "--type", "3b", "--seed", "7", "--threads", "1", "--quiet"};
+    std::vector<std::string> args = run;
+    args.insert(args.end(), {"-o", whole});
+    ASSERT_EQ(run_groom(args).exit_code, 0);
+    const int n = 12;
+    std::vector<std::string> parts;
+    for (int i = 0; i < n; ++i) {
+        parts.push_back(dir.file("m.s" + std::to_string(i) + ".usda"));
+        std::vector<std::string> sargs = run;
+        sargs.insert(sargs.end(), {"-o", parts.back(), "--shard", std::to_string(i) + "/" + std::to_string(n)});
+        ASSERT_EQ(run_groom(sargs).exit_code, 0);
+    }
+    EXPECT_EQ(read_curves(parts[3]).detail_string("shard"), "3/12");
+    auto merge = [&](const std::vector<int>& which, const std::string& out) {
+        std::vector<std::string> margs{"merge"};
+        for (int i : which) margs.push_back(i >= 0 ? parts[size_t(i)] : whole);
+        margs.insert(margs.end(), {"-o", out});
+        return run_groom(margs);
+    };
+    // The glob's order: 0, 1, 10, 11, 2, ...
+    const std::string merged = dir.file("merged.usda");
+    const auto m = merge({0, 1, 10, 11, 2, 3, 4, 5, 6, 7, 8, 9}, merged);
+    ASSERT_EQ(m.exit_code, 0) << m.err;
+    EXPECT_TRUE(test::read_bytes(merged) == test::read_bytes(whole)) << "shards merged in the glob's order differ from the whole run";
+    EXPECT_NE(m.err.find("shard order"), std::string::npos) << m.err;
+
+    const std::string bad = dir.file("bad.usda");
+    const auto missing = merge({0, 1, 2, 3, 4, 6, 7, 8, 9, 10, 11}, bad);
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_NE(missing.err.find("missing (5)"), std::string::npos) << missing.err;
+    const auto twice = merge({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 4}, bad);
+    EXPECT_EQ(twice.exit_code, 2);
+    EXPECT_NE(twice.err.find("shard 4/12 is given twice"), std::string::npos) << twice.err;
+    const auto mixed = merge({-1, 0}, bad);
+    EXPECT_EQ(mixed.exit_code, 2);
+    EXPECT_NE(mixed.err.find("whole.usda is not a shard"), std::string::npos) << mixed.err;
+    EXPECT_FALSE(std::filesystem::exists(bad));
+}

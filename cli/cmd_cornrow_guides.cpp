@@ -16,7 +16,7 @@ namespace {
 
 struct Args {
     ScalpBuildParams scalp_params;
-    std::string scalp, output, tails_out, center, hairline;
+    std::string scalp, output, tails_out, center, hairline, up = "0,1,0", forward = "0,0,1";
     CornrowGuidesParams params;
 };
 
@@ -32,6 +32,9 @@ void setup(CommandContext& ctx)
     app->add_option("--count", p.count, "Guides (rows), [1, 256]")->capture_default_str();
     app->add_option("--center", args->center, "Centre X,Y,Z of the sphere the rows are laid on (default: the default head's cranium, 0,3,-1)");
     app->add_option("--radius", p.radius, "Radius of that sphere, scene units")->capture_default_str();
+    app->add_option("--up", args->up, "X,Y,Z: the head's up direction")->capture_default_str();
+    app->add_option("--forward", args->forward, "X,Y,Z: the direction the face looks (rows run from the front to the nape)")
+        ->capture_default_str();
     app->add_option("--pivot", p.pivot,
                     "Depth of the rows' fan axis below the centre, scene units, >= 0 (from --radius on the rows never meet: nearly "
                     "parallel rows; pivot x sin(spread) must stay below the radius); default twice --radius (20)");
@@ -65,6 +68,8 @@ void setup(CommandContext& ctx)
             const std::vector<float> c = parse_floats("--center", a.center, 3, 3);
             a.params.center = {c[0], c[1], c[2]};
         }
+        a.params.up = parse_float3("--up", a.up);
+        a.params.forward = parse_float3("--forward", a.forward);
         a.params.validate(!a.hairline.empty());
         const auto start = std::chrono::steady_clock::now();
         auto progress = make_progress(common);
@@ -80,9 +85,10 @@ void setup(CommandContext& ctx)
                                " reaches y " + format_number(box.hi.y) + " (bounds " + format_xyz(box.lo) + " to " + format_xyz(box.hi) +
                                "): pass --center (the middle of this head's cranium) and --radius (about half its width)");
         }
-        // The rows are laid +Y up (the frame of `groom head`), so the hairline is read around +Y.
+        // The hairline is read around the same up direction the rows are laid with.
         RegionOptions region_options;
         region_options.hairline = a.hairline;
+        region_options.up = a.up;
         const std::unique_ptr<HairRegion> region = make_region(region_options, *scalp);
         const CornrowGuides g = cornrow_guides(*scalp, a.params, region.get());
         OutputBatch outputs;  // both files land together, or neither

@@ -46,6 +46,10 @@ void CornrowGuidesParams::validate(bool hairline) const
     require(count >= 1 && count <= 256, "`count` must be in [1, 256] (got " + std::to_string(count) + ")");
     require(std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z), "`center` must be finite");
     require(std::isfinite(radius) && radius > 0.0f, "`radius` must be > 0 (got " + fmt(radius) + ")");
+    require(isfinite(up) && length(up) > 0.0f, "`up` must be a finite direction of length > 0 (got " + format_xyz(up) + ")");
+    require(isfinite(forward) && length(forward) > 0.0f, "`forward` must be a finite direction of length > 0 (got " + format_xyz(forward) + ")");
+    require(length(cross(normalize(up), normalize(forward))) > std::sin(10.0f * kDeg),
+            "`forward` " + format_xyz(forward) + " must be at least 10 degrees from `up` " + format_xyz(up) + " (the direction the face looks)");
     require(std::isfinite(pivot) && pivot >= 0.0f, "`pivot` must be >= 0 (got " + fmt(pivot) + ")");
     require(std::isfinite(spread) && spread >= 0.0f && spread < 90.0f, "`spread` must be in [0, 90) degrees (got " + fmt(spread) + ")");
     require(pivot * std::sin(spread * kDeg) < radius, "`pivot` " + fmt(pivot) + " x sin(`spread` " + fmt(spread) + ") must be below `radius` " +
@@ -136,6 +140,9 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     // Dense paths before re-spacing: projection bunches points where the head curves away from the
     // sphere, so sample generously and resample by arc length afterwards.
     const int dense = std::max(4 * params.samples, 64);
+    // The head's frame (X to its side, Y up, Z where the face looks): with the defaults exactly the
+    // world's axes, so a +Y-up head's guides are the same bits as before the frame was an option.
+    const float3 Y = normalize(params.up), Z = normalize(params.forward - Y * dot(params.forward, Y)), X = cross(Y, Z);
     parallel_for(n, 1, [&](int64_t b, int64_t e) {
         for (int64_t i = b; i < e; ++i) {
             const float u = n == 1 ? 0.0f : -1.0f + 2.0f * float(i) / float(n - 1);  // -1 .. 1 across the head
@@ -144,14 +151,14 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
             // pivot point c - h Y and w along Z, the sphere |p - c| = R is the circle
             // (s - h cos phi)^2 + w^2 = R^2 - h^2 sin^2 phi.
             const float h = params.pivot;
-            const float3 lean{std::sin(phi), std::cos(phi), 0.0f};
-            const float3 pivot = params.center - float3(0.0f, h, 0.0f);
+            const float3 lean = X * std::sin(phi) + Y * std::cos(phi);
+            const float3 pivot = params.center - Y * h;
             const float s0 = h * std::cos(phi);
             const float rho = std::sqrt(params.radius * params.radius - h * h * std::sin(phi) * std::sin(phi));
             // The arc runs from the hairline (front, +Z) over the top to the nape: an angle from +Z
             // towards `lean`, from front_angle to 180 - back_angle.
             const auto at = [&](float a) {
-                return on_scalp(scalp, pivot + lean * (s0 + rho * std::sin(a)) + float3(0.0f, 0.0f, rho * std::cos(a)), 0.0f);
+                return on_scalp(scalp, pivot + lean * (s0 + rho * std::sin(a)) + Z * (rho * std::cos(a)), 0.0f);
             };
             float a0 = (params.front_angle + params.hairline_curve * u * u) * kDeg;
             float a1 = (180.0f - params.back_angle) * kDeg;
@@ -195,10 +202,10 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
         for (int64_t i = b; i < e; ++i) {
             const float3* g = &P[size_t(i) * params.samples];
             const float3 end = g[params.samples - 1];
-            const float3 dir0 = normalize(end - g[params.samples - 2], float3(0, -1, 0));
+            const float3 dir0 = normalize(end - g[params.samples - 2], -Y);
             // Gravity: the direction turns from the guide's end tangent to straight down (and a
             // little away from the neck) over the first third of the tail.
-            const float3 down = normalize(float3(0.0f, -1.0f, -0.25f));
+            const float3 down = normalize(-Y - Z * 0.25f);
             const int m = params.tail_samples;
             const float step = params.tail_length / float(m - 1);
             float3 p = end;

@@ -11,7 +11,8 @@
 // above the ears (7.5 and 55 had every row end in one point at the nape: a trial). Optionally each guide continues past the nape as a free-hanging tail (the loose
 // ends of the braids), which the demo curls.
 //
-// Frame: +Y up, the face towards +Z (the convention of `groom head`).
+// Frame: `up` and `forward` (the direction the face looks), by default +Y up and the face towards +Z
+// (the convention of `groom head`). Below, Y and Z name those two axes and X = Y x Z.
 #pragma once
 
 #include "fields/surface.h"
@@ -23,6 +24,10 @@ namespace groom {
 struct CornrowGuidesParams {
     int count = 8;                    ///< guides, [1, 256]
     float3 center{0.0f, 3.0f, -1.0f}; ///< centre of the sphere paths are laid on (default: the default head's cranium)
+    float3 up{0.0f, 1.0f, 0.0f};      ///< the head's up direction; any length > 0
+    /// The direction the face looks; any length > 0, at least 10 degrees from `up` (only its part
+    /// perpendicular to `up` is used).
+    float3 forward{0.0f, 0.0f, 1.0f};
     float radius = 10.0f;             ///< radius of that sphere, scene units; > 0 (roughly the cranium's)
     /// Depth of the fan's axis below center, scene units; >= 0, with pivot x sin(spread) < radius
     /// (every row's plane cuts the sphere). Below radius, rows meet (and would cross) where the axis
@@ -51,7 +56,7 @@ struct CornrowGuidesParams {
 
 struct CornrowGuides {
     /// Curves root (hairline) to tip (nape). Curve attributes: `id` (int64, = index) and `guide`
-    /// (int32, = index, left to right seen from the front: -x first).
+    /// (int32, = index, from the -X side to the +X side: left to right seen from the front).
     CurveSet guides;
     /// One tail per guide when tail_length > 0, rooted at its guide's last point, leaving along the
     /// guide's end direction and bending down under gravity; each step is kept `offset` out of the

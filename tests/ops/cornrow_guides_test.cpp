@@ -187,6 +187,41 @@ TEST(CornrowGuides, OffsetLiftsAlongTheNormalAndTailsHangWithoutEnteringTheScalp
     EXPECT_EQ(g.tails.find<int32_t>(Domain::Curve, "guide")[2], 2);
 }
 
+// A head that is not +Y up facing +Z (the ponytail head looks along -Z; Blender's heads are +Z up):
+// with its `up` and `forward`, rows start at its face and end at its nape and the tails hang down
+// its own up axis: the same guides as on the default frame, turned with the head (to float rounding).
+TEST(CornrowGuides, RowsFollowTheHeadsOwnUpAndForward)
+{
+    const float3 c{1.0f, -2.0f, 0.5f};
+    const AnalyticSphere sphere(c, 9.0f);
+    CornrowGuidesParams p;
+    p.count = 5;
+    p.center = c;
+    p.tail_length = 8.0f;
+    const CornrowGuides base = cornrow_guides(sphere, p);
+    // The head turned so that its up is +Z and it looks along -Y: (x, y, z) -> (x, -z, y) about c.
+    auto turn = [&](const float3& q) { const float3 d = q - c; return c + float3(d.x, -d.z, d.y); };
+    p.up = {0.0f, 0.0f, 2.0f};           // any length
+    p.forward = {0.0f, -1.0f, 0.3f};     // only its part across `up` counts
+    const CornrowGuides turned = cornrow_guides(sphere, p);
+    for (const auto& [a, b] : {std::pair{&base.guides, &turned.guides}, std::pair{&base.tails, &turned.tails}}) {
+        ASSERT_EQ(a->num_points(), b->num_points());
+        for (size_t i = 0; i < a->num_points(); ++i) {
+            EXPECT_LT(distance(turn(a->positions()[i]), b->positions()[i]), 1e-4f * 9.0f) << i;
+        }
+    }
+    for (size_t g = 0; g < turned.guides.num_curves(); ++g) {
+        const IndexRange r = turned.guides.points_of(g);
+        const float3 root = turned.guides.positions()[r.begin] - c, end = turned.guides.positions()[r.end - 1] - c;
+        EXPECT_LT(root.y, 0.0f) << "row " << g << " starts on the face's side (-Y)";
+        EXPECT_GT(end.y, 0.0f) << "row " << g << " ends at the nape (+Y)";
+        const IndexRange t = turned.tails.points_of(g);
+        EXPECT_LT(turned.tails.positions()[t.end - 1].z, turned.tails.positions()[t.begin].z - 4.0f) << "tail " << g << " hangs down -Z";
+    }
+    EXPECT_LT(turned.guides.positions()[0].x, turned.guides.positions()[turned.guides.points_of(4).begin].x)
+        << "guide 0 is on the -X side";
+}
+
 TEST(CornrowGuides, InvalidOptionsAreRejected)
 {
     const AnalyticSphere sphere({0, 0, 0}, 1.0f);
@@ -213,6 +248,12 @@ TEST(CornrowGuides, InvalidOptionsAreRejected)
     p = {};
     p.min_spacing = 0.0f;
     rejects(p, "`min_spacing` must be in (0, 1]");
+    p = {};
+    p.forward = {0.0f, 1.0f, 0.1f};  // 5.7 degrees from up
+    rejects(p, "must be at least 10 degrees from `up`");
+    p = {};
+    p.up = {0.0f, 0.0f, 0.0f};
+    rejects(p, "`up` must be a finite direction");
     p = {};
     p.spread = 90.0f;
     rejects(p, "`spread` must be in [0, 90) degrees");

@@ -2,6 +2,7 @@
 // the default hairline (`groom hairline` with its defaults and this command's --up/--forward) is used,
 // so `groom edges --scalp head.vdb -o edges.usda` works on `groom head`'s head alone.
 #include "cli/command.h"
+#include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "cli/scene_scale.h"
 #include "cli/width_options.h"
@@ -103,7 +104,7 @@ void setup(CommandContext& ctx)
         region_params.validate();
 
         const auto start = std::chrono::steady_clock::now();
-        CurveSet hairline = args->hairline.empty() ? CurveSet() : read_curve_input(args->hairline, common, false);
+        CurveSet hairline = args->hairline.empty() ? CurveSet() : read_hairline(args->hairline, &common);
         const CurveSet partings = args->parting.empty() ? CurveSet() : read_curve_input(args->parting, common, false);
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());

@@ -52,7 +52,11 @@ void setup(CommandContext& ctx)
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         const CurveSet hairline = make_hairline(*scalp, scalp->bounds(), params);
-        write_curves(hairline, args->output);
+        // Written closed (.usda wrap "periodic", .obj's record back to its first vertex): written
+        // open, a DCC showed the hairline with a gap between its last point and its first.
+        CurveWriteOptions closed;
+        closed.closed = true;
+        write_curves(hairline, args->output, closed);
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char line[256];
         std::snprintf(line, sizeof line, "hairline: 1 closed curve, %zu points, %.2f s -> ", hairline.num_points(), secs);

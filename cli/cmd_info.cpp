@@ -24,7 +24,7 @@ namespace groom::cli {
 namespace {
 
 struct Args {
-    std::string input, group;
+    std::string input, group, grid;
     bool json = false, mesh = false, curves = false;
 };
 
@@ -182,7 +182,7 @@ void info_mesh(const Args& a)
 /// checks, the same messages), so a file `info` describes is one the commands accept.
 void info_scalp(const Args& a)
 {
-    const ScalpField scalp = read_scalp_vdb(a.input);
+    const ScalpField scalp = read_scalp_vdb(a.input, nullptr, a.grid);
     const PolygonSoup mesh = scalp.mesh();
     const Bounds3 b = scalp.bounds();
     const float voxel = scalp.voxel_size(), band = scalp.band_voxels();
@@ -192,7 +192,7 @@ void info_scalp(const Args& a)
         nlohmann::ordered_json j;
         j["file"] = a.input;
         j["kind"] = "scalp";
-        j["grid"] = "scalp";
+        j["grid"] = scalp.grid_name();
         j["voxel_size"] = json_number(voxel);
         j["band_voxels"] = json_number(band);
         j["active_voxels"] = scalp.active_voxels();
@@ -203,7 +203,10 @@ void info_scalp(const Args& a)
         o << j.dump(2) << "\n";
     }
     else {
-        o << a.input << ": scalp level set (grid \"scalp\")\n";
+        // Another program's grid is named with why it was taken: what every --scalp of this file uses.
+        o << a.input << ": scalp level set (grid \"" << scalp.grid_name() << "\""
+          << (scalp.grid_name() == "scalp" ? "" : a.grid.empty() ? ": no grid is named \"scalp\"; the file's only float level set" : ", --scalp-grid")
+          << ")\n";
         o << "  voxel size      " << num(voxel) << "\n";
         o << "  band            " << num(band) << " voxels each side (" << num(double(band) * voxel) << " scene units)\n";
         o << "  active voxels   " << scalp.active_voxels() << "\n";
@@ -238,6 +241,8 @@ void setup(CommandContext& ctx)
     auto* m = app->add_flag("--mesh", args->mesh, "Read FILE as a mesh (default: decided by extension and content)");
     app->add_flag("--curves", args->curves, "Read FILE as curves")->excludes(m);
     app->add_option("--group", args->group, "OBJ mesh: describe only the faces of this object ('o') or group ('g')");
+    app->add_option("--scalp-grid", args->grid, "Scalp (.vdb): the grid to describe, as --scalp-grid picks it for other commands (default: "
+                                                 "the grid named 'scalp', else the file's only float level set)");
     add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
@@ -247,6 +252,7 @@ void setup(CommandContext& ctx)
             info_scalp(*args);
             return;
         }
+        if (!args->grid.empty()) throw InvalidParam("info: --scalp-grid picks a grid of a scalp (.vdb); " + args->input + " is not one");
         if (!args->curves && !args->mesh) {
             if (args->input != "-" && !is_curve_path(args->input) && !is_mesh_path(args->input)) {
                 const io::Format* f = io::format_of_path(args->input);

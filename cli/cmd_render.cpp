@@ -17,7 +17,7 @@ namespace {
 
 struct Args {
     std::vector<std::string> inputs;
-    std::string scalp, scalp_group, output, view, views, camera, up, size = "1024x1024", color_by = "none", color, scalp_color, background;
+    std::string scalp, scalp_group, scalp_grid, output, view, views, camera, up, size = "1024x1024", color_by = "none", color, scalp_color, background;
     float fov = 0.0f;
     RenderParams params;
 };
@@ -73,6 +73,8 @@ void setup(CommandContext& ctx)
     app->add_option("FILES", args->inputs, "Curve files to draw (" + curve_formats() + "), each a layer");
     app->add_option("--scalp", args->scalp, "Scalp to draw under the curves: a mesh (" + mesh_formats() + ") or a .vdb from `groom scalp`");
     app->add_option("--scalp-group", args->scalp_group, "When --scalp is an OBJ mesh: draw only the faces of this object ('o') or group ('g')");
+    app->add_option("--scalp-grid", args->scalp_grid,
+                    "When --scalp is a .vdb: the grid to draw (default: the grid named 'scalp', else the file's only float level set)");
     app->add_option("-o,--output", args->output, "Output picture (.png)")->required();
     auto* view = app->add_option("--view", args->view, "front|back|left|right|top|three-quarter (default front)");
     auto* views = app->add_option("--views", args->views, "Several views on one labelled sheet, e.g. front,left,top");
@@ -144,7 +146,10 @@ void setup(CommandContext& ctx)
         // A mesh is drawn as it is; a .vdb from `groom scalp` is drawn as the surface extracted from it.
         ScalpBuildParams scalp_params;
         scalp_params.group = a.scalp_group;  // a .vdb with a group is refused by load_scalp
-        if (!a.scalp.empty()) mesh = ends_with(a.scalp, ".vdb") ? load_scalp(a.scalp, scalp_params)->mesh() : read_mesh(a.scalp, a.scalp_group);
+        scalp_params.grid = a.scalp_grid;    // and a mesh with a grid
+        if (!a.scalp.empty()) {
+            mesh = ends_with(a.scalp, ".vdb") || !a.scalp_grid.empty() ? load_scalp(a.scalp, scalp_params)->mesh() : read_mesh(a.scalp, a.scalp_group);
+        }
         RenderScene scene;
         for (const CurveSet& c : layers) scene.curves.push_back(&c);
         if (mesh) scene.mesh = &*mesh;

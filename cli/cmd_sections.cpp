@@ -2,6 +2,7 @@
 // `groom braid` / `groom curl`, the partings, and optionally every root joined to its section's guide.
 // Without --hairline the default hairline of `groom hairline` is used.
 #include "cli/command.h"
+#include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "cli/scene_scale.h"
 #include "fields/scalp_field.h"
@@ -100,10 +101,20 @@ void setup(CommandContext& ctx)
             hairline = make_hairline(*scalp, scalp->bounds(), hp);
         }
         else {
-            hairline = read_curve_input(args->hairline, common, false);
+            hairline = read_hairline(args->hairline, &common);
         }
         const RootSampler sampler = scalp_root_sampler(*scalp);
-        const SectionsResult r = sections(*scalp, hairline, &sampler, params, progress.get());
+        const SectionsResult r = [&] {
+            try {
+                return sections(*scalp, hairline, &sampler, params, progress.get());
+            }
+            catch (const InvalidGeometry& e) {
+                // What is wrong with the hairline is said of "hairline"; the user typed a file.
+                const std::string what = e.what();
+                if (args->hairline.empty() || (what.rfind("hairline", 0) != 0 && what.rfind("sections: the hairline", 0) != 0)) throw;
+                throw InvalidGeometry(args->hairline + ": " + what);
+            }
+        }();
         OutputBatch outputs;  // every file lands together, or none
         write_curves(r.guides, args->output, outputs);
         if (!args->partings_out.empty()) write_curves(r.partings, args->partings_out, outputs);

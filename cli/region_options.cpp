@@ -14,6 +14,14 @@ void add_region_options(CLI::App* app, RegionOptions& o)
     app->add_option("--up", o.up, "X,Y,Z: the head's up direction (reading the hairline)")->capture_default_str();
 }
 
+CurveSet read_hairline(const std::string& path, const CommonOptions* common)
+{
+    CurveReadOptions ro;
+    ro.closed_loops = true;
+    if (common) ro.warn = [common](const std::string& w) { warn(*common, "warning: " + w); };
+    return read_curves(path, ro);
+}
+
 std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp)
 {
     HairRegionParams params = o.params;
@@ -21,7 +29,7 @@ std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& s
     params.validate();
     if (!o.given()) return nullptr;
     // Readers name the file in their own errors.
-    const CurveSet hairline = o.hairline.empty() ? CurveSet() : read_curves(o.hairline);
+    const CurveSet hairline = o.hairline.empty() ? CurveSet() : read_hairline(o.hairline);
     const CurveSet partings = o.parting.empty() ? CurveSet() : read_curves(o.parting);
     try {
         return std::make_unique<HairRegion>(scalp, hairline, partings, params);

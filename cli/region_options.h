@@ -23,6 +23,15 @@ struct RegionOptions {
 
 void add_region_options(CLI::App* app, RegionOptions& o);
 
+struct CommonOptions;
+
+/// Reads a --hairline file, every command the same way: a closed curve in any of its forms (USD
+/// `wrap = "periodic"`, a record or chain back to its first point, an OBJ or PLY loop of edges as
+/// Blender writes one) is the same hairline as the open one (check_hairline drops the repeated
+/// point). Only here is a loop of edges a curve: hairs and guides are open. `common`: the reader's
+/// warnings go through warn(); null = dropped. Throws ParseError / IoError naming the file.
+CurveSet read_hairline(const std::string& path, const CommonOptions* common = nullptr);
+
 /// The region the options describe, or null when neither --hairline nor --parting is given.
 /// Throws InvalidParam / InvalidGeometry naming the option or file.
 std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp);

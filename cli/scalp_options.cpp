@@ -25,6 +25,8 @@ void add_scalp_build_options(CLI::App* app, ScalpBuildParams& params)
     app->add_flag("--scalp-flip", params.flip, "When --scalp is a mesh: it is inside out, swap inside and outside");
     app->add_option("--scalp-group", params.group,
                     "When --scalp is an OBJ mesh: only the faces of this object ('o') or group ('g'), e.g. the head without eyes and teeth");
+    app->add_option("--scalp-grid", params.grid,
+                    "When --scalp is a .vdb: the grid to use (default: the grid named 'scalp', else the file's only float level set)");
 }
 
 }  // namespace groom::cli

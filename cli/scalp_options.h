@@ -9,7 +9,7 @@
 namespace groom::cli {
 
 /// Adds --scalp-voxel, --scalp-band, --scalp-flip and --scalp-group, which only matter when --scalp is a mesh
-/// (a .vdb from `groom scalp` is used as it is).
+/// (a .vdb from `groom scalp` is used as it is), and --scalp-grid, which picks a .vdb's grid.
 void add_scalp_build_options(CLI::App* app, ScalpBuildParams& params);
 
 }  // namespace groom::cli

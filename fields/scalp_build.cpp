@@ -52,7 +52,7 @@ void ScalpField::Impl::set_transform(const std::string& what)
     const openvdb::Vec3d probe = xf.indexToWorld(openvdb::Vec3d(1, 2, 3));
     const openvdb::Vec3d expect = o + openvdb::Vec3d(1, 2, 3) * h;
     if (!xf.isLinear() || !xf.hasUniformScale() || !(h > 0.0) || (probe - expect).length() > 1e-6 * h * 4.0) {
-        throw ParseError(what + ": grid 'scalp' has a rotated, sheared or non-uniform transform; groom needs cubic, "
+        throw ParseError(what + ": grid '" + sdf->getName() + "' has a rotated, sheared or non-uniform transform; groom needs cubic, "
                                 "axis-aligned voxels (resample it, e.g. with vdb_tool -resample)");
     }
     voxel = static_cast<float>(h);

@@ -108,6 +108,7 @@ float ScalpField::band_voxels() const { return impl_->band_voxels; }
 int64_t ScalpField::active_voxels() const { return static_cast<int64_t>(impl_->sdf->activeVoxelCount()); }
 int64_t ScalpField::seam_voxels() const { return impl_->seam_voxels(); }
 bool ScalpField::has_source_mesh() const { return impl_->mesh_exact; }
+const std::string& ScalpField::grid_name() const { return impl_->grid_name; }
 bool ScalpField::has_uvs() const { return impl_->uv != nullptr; }
 bool ScalpField::surface_uv(const float3& p, float& u, float& v) const { return impl_->uv && impl_->uv->lookup(p, u, v); }
 int64_t ScalpField::num_faces() const { return static_cast<int64_t>(impl_->geometry.tris.size()); }

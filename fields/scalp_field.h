@@ -40,6 +40,9 @@ struct ScalpBuildParams {
     /// An OBJ mesh: only the faces of the object (`o`) or group (`g`) of this name (the head, not
     /// its eyes, teeth or hair proxies); empty = every face. Not for a .vdb (already one surface).
     std::string group;
+    /// A .vdb: the grid to use (--scalp-grid); empty = the grid named "scalp", else the file's only
+    /// float level set (read_scalp_vdb). Not for a mesh.
+    std::string grid;
     void validate() const;        ///< throws InvalidParam naming the option, value and range
 };
 
@@ -110,6 +113,9 @@ public:
     /// writes); false when the mesh was extracted from a loaded .vdb's zero crossing (exact to
     /// about a voxel rather than to the original mesh).
     bool has_source_mesh() const;
+    /// The name of the grid the field was read from ("scalp" for groom's own .vdb and for a field
+    /// built from a mesh; another program's, e.g. "surface", when read_scalp_vdb picked it).
+    const std::string& grid_name() const;
     /// The repaired triangle mesh the queries fall back to (oriented outward).
     PolygonSoup mesh() const;
     int64_t num_faces() const;
@@ -144,17 +150,24 @@ void write_scalp(const ScalpField& scalp, const std::string& path);
 /// The same into `batch` (kernel/io/atomic_file.h), renamed into place with the command's other outputs.
 void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& batch);
 
-/// Reads a .vdb holding a float level set named "scalp" (groom's, vdb_tool's, Houdini's). The mesh for
+/// Reads a float level set from a .vdb (groom's, vdb_tool's, Houdini's, pyopenvdb's). The grid used:
+/// `grid` when given (InvalidParam when the file has no grid of that name); else the one named
+/// "scalp" (what `groom scalp` writes); else the file's only float level set, whatever its name
+/// (vdb_tool's "mesh2ls_NAME", Houdini's "surface"): a float grid of class level set, or of class
+/// unknown whose values are plainly a narrow-band signed distance (every inactive value +-background,
+/// active values within +-background of both signs). Several such grids, or none, is a ParseError
+/// listing the file's grids (name, value type, class) and the way on (--scalp-grid NAME; the head's
+/// mesh). grid_name() tells which was used. The mesh for
 /// far queries and sampling is the repaired mesh `groom scalp` stores in the grid's metadata
 /// "groom_source_mesh" (then every answer is the mesh's, to the bit), else, for other programs' and
 /// older groom's files, one extracted from the zero crossing (adaptive, within about a voxel). What OpenVDB decodes is checked
 /// before use (a truncated or corrupt file is a ParseError naming it, never a crash): one float grid
 /// of class level set, a linear transform with uniform, finite, positive voxels, a finite positive
 /// background, a tree with active voxels whose values and index bounds are sane. Throws IoError /
-/// ParseError.
-ScalpField read_scalp_vdb(const std::string& path, Progress* progress = nullptr);
+/// ParseError / InvalidParam.
+ScalpField read_scalp_vdb(const std::string& path, Progress* progress = nullptr, const std::string& grid = {});
 
-/// Loads the scalp for any command's --scalp: a .vdb written by `groom scalp` (grid "scalp"), a
+/// Loads the scalp for any command's --scalp: a .vdb (read_scalp_vdb, `params.grid`), a
 /// mesh converted on the fly with `params`, or a field stored in memory under "mem:NAME" (see
 /// store_memory_scalp). Throws ParseError/IoError/InvalidParam/InvalidGeometry.
 std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const ScalpBuildParams& params = {}, Progress* progress = nullptr);

@@ -1,5 +1,6 @@
-// The scalp's own file: the level set as a .vdb (OpenVDB's format, one float grid named "scalp"), and
-// load_scalp, which takes either that or any mesh the kernel reads. The only file in fields/ that
+// The scalp's own file: the level set as a .vdb (OpenVDB's format, one float grid named "scalp"; other
+// programs' level sets of other names are read too), and load_scalp, which takes either that or any
+// mesh the kernel reads. The only file in fields/ that
 // touches files: the .vdb needs OpenVDB, which kernel/ does not link, so this format lives here.
 #include "fields/scalp_impl.h"
 #include "fields/scalp_cache.h"
@@ -85,19 +86,74 @@ void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& 
 
 namespace {
 
-/// What decode_isolated() brings back: the file's grid names, and the grid "scalp" re-encoded by
-/// OpenVDB (empty when the file has none).
-struct DecodedVdb {
-    std::string names, grid_stream;
+/// One grid of a .vdb as the messages list it.
+struct GridEntry {
+    std::string name;   ///< OpenVDB's unique name ("surface", "surface[1]" for a second of that name)
+    std::string type;   ///< value type: "float", "double", "vec3s"...
+    std::string cls;    ///< grid class: "level set", "fog volume", "unknown"...
+    bool usable = false;  ///< a float level set, or a float grid of class unknown that is plainly one
 };
 
-/// Reads grid "scalp" of `path` in a child process and brings it back re-encoded. OpenVDB's decoder
-/// trusts the sizes it reads: a flipped bit in a chunk's length makes it write past a buffer (heap
-/// corruption, then an abort) before any check of ours could run, 1 in a few hundred single-bit
-/// flips of a small scalp. A crash in the child is an error naming the file; the grid the child
+/// What decode_isolated() brings back: the file's grids, which one is used (-1: none could be
+/// chosen; the caller says why) and that grid re-encoded by OpenVDB (empty when none).
+struct DecodedVdb {
+    std::vector<GridEntry> grids;
+    int chosen = -1;
+    std::string grid_stream;
+};
+
+/// Whether a float grid whose class is not set is plainly a narrow-band signed distance, as
+/// OpenVDB's own tools leave one: a positive background, every inactive value (tiles, voxels off
+/// the band) exactly +-background, and the active values within +-background, of both signs (a
+/// surface crosses the band). A density or temperature grid fails at once (background 0, or one
+/// sign). Serial iterators only: it also runs in decode_isolated's forked child, where TBB must not.
+bool plainly_sdf(const openvdb::FloatGrid& g)
+{
+    const float bg = g.background();
+    if (!(std::isfinite(bg) && bg > 0.0f)) return false;
+    for (auto it = g.cbeginValueOff(); it; ++it)
+        if (*it != bg && *it != -bg) return false;
+    bool below = false, above = false;
+    for (auto it = g.cbeginValueOn(); it; ++it) {
+        const float v = *it;
+        if (!(std::fabs(v) <= bg * 1.001f)) return false;
+        below |= v < 0.0f;
+        above |= v > 0.0f;
+    }
+    return below && above;
+}
+
+/// A grid name as a message shows it: control characters (a newline would also break
+/// decode_isolated's reply, one grid a line) as '?'.
+std::string printable_name(const std::string& name)
+{
+    std::string out = name;
+    for (char& c : out)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return out;
+}
+
+/// The grids of a file for a message: "'surface' (float, level set), 'density' (float, fog volume)".
+std::string list_grids(const std::vector<GridEntry>& grids)
+{
+    if (grids.empty()) return "no grids";
+    std::string out;
+    for (const GridEntry& g : grids) {
+        out += (out.empty() ? "'" : ", '") + g.name + "' (" + g.type + ", " + g.cls;
+        if (g.usable && g.cls != "level set") out += ", a signed distance by its values";
+        out += ")";
+    }
+    return out;
+}
+
+/// Reads the grid of `path` that read_scalp_vdb uses (`requested`; else "scalp"; else the only
+/// usable one) in a child process and brings it back re-encoded, with the file's list of grids.
+/// OpenVDB's decoder trusts the sizes it reads: a flipped bit in a chunk's length makes it write past
+/// a buffer (heap corruption, then an abort) before any check of ours could run, 1 in a few hundred
+/// single-bit flips of a small scalp. A crash in the child is an error naming the file; the grid the child
 /// read is written again by OpenVDB itself, so the stream this process decodes is consistent.
 /// The child only reads and writes (no TBB, which does not survive fork()) and leaves with _exit().
-DecodedVdb decode_isolated(const std::string& path)
+DecodedVdb decode_isolated(const std::string& path, const std::string& requested)
 {
     // The child may use the command's memory budget beyond what it inherits (its address space
     // starts as a copy of ours): a length field flipped to gigabytes is then a bad_alloc there, not
@@ -129,22 +185,59 @@ DecodedVdb decode_isolated(const std::string& path)
         }
         std::string reply;
         try {
-            std::string names;
+            // Reply: "O#grids chosen\n", a line per grid (name, type, class, usable; tab-separated),
+            // then the chosen grid's stream.
+            std::vector<GridEntry> grids;
+            std::vector<std::string> raw_names;
             openvdb::GridBase::Ptr grid;
+            int chosen = -1;
             openvdb::io::File file(path);
             // Everything now (no delayed loading): a delayed-loaded leaf of a truncated file is read
             // from the mapped file on first access, past its end.
             file.open(/*delayLoad=*/false);
-            for (auto it = file.beginName(); it != file.endName(); ++it) names += (names.empty() ? "" : ", ") + it.gridName();
-            if (file.hasGrid("scalp")) grid = file.readGrid("scalp");
+            for (auto it = file.beginName(); it != file.endName(); ++it) {
+                const openvdb::GridBase::ConstPtr meta = file.readGridMetadata(it.gridName());
+                GridEntry g{printable_name(it.gridName()), meta->valueType(), openvdb::GridBase::gridClassToString(meta->getGridClass())};
+                g.usable = g.type == "float" && meta->getGridClass() == openvdb::GRID_LEVEL_SET;
+                grids.push_back(std::move(g));
+                raw_names.push_back(it.gridName());
+            }
+            auto find = [&](const std::string& name) {
+                const auto at = std::find(raw_names.begin(), raw_names.end(), name);
+                return at == raw_names.end() ? -1 : int(at - raw_names.begin());
+            };
+            if (!requested.empty()) chosen = find(requested);
+            else if ((chosen = find("scalp")) < 0) {
+                // No "scalp": the only float level set, whatever its name. A float grid without a
+                // class (pyopenvdb's FloatGrid(), an exporter that drops it) counts when its values
+                // are plainly a signed distance; each is read whole to tell.
+                int usable = 0;
+                for (size_t i = 0; i < grids.size(); ++i) {
+                    if (grids[i].type == "float" && grids[i].cls == "unknown") {
+                        openvdb::GridBase::Ptr g = file.readGrid(raw_names[i]);
+                        const auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(g);
+                        grids[i].usable = f && plainly_sdf(*f);
+                        if (grids[i].usable) grid = g;  // kept: read again below otherwise
+                    }
+                    if (grids[i].usable) {
+                        ++usable;
+                        chosen = int(i);
+                    }
+                }
+                if (usable != 1) chosen = -1;
+            }
+            if (chosen >= 0 && (!grid || grid->getName() != raw_names[size_t(chosen)])) grid = file.readGrid(raw_names[size_t(chosen)]);
+            if (chosen < 0) grid.reset();
             file.close();
             std::ostringstream out;
+            out << 'O' << grids.size() << ' ' << chosen << '\n';
+            for (const GridEntry& g : grids) out << g.name << '\t' << g.type << '\t' << g.cls << '\t' << (g.usable ? 1 : 0) << '\n';
             if (grid) {
                 openvdb::io::Stream stream(out);
                 stream.setCompression(openvdb::io::COMPRESS_NONE);  // a pipe, not a disk: no time on compression
                 stream.write(openvdb::GridCPtrVec{grid});
             }
-            reply = "O" + names + '\n' + out.str();
+            reply = out.str();
         }
         catch (const std::exception& e) {
             reply = std::string("E") + e.what();
@@ -191,20 +284,39 @@ DecodedVdb decode_isolated(const std::string& path)
         throw IoError(path + ": cannot read (the reading process failed)");
     }
     if (reply[0] == 'E') throw ParseError(path + ": not a readable .vdb file (" + reply.substr(1) + ")");
-    // The grid's stream is most of the reply: kept in place (the names cut from its front), not copied.
-    const size_t eol = reply.find('\n');
-    std::string names = reply.substr(1, eol - 1);
-    reply.erase(0, eol + 1);
-    return {std::move(names), std::move(reply)};
+    // The grid's stream is most of the reply: kept in place (the list cut from its front), not copied.
+    DecodedVdb decoded;
+    size_t at = reply.find('\n');
+    size_t count = 0;
+    if (at == std::string::npos || std::sscanf(reply.c_str() + 1, "%zu %d", &count, &decoded.chosen) != 2 || decoded.chosen >= int64_t(count)) {
+        throw IoError(path + ": cannot read (the reading process's reply is malformed)");
+    }
+    for (size_t i = 0; i < count; ++i) {
+        const size_t begin = at + 1;
+        at = reply.find('\n', begin);
+        if (at == std::string::npos) throw IoError(path + ": cannot read (the reading process's reply is malformed)");
+        std::istringstream line(reply.substr(begin, at - begin));
+        GridEntry g;
+        std::string usable;
+        std::getline(line, g.name, '\t');
+        std::getline(line, g.type, '\t');
+        std::getline(line, g.cls, '\t');
+        std::getline(line, usable);
+        g.usable = usable == "1";
+        decoded.grids.push_back(std::move(g));
+    }
+    reply.erase(0, at + 1);
+    decoded.grid_stream = std::move(reply);
+    return decoded;
 }
 
 /// Everything the queries rely on, checked on what OpenVDB decoded from `path`: a corrupt file that
 /// OpenVDB reads without complaint (a flipped bit in a value, the transform or a leaf's origin) is
 /// refused here rather than met later as NaN distances, a huge allocation or a crash.
-void check_scalp_grid(const openvdb::FloatGrid& sdf, const std::string& path)
+void check_scalp_grid(const openvdb::FloatGrid& sdf, const std::string& path, const std::string& name)
 {
-    const std::string where = path + ": grid 'scalp' ";
-    if (sdf.getGridClass() != openvdb::GRID_LEVEL_SET) {
+    const std::string where = path + ": grid '" + name + "' ";
+    if (sdf.getGridClass() != openvdb::GRID_LEVEL_SET && !(sdf.getGridClass() == openvdb::GRID_UNKNOWN && plainly_sdf(sdf))) {
         throw ParseError(where + "is not a level set (class '" + openvdb::GridBase::gridClassToString(sdf.getGridClass()) +
                          "'); expected a signed distance field from `groom scalp`");
     }
@@ -270,11 +382,27 @@ void check_source_mesh(const openvdb::FloatGrid& sdf, const detail::SourceMesh& 
 
 }  // namespace
 
-ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
+ScalpField read_scalp_vdb(const std::string& path, Progress* progress, const std::string& grid)
 {
     detail::init_openvdb();
     if (!std::filesystem::exists(path)) throw IoError(path + ": no such file");
-    DecodedVdb decoded = decode_isolated(path);
+    DecodedVdb decoded = decode_isolated(path, grid);
+    const std::string found = list_grids(decoded.grids);
+    if (decoded.chosen < 0) {
+        // Never suggest writing over the user's file (a trial: `groom scalp MESH -o houdini_like.vdb`,
+        // offered for Houdini's own file, would have replaced it).
+        if (!grid.empty()) throw InvalidParam("--scalp-grid " + grid + ": " + path + " has no grid of that name (found: " + found + ")");
+        const int usable = int(std::count_if(decoded.grids.begin(), decoded.grids.end(), [](const GridEntry& g) { return g.usable; }));
+        if (usable > 1) {
+            throw ParseError(path + ": no grid is named 'scalp' and " + std::to_string(usable) + " are float level sets (found: " + found +
+                             "); choose one with --scalp-grid NAME");
+        }
+        const std::string stem = std::filesystem::path(path).stem().string();
+        throw ParseError(path + ": no grid is named 'scalp' and none is a float level set (found: " + found +
+                         "); groom needs the head as a signed distance field: give --scalp the head's mesh instead, or make a field "
+                         "from it with `groom scalp MESH -o " + stem + "_scalp.vdb`");
+    }
+    const std::string name = decoded.grids[size_t(decoded.chosen)].name;
     openvdb::GridBase::Ptr base;
     if (!decoded.grid_stream.empty()) {
         // A stream OpenVDB itself wrote a moment ago, with sizes that agree with its contents: safe to
@@ -290,14 +418,12 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
             throw ParseError(path + ": not a readable .vdb file (" + e.what() + ")");
         }
     }
-    const std::string& names = decoded.names;
-    if (!base) {
-        throw ParseError(path + ": no grid named 'scalp' (found: " + (names.empty() ? std::string("no grids") : names) +
-                         "); make one with `groom scalp MESH -o " + std::filesystem::path(path).filename().string() + "`");
-    }
+    if (!base) throw IoError(path + ": cannot read (the reading process brought back no grid '" + name + "')");
     openvdb::FloatGrid::Ptr sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-    if (!sdf) throw ParseError(path + ": grid 'scalp' holds " + base->valueType() + " values; expected a float level set");
-    check_scalp_grid(*sdf, path);
+    if (!sdf) throw ParseError(path + ": grid '" + name + "' holds " + base->valueType() + " values; expected a float level set");
+    check_scalp_grid(*sdf, path, name);
+    // A grid without a class that passed as plainly a signed distance is one from here on.
+    sdf->setGridClass(openvdb::GRID_LEVEL_SET);
     std::shared_ptr<const detail::UvMap> uv;
     if (const openvdb::Metadata::ConstPtr meta = (*sdf)[kUvMeta]) {
         const auto* text = dynamic_cast<const openvdb::StringMetadata*>(meta.get());
@@ -338,12 +464,17 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
     check_memory(path + ": the scalp's query bricks and mesh (" + format_number(leaves) + " leaves of the level set)", bricks + mesh_bytes,
                  "make the scalp with a larger `voxel` (groom scalp --voxel)");
 
-    const std::string label = "load scalp (estimated " + format_bytes(estimate) + ")";
+    // Which grid of another program's file was used: said in the step's label (--verbose), so a
+    // file with a grid of another name is never read without a word.
+    const std::string label = "load scalp" + (name == "scalp" ? std::string() : " from grid '" + name + "'" + (grid.empty() ? " (the only float level set)" : "")) +
+                              " (estimated " + format_bytes(estimate) + ")";
     ProgressStep step(progress, label, 2);
     ScalpField field;
     ScalpField::Impl& im = field.impl();
     im.sdf = sdf;
+    im.grid_name = name;
     im.set_transform(path);
+    sdf->setName("scalp");  // to the rest of groom: a field written back out is groom's own file
     step.advance(1);
     im.uv = std::move(uv);
     if (source) {
@@ -379,7 +510,7 @@ ScalpField read_scalp_vdb(const std::string& path, Progress* progress)
         add({int32_t(q[0]), int32_t(q[1]), int32_t(q[2])});
         add({int32_t(q[0]), int32_t(q[2]), int32_t(q[3])});
     }
-    if (soup.num_faces() == 0) throw ParseError(path + ": grid 'scalp' has no zero crossing (no surface inside its band)");
+    if (soup.num_faces() == 0) throw ParseError(path + ": grid '" + name + "' has no zero crossing (no surface inside its band)");
     detail::RepairOptions options;
     options.orient_outward = false;
     options.remove_enclosed = false;
@@ -434,6 +565,9 @@ std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const Scal
     if (io::extension_of(path) == "vdb" && !params.group.empty()) {
         throw InvalidParam("--scalp-group " + params.group + ": " + path + " is a level set, not a mesh; choose the group when making it (groom scalp --group)");
     }
+    if (io::extension_of(path) != "vdb" && !params.grid.empty()) {
+        throw InvalidParam("--scalp-grid " + params.grid + ": " + path + " is a mesh, not a .vdb; the option picks a grid of a .vdb");
+    }
     if (io::extension_of(path) != "vdb" && !is_mesh_path(path)) {
         // A typo ("head.vbd") is first of all a file that is not there: say so.
         std::error_code ec;
@@ -443,7 +577,7 @@ std::shared_ptr<const ScalpField> load_scalp(const std::string& path, const Scal
     }
     // Frames of an animation load one unchanged file many times (fields/scalp_cache.h).
     return cached_scalp(path, params, [&]() -> std::shared_ptr<const ScalpField> {
-        if (io::extension_of(path) == "vdb") return std::make_shared<ScalpField>(read_scalp_vdb(path, progress));
+        if (io::extension_of(path) == "vdb") return std::make_shared<ScalpField>(read_scalp_vdb(path, progress, params.grid));
         ScalpBuildParams named = params;
         named.source = path;
         return std::make_shared<ScalpField>(build_scalp(read_mesh(path, params.group), named, nullptr, progress));

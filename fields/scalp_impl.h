@@ -163,6 +163,10 @@ void init_openvdb();
 
 struct ScalpField::Impl {
     openvdb::FloatGrid::Ptr sdf;         ///< "scalp": signed distance, GRID_LEVEL_SET
+    /// The grid's name in the .vdb it was read from ("scalp" for groom's own files and for a field
+    /// built from a mesh; another program's: "surface", "mesh2ls_head"...). `sdf` itself is renamed
+    /// "scalp", so a field written back out is groom's own again.
+    std::string grid_name = "scalp";
     float voxel = 0.0f, inv_voxel = 0.0f;
     float3 origin;                       ///< world position of index (0,0,0)
     float band_voxels = 3.0f;            ///< half width in voxels

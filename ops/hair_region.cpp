@@ -37,12 +37,21 @@ std::span<const float3> check_hairline(const CurveSet& hairline, const std::stri
     if (hairline.num_curves() != 1) {
         throw InvalidGeometry(who + " must be one closed curve around the head; found " + std::to_string(hairline.num_curves()) + " curves");
     }
-    const auto pts = hairline.positions();
-    if (pts.size() < 8) throw InvalidGeometry(who + " must have at least 8 points; found " + std::to_string(pts.size()));
+    auto pts = hairline.positions();
     for (const float3& p : pts)
         if (!isfinite(p)) throw InvalidGeometry(who + " has a point that is not finite");
     double length = 0.0;
     for (size_t i = 1; i < pts.size(); ++i) length += double(distance(pts[i - 1], pts[i]));
+    // A closed curve written closed: its first point again at the end (a USD periodic curve as
+    // read, an OBJ record ending at its first vertex, a loop of edges from Blender). The same
+    // hairline as without that point, which every reader of it takes as a step of azimuth 0 ("point
+    // 180 turns back"): dropped. Within float rounding of the first, not merely near it: a last point
+    // a little past the first is an overlap, and stays one.
+    if (pts.size() > 1 && double(distance(pts.front(), pts.back())) <= 1e-6 * length) {
+        length -= double(distance(pts[pts.size() - 2], pts.back()));
+        pts = pts.first(pts.size() - 1);
+    }
+    if (pts.size() < 8) throw InvalidGeometry(who + " must have at least 8 points; found " + std::to_string(pts.size()));
     const double gap = double(distance(pts.front(), pts.back()));
     if (gap > 0.1 * length) {
         throw InvalidGeometry(who + " must be one closed curve around the head, but its ends are " + format_number(gap) + " apart on a curve " +

@@ -38,13 +38,16 @@ struct HairRegionParams {
 /// close, no more than a tenth of its length apart (an open curve passed by mistake, a parting
 /// line, can still turn once around an axis through its centroid, and every op then ran on
 /// nonsense without a word: a trial, baby hairs across the eye, "20 sections ... 0 roots").
+/// A last point that repeats the first (within float rounding: a closed curve as USD's periodic
+/// wrap, an OBJ record back to its first vertex or a loop of edges read) is left out of the span, so
+/// every form of one closed hairline gives the same points.
 /// Throws InvalidGeometry otherwise, each message starting with `who` ("hairline",
 /// "edges: the hairline"). HairRegion and edges both ask it.
 std::span<const float3> check_hairline(const CurveSet& hairline, const std::string& who);
 
 class HairRegion {
 public:
-    /// @param hairline  one closed curve (first point need not repeat at the end), or empty for "all
+    /// @param hairline  one closed curve (first point may repeat at the end: check_hairline), or empty for "all
     ///                  of the scalp"; >= 8 points.
     /// @param partings  open curves on the scalp, >= 2 points each, at most 64; may be empty.
     /// Throws InvalidParam / InvalidGeometry naming `hairline` or `parting` and what is wrong.

@@ -34,7 +34,7 @@ SectionMap::SectionMap(const Surface& scalp, const CurveSet& hairline, const Hai
     fwd_ = normalize(params.forward - up_ * dot(params.forward, up_));
     side_ = cross(up_, fwd_);
     back_ = -fwd_;
-    const auto hl = hairline.positions();
+    const auto hl = check_hairline(hairline, "sections: the hairline");  // without a closing repeat of the first point
     hairline_.assign(hl.begin(), hl.end());
     hairline_index_ = std::make_shared<PointIndex>(hairline_);
     float far = 0.0f;

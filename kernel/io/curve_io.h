@@ -42,6 +42,10 @@ struct CurveReadOptions {
     bool prim_paths = false;
     /// Receives each warning (a prim skipped, a primvar left out, an arc to another file); null = dropped.
     std::function<void(const std::string&)> warn;
+    /// OBJ and PLY edges: a closed loop of edges (what Blender exports for a closed curve) is read as
+    /// one closed curve, its first point repeated at the end as a USD periodic curve reads; false: a
+    /// ParseError (curves are open: a hair has a root and a tip). For hairlines (kernel/io/edge_chains.h).
+    bool closed_loops = false;
 };
 
 /// Reads a curve file. Throws ParseError (file, line or byte offset, expected vs found) or IoError.
@@ -52,6 +56,11 @@ enum class PlyEncoding { Binary, Ascii };
 
 struct CurveWriteOptions {
     PlyEncoding ply_encoding = PlyEncoding::Binary;
+    /// Every curve is closed, its last point joined to its first (a hairline): .usda writes
+    /// `wrap = "periodic"`, .obj ends each `l` record with its first vertex again, so a DCC shows a
+    /// closed loop; .ply and .hair write the points as they are. Read back, such a curve has its
+    /// first point repeated at the end.
+    bool closed = false;
 };
 
 /// Writes `curves` atomically to `path` (format by extension). Throws IoError / InvalidParam.

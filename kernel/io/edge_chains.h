@@ -22,8 +22,12 @@ struct EdgeChains {
 /// @param isolated  vertices without an edge become one-point chains (true) or are left out (false).
 /// @param file      name for messages; vertices are numbered in them from `vertex_base` (0 for PLY,
 ///                  1 for OBJ) and the edge records called `edge_word` ("edges", "'l' records").
-/// @throws ParseError for a vertex with more than two edges (a branch) or a closed loop.
+/// @param loops     closed loops are chains too (true: after the open ones, each from its lowest
+///                  vertex, along the edge that leaves it where one does, that vertex repeated at the
+///                  end, as a USD periodic curve reads: a hairline) or an error (false: a hair or guide
+///                  has a root and a tip, and a loop has neither; one is more likely a mesh's edge ring).
+/// @throws ParseError for a vertex with more than two edges (a branch) or, unless `loops`, a closed loop.
 EdgeChains join_edge_chains(int64_t n, std::span<const int64_t> from, std::span<const int64_t> to, bool isolated, const std::string& file,
-                            int64_t vertex_base, const std::string& edge_word);
+                            int64_t vertex_base, const std::string& edge_word, bool loops = false);
 
 }  // namespace groom::io

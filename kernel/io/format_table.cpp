@@ -18,12 +18,12 @@ bool sniff_hair(std::string_view head) { return starts_with(head, "HAIR"); }
 bool sniff_crate(std::string_view head) { return starts_with(head, "PXR-USDC"); }
 
 // --- adapters to one signature per column -------------------------------------------------------
-CurveSet read_obj_curves_row(const FileBytes& f, const CurveReadOptions&) { return read_obj_curves(f); }
-CurveSet read_ply_curves_row(const FileBytes& f, const CurveReadOptions&) { return read_ply_curves(f); }
+CurveSet read_obj_curves_row(const FileBytes& f, const CurveReadOptions& o) { return read_obj_curves(f, o.closed_loops); }
+CurveSet read_ply_curves_row(const FileBytes& f, const CurveReadOptions& o) { return read_ply_curves(f, o.closed_loops); }
 CurveSet read_hair_row(const FileBytes& f, const CurveReadOptions&) { return read_hair(f); }
 CurveSet read_hair_file_row(const std::string& path, const CurveReadOptions&) { return read_hair_file(path); }
-std::string write_usda_row(const CurveSet& c, const CurveWriteOptions&) { return write_usda(c); }
-std::string write_obj_curves_row(const CurveSet& c, const CurveWriteOptions&) { return write_obj_curves(c); }
+std::string write_usda_row(const CurveSet& c, const CurveWriteOptions& o) { return write_usda(c, o.closed); }
+std::string write_obj_curves_row(const CurveSet& c, const CurveWriteOptions& o) { return write_obj_curves(c, o.closed); }
 std::string write_ply_curves_row(const CurveSet& c, const CurveWriteOptions& o) { return write_ply_curves(c, o.ply_encoding); }
 std::string write_hair_row(const CurveSet& c, const CurveWriteOptions&) { return write_hair(c); }
 void stream_hair_row(const CurveSet& c, const CurveWriteOptions&, std::ostream& out) { write_hair(c, out); }

@@ -189,7 +189,7 @@ ObjData parse_obj(const FileBytes& file)
     return obj;
 }
 
-CurveSet read_obj_curves(const FileBytes& file)
+CurveSet read_obj_curves(const FileBytes& file, bool closed_loops)
 {
     ObjData obj = parse_obj(file);
     if (obj.line_offsets.size() == 1 && obj.faces.num_faces() > 0) {
@@ -205,7 +205,7 @@ CurveSet read_obj_curves(const FileBytes& file)
         if (a == b) fail_at_line(file.name, obj.line_lines[r], "'l' record joins vertex " + std::to_string(a + 1) + " to itself");
         from.push_back(a), to.push_back(b), edge_record.push_back(int64_t(r));
     }
-    const EdgeChains chains = join_edge_chains(int64_t(obj.points.size()), from, to, false, file.name, 1, "two-point 'l' records (edges)");
+    const EdgeChains chains = join_edge_chains(int64_t(obj.points.size()), from, to, false, file.name, 1, "two-point 'l' records (edges)", closed_loops);
     // Only edges (Blender's files): curves in the order of their vertices, which is the order the
     // exporter had them in (it writes the edges themselves in another order). With whole records
     // too: each curve where its first record is in the file. Files groom writes (no shared
@@ -236,7 +236,7 @@ CurveSet read_obj_curves(const FileBytes& file)
     return cs;
 }
 
-std::string write_obj_curves(const CurveSet& curves)
+std::string write_obj_curves(const CurveSet& curves, bool closed)
 {
     std::string out;
     out.reserve(curves.num_points() * 36 + curves.num_curves() * 8 + 128);
@@ -258,6 +258,10 @@ std::string write_obj_curves(const CurveSet& curves)
         for (int64_t i = r.begin; i < r.end; ++i) {
             out += ' ';
             append_number(out, i + 1);
+        }
+        if (closed && r.size() > 1) {
+            out += ' ';
+            append_number(out, r.begin + 1);
         }
         out += '\n';
     }

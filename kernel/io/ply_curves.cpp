@@ -202,7 +202,7 @@ bool ply_keeps_column(Domain, const Attribute& a)
     return true;
 }
 
-CurveSet read_ply_curves(const FileBytes& file)
+CurveSet read_ply_curves(const FileBytes& file, bool closed_loops)
 {
     using namespace ply;
     const PlyData ply = parse_ply(file);
@@ -250,7 +250,7 @@ CurveSet read_ply_curves(const FileBytes& file)
             from[e] = static_cast<int64_t>(fa), to[e] = static_cast<int64_t>(fb);
             if (from[e] == to[e]) throw ParseError(file.name + ": edge " + std::to_string(e) + " joins vertex " + std::to_string(from[e]) + " to itself");
         }
-        EdgeChains chains = join_edge_chains(n, from, to, true, file.name, 0, "edges");
+        EdgeChains chains = join_edge_chains(n, from, to, true, file.name, 0, "edges", closed_loops);
         order = std::move(chains.order);
         counts = std::move(chains.counts);
     }

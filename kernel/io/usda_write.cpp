@@ -98,7 +98,7 @@ const char* usd_scalar_type(AttrType t)
 
 }  // namespace
 
-std::string write_usda(const CurveSet& curves)
+std::string write_usda(const CurveSet& curves, bool closed)
 {
     // Check names first so no partial text is produced for an attribute USD cannot name.
     std::map<std::string, Domain> seen;
@@ -136,7 +136,9 @@ std::string write_usda(const CurveSet& curves)
     out += "    upAxis = \"" + up + "\"\n)\n\n";
     out += "def BasisCurves \"groom\"\n{\n";
     out += "    uniform token type = \"linear\"\n";
-    out += "    uniform token wrap = \"nonperiodic\"\n";
+    // Periodic: USD's way to say a curve is closed (UsdGeomBasisCurves; a linear one joins its last
+    // point to its first), so a DCC shows a hairline as the loop it is.
+    out += closed ? "    uniform token wrap = \"periodic\"\n" : "    uniform token wrap = \"nonperiodic\"\n";
     std::vector<int32_t> counts(curves.num_curves());
     for (size_t c = 0; c < counts.size(); ++c) {
         const int64_t n = curves.points_in(c);

@@ -89,12 +89,15 @@ TEST(ScalpCli, BadInputFailsCleanlyWithoutOutput)
         std::string says;
     };
     const std::string out = dir.file("out.vdb");
-    // A real .vdb whose grid is not called "scalp": rename the grid in the bytes of a good file.
+    // A real .vdb whose only grid is not a level set and not called "scalp": rename the grid and
+    // change its class in the bytes of a good file ("staggered" is as long as "level set").
     ASSERT_EQ(run_groom({"scalp", obj, "-o", dir.file("good.vdb"), "--voxel", "0.05", "-q"}).exit_code, 0);
     std::string bytes = read_bytes(dir.file("good.vdb"));
-    const size_t at = bytes.find("scalp");
+    const size_t at = bytes.find("scalp"), cls = bytes.find("level set");
     ASSERT_NE(at, std::string::npos);
+    ASSERT_NE(cls, std::string::npos);
     bytes[at + 4] = 'q';
+    bytes.replace(cls, 9, "staggered");
     write_text(dir.file("other.vdb"), bytes);
     write_text(dir.file("p.txt"), "0 0 0\n");
     const Case cases[] = {
@@ -105,7 +108,11 @@ TEST(ScalpCli, BadInputFailsCleanlyWithoutOutput)
         {{"scalp", obj, "-o", out, "--voxel", "-1"}, 2, "--voxel must be > 0"},
         {{"scalp", obj, "-o", out, "--voxel", "0.0001", "--memory", "0.01"}, 1, "use --voxel"},
         {{"scalp", obj, "-o", out, "--band", "0"}, 2, "--band"},
-        {{"probe", "--scalp", dir.file("other.vdb"), dir.file("p.txt"), "-o", dir.file("o.csv")}, 1, "no grid named 'scalp'"},
+        {{"probe", "--scalp", dir.file("other.vdb"), dir.file("p.txt"), "-o", dir.file("o.csv")}, 1,
+         "other.vdb: no grid is named 'scalp' and none is a float level set (found: 'scalq' (float, staggered))"},
+        {{"probe", "--scalp", dir.file("other.vdb"), dir.file("p.txt"), "-o", dir.file("o.csv"), "--scalp-grid", "scalp"}, 2,
+         "--scalp-grid scalp: " + dir.file("other.vdb") + " has no grid of that name (found: 'scalq'"},
+        {{"probe", "--scalp", obj, dir.file("p.txt"), "-o", dir.file("o.csv"), "--scalp-grid", "scalp"}, 2, "is a mesh, not a .vdb"},
         {{"probe", "--scalp", dir.file("garbage.vdb"), dir.file("p.txt"), "-o", dir.file("o.csv")}, 1, "garbage.vdb"},
         {{"project", dir.file("p.txt"), "--scalp", obj, "-o", dir.file("o.obj"), "--mode", "sideways"}, 2, "--mode"},
         {{"cull", dir.file("p.txt"), "--scalp", obj, "-o", dir.file("o.obj"), "--clearance", "-1"}, 2, "clearance"},

@@ -17,9 +17,15 @@ TEST(ScalpOptions, EveryScalpCommandOffersTheSameBuildOptions)
     for (const char* cmd : {"braid", "partition", "curl", "generate", "puff", "project", "cull", "probe", "cornrow-guides"}) {
         const auto r = run_groom({cmd, "--help"});
         ASSERT_EQ(r.exit_code, 0) << cmd;
-        for (const char* opt : {"--scalp-voxel", "--scalp-band", "--scalp-flip"}) {
+        for (const char* opt : {"--scalp-voxel", "--scalp-band", "--scalp-flip", "--scalp-grid"}) {
             EXPECT_NE(r.out.find(opt), std::string::npos) << cmd << " lacks " << opt;
         }
+    }
+    // A .vdb's grid is picked the same way wherever one is read.
+    for (const char* cmd : {"render", "info", "hairline", "parting", "gather", "edges", "sections"}) {
+        const auto r = run_groom({cmd, "--help"});
+        ASSERT_EQ(r.exit_code, 0) << cmd;
+        EXPECT_NE(r.out.find("--scalp-grid"), std::string::npos) << cmd << " lacks --scalp-grid";
     }
 }
 

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 using namespace groom;
 using groom::test::run_groom;
@@ -142,6 +143,54 @@ TEST(ScalpVdbCli, InfoDescribesTheScalpFile)
     const auto g = run_groom({"info", dir.file("sphere.vdb"), "--group", "head"});
     EXPECT_NE(g.exit_code, 0);
     EXPECT_NE(g.err.find("--group"), std::string::npos) << g.err;
+}
+
+// Other programs name their level set otherwise (vdb_tool "mesh2ls_NAME", Houdini "surface"); a
+// user trial found such files refused, "no grid named 'scalp'". A file's only float level set is
+// used whatever its name, the same as named "scalp" (here the same bytes but the name), and said:
+// `info` names the grid and why, --verbose the step that loads it. --scalp-grid picks it by name.
+TEST(ScalpVdbCli, AnotherProgramsGridIsUsedWhateverItsNameAndNamed)
+{
+    test::TempDir dir;
+    const std::string sphere = dir.file("sphere.obj"), vdb = dir.file("sphere.vdb"), other = dir.file("other.vdb");
+    write_mesh(icosphere(float3(0, 0, 0), 10.0f, 3), sphere);
+    ASSERT_EQ(run_groom({"scalp", sphere, "-o", vdb, "--voxel", "0.25", "-q"}).exit_code, 0);
+    std::string bytes = test::read_bytes(vdb);
+    const size_t at = bytes.find("scalp");
+    ASSERT_NE(at, std::string::npos);
+    bytes.replace(at, 5, "shell");
+    test::write_text(other, bytes);
+    test::write_text(dir.file("p.txt"), "0 0 0\n0 9.9 0.5\n3 4 12\n");
+    const auto probe = [&](const std::string& scalp, const std::string& out, std::vector<std::string> extra) {
+        std::vector<std::string> args{"probe", "--scalp", scalp, dir.file("p.txt"), "-o", dir.file(out)};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run_groom(args);
+    };
+    ASSERT_EQ(probe(vdb, "a.csv", {}).exit_code, 0);
+    const auto v = probe(other, "b.csv", {"--verbose"});
+    ASSERT_EQ(v.exit_code, 0) << v.err;
+    EXPECT_EQ(test::read_bytes(dir.file("a.csv")), test::read_bytes(dir.file("b.csv")));
+    EXPECT_NE(v.err.find("load scalp from grid 'shell' (the only float level set)"), std::string::npos) << v.err;
+    ASSERT_EQ(probe(other, "c.csv", {"--scalp-grid", "shell"}).exit_code, 0);
+    EXPECT_EQ(test::read_bytes(dir.file("a.csv")), test::read_bytes(dir.file("c.csv")));
+
+    const auto info = run_groom({"info", other});
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NE(info.out.find("scalp level set (grid \"shell\": no grid is named \"scalp\"; the file's only float level set)"), std::string::npos)
+        << info.out;
+    const auto json = run_groom({"info", other, "--json"});
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    EXPECT_EQ(nlohmann::json::parse(json.out)["grid"], "shell");
+
+    // vdb_tool's own file, where it is installed (libopenvdb-tools).
+    if (std::system("command -v vdb_tool >/dev/null 2>&1") == 0) {
+        const std::string vt = dir.file("vt.vdb");
+        ASSERT_EQ(std::system(("vdb_tool -read " + sphere + " -mesh2ls voxel=0.25 width=3 -write " + vt + " >/dev/null 2>&1").c_str()), 0);
+        const auto r = probe(vt, "d.csv", {});
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        const auto i = run_groom({"info", vt});
+        EXPECT_NE(i.out.find("grid \"mesh2ls_sphere\""), std::string::npos) << i.out << i.err;
+    }
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include "kernel/memory_budget.h"
 #include "support/sphere_mesh.h"
 #include "test_support.h"
+#include "vdb_grid_file.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -85,6 +86,118 @@ TEST(ScalpFile, GridsOpenVdbAcceptsButGroomCannotUseAreRefused)
     empty->setGridClass(openvdb::GRID_LEVEL_SET);
     write_grid(empty, dir.file("empty.vdb"));
     EXPECT_TRUE(contains(parse_error(dir.file("empty.vdb")), "empty.vdb: grid 'scalp' has no active voxels")) << parse_error(dir.file("empty.vdb"));
+}
+
+/// `grids` written to one .vdb at `path`; returns path.
+std::string write_grids(const openvdb::GridCPtrVec& grids, const std::string& path)
+{
+    openvdb::io::File f(path);
+    f.write(grids);
+    f.close();
+    return path;
+}
+
+/// The sphere grid under another name (and class).
+openvdb::FloatGrid::Ptr renamed(const std::string& name, openvdb::GridClass cls = openvdb::GRID_LEVEL_SET, double voxel = 1.0)
+{
+    auto g = sphere_grid(voxel);
+    g->setName(name);
+    g->setGridClass(cls);
+    return g;
+}
+
+/// Distances of `f` at points in and around the band.
+std::vector<float> probe(const ScalpField& f)
+{
+    std::vector<float> d;
+    for (const float3 p : {float3(0, 0, 0), float3(9.5f, 0, 0), float3(0, 10.2f, 0.3f), float3(-4, 5, 7), float3(0, 0, 30)}) d.push_back(f.distance(p));
+    return d;
+}
+
+// Another program's level set is read whatever its grid's name: vdb_tool writes "mesh2ls_NAME",
+// Houdini "surface" (a user trial: both were refused, "no grid named 'scalp'", with a suggested
+// `groom scalp MESH -o houdini_like.vdb` that would have written over the user's file). The only
+// float level set of a file is used, with the same distances as the same grid named "scalp"; so is
+// a float grid without a class whose values are plainly a signed distance (pyopenvdb's FloatGrid()).
+TEST(ScalpFile, AFilesOnlyLevelSetIsUsedWhateverItsName)
+{
+    test::TempDir dir;
+    const std::string scalp = dir.file("scalp.vdb");
+    write_grid(sphere_grid(), scalp);
+    const std::vector<float> expected = probe(read_scalp_vdb(scalp));
+    EXPECT_EQ(read_scalp_vdb(scalp).grid_name(), "scalp");
+
+    auto density = openvdb::FloatGrid::create(0.0f);  // a fog volume beside it is no candidate
+    density->setName("density");
+    density->setGridClass(openvdb::GRID_FOG_VOLUME);
+    density->tree().setValue(openvdb::Coord(1, 2, 3), 0.5f);
+    auto vel = openvdb::Vec3SGrid::create();
+    vel->setName("vel");
+    const std::pair<std::string, openvdb::GridCPtrVec> files[] = {
+        {"houdini.vdb", {renamed("surface")}},
+        {"vdb_tool.vdb", {renamed("mesh2ls_sintel")}},
+        {"with_fog.vdb", {density, renamed("surface"), vel}},
+        {"no_class.vdb", {renamed("sdf", openvdb::GRID_UNKNOWN)}},
+    };
+    for (const auto& [name, grids] : files) {
+        const ScalpField f = read_scalp_vdb(write_grids(grids, dir.file(name)));
+        EXPECT_EQ(probe(f), expected) << name;
+        EXPECT_NE(f.grid_name(), "scalp") << name;
+    }
+    EXPECT_EQ(read_scalp_vdb(dir.file("houdini.vdb")).grid_name(), "surface");
+    // load_scalp (every --scalp) the same; `grid` picks one by name.
+    EXPECT_EQ(probe(*load_scalp(dir.file("vdb_tool.vdb"))), expected);
+    ScalpBuildParams pick;
+    pick.grid = "surface";
+    EXPECT_EQ(probe(*load_scalp(dir.file("with_fog.vdb"), pick)), expected);
+    // A field read from another name is written back as groom's own "scalp".
+    write_scalp(read_scalp_vdb(dir.file("houdini.vdb")), dir.file("again.vdb"));
+    EXPECT_TRUE(test::read_scalp_grid(dir.file("again.vdb")));
+}
+
+// Several candidates, or none: refused naming the file and listing every grid (name, value type,
+// class), with the way on (--scalp-grid NAME; the head's mesh), never a command that would write
+// over the file.
+TEST(ScalpFile, SeveralLevelSetsOrNoneAreRefusedListingTheGrids)
+{
+    test::TempDir dir;
+    const std::string two = write_grids({renamed("left"), renamed("right", openvdb::GRID_LEVEL_SET, 0.5)}, dir.file("two.vdb"));
+    const std::string msg = parse_error(two);
+    EXPECT_TRUE(contains(msg, two + ": no grid is named 'scalp' and 2 are float level sets")) << msg;
+    EXPECT_TRUE(contains(msg, "'left' (float, level set), 'right' (float, level set)")) << msg;
+    EXPECT_TRUE(contains(msg, "--scalp-grid NAME")) << msg;
+    // Either one, by name.
+    EXPECT_EQ(read_scalp_vdb(two, nullptr, "left").voxel_size(), 1.0f);
+    EXPECT_EQ(read_scalp_vdb(two, nullptr, "right").voxel_size(), 0.5f);
+    try {
+        read_scalp_vdb(two, nullptr, "middle");
+        ADD_FAILURE() << "a grid the file lacks was read";
+    }
+    catch (const InvalidParam& e) {
+        EXPECT_TRUE(contains(e.what(), "--scalp-grid middle: " + two + " has no grid of that name (found: 'left'")) << e.what();
+    }
+
+    auto density = openvdb::FloatGrid::create(0.0f);  // a float grid of no class, but not a distance
+    density->setName("density");
+    density->tree().setValue(openvdb::Coord(1, 2, 3), 0.5f);
+    auto vel = openvdb::Vec3SGrid::create();
+    vel->setName("vel");
+    const std::string none = write_grids({density, vel, renamed("fog", openvdb::GRID_FOG_VOLUME)}, dir.file("none.vdb"));
+    const std::string m2 = parse_error(none);
+    EXPECT_TRUE(contains(m2, none + ": no grid is named 'scalp' and none is a float level set")) << m2;
+    EXPECT_TRUE(contains(m2, "'density' (float, unknown), 'fog' (float, fog volume), 'vel' (vec3s, unknown)")) << m2;
+    EXPECT_TRUE(contains(m2, "give --scalp the head's mesh")) << m2;
+    EXPECT_FALSE(contains(m2, "-o none.vdb")) << m2;
+    const std::string empty = write_grids({}, dir.file("empty.vdb"));
+    EXPECT_TRUE(contains(parse_error(empty), "(found: no grids)")) << parse_error(empty);
+    // A grid picked by name is still checked as any scalp is.
+    try {
+        read_scalp_vdb(none, nullptr, "fog");
+        ADD_FAILURE() << "a fog volume was read as a scalp";
+    }
+    catch (const ParseError& e) {
+        EXPECT_TRUE(contains(e.what(), "none.vdb: grid 'fog' is not a level set (class 'fog volume')")) << e.what();
+    }
 }
 
 TEST(ScalpFile, DamagedFilesAreParseErrorsNeverCrashes)

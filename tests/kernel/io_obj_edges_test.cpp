@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -100,6 +101,54 @@ TEST(CurveIoObjEdges, BranchesLoopsAndSelfEdgesAreRefusedNamingTheVertex)
     expect_parse_error(dir.file("branch.obj"), v + "l 1 2\nl 1 3\nl 1 4\n", "vertex 1 has more than two two-point 'l' records (edges)");
     expect_parse_error(dir.file("loop.obj"), v + "l 1 2\nl 2 3\nl 3 1\n", "vertex 1 lies on a closed loop of two-point 'l' records");
     expect_parse_error(dir.file("self.obj"), v + "l 1 2\nl 3 3\n", "self.obj:6: 'l' record joins vertex 3 to itself");
+}
+
+// A closed loop of edges is a closed curve where the caller reads one (a hairline:
+// CurveReadOptions::closed_loops): from its lowest vertex the way its edges point, that vertex
+// repeated at the end, as a USD periodic curve reads; after the open chains, in both OBJ and PLY.
+// Elsewhere it stays an error (above). A curve written `closed` reads back the same way.
+TEST(CurveIoObjEdges, ALoopOfEdgesIsOneClosedCurveWhereAsked)
+{
+    TempDir dir;
+    CurveReadOptions loops;
+    loops.closed_loops = true;
+    // Vertices 1..4 a loop whose edges run 1->4->3->2->1 (given out of order), 5-6 an open chain.
+    const std::string v = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nv 6 6 6\n";
+    write_text(dir.file("loop.obj"), v + "l 3 2\nl 5 6\nl 1 4\nl 2 1\nl 4 3\n");
+    const CurveSet c = read_curves(dir.file("loop.obj"), loops);
+    ASSERT_EQ(c.num_curves(), 2u);
+    ASSERT_EQ(c.points_in(1), 5);
+    const auto P = c.positions();
+    EXPECT_EQ(P[0], float3(5, 5, 5));
+    const float3 want[] = {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}, {0, 0, 0}};
+    for (int i = 0; i < 5; ++i) EXPECT_EQ(P[size_t(c.points_of(1).begin + i)], want[i]) << i;
+    expect_parse_error(dir.file("loop2.obj"), v + "l 3 2\nl 5 6\nl 1 4\nl 2 1\nl 4 3\n", "vertex 1 lies on a closed loop");
+    // The same loop as PLY edges.
+    write_text(dir.file("loop.ply"), "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                                     "element edge 4\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+                                     "0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 1\n0 3\n1 0\n3 2\n");
+    const CurveSet p = read_curves(dir.file("loop.ply"), loops);
+    ASSERT_EQ(p.num_curves(), 1u);
+    ASSERT_EQ(p.num_points(), 5u);
+    for (int i = 0; i < 5; ++i) EXPECT_EQ(p.positions()[size_t(i)], want[i]) << i;
+    EXPECT_THROW(read_curves(dir.file("loop.ply")), ParseError);
+    // Written closed: OBJ's record ends at its first vertex again, USD says periodic; read back,
+    // the first point repeats at the end, as the loop of edges gave it.
+    CurveSet open = CurveSet::from_counts(std::vector<int64_t>{4});
+    std::copy(std::begin(want), std::begin(want) + 4, open.positions_for_write().begin());
+    CurveWriteOptions closed;
+    closed.closed = true;
+    for (const char* ext : {".obj", ".usda"}) {
+        const std::string f = dir.file(std::string("closed") + ext);
+        write_curves(open, f, closed);
+        const CurveSet back = read_curves(f);
+        ASSERT_EQ(back.num_points(), 5u) << ext;
+        for (int i = 0; i < 5; ++i) EXPECT_EQ(back.positions()[size_t(i)], want[i]) << ext << " " << i;
+    }
+    EXPECT_NE(test::read_bytes(dir.file("closed.usda")).find("uniform token wrap = \"periodic\""), std::string::npos);
+    EXPECT_NE(test::read_bytes(dir.file("closed.obj")).find("\nl 1 2 3 4 1\n"), std::string::npos);
+    write_curves(open, dir.file("open.usda"));
+    EXPECT_NE(test::read_bytes(dir.file("open.usda")).find("uniform token wrap = \"nonperiodic\""), std::string::npos);
 }
 
 TEST(MeshIoGroups, APickedGroupKeepsItsFacesTextureCoordinates)

@@ -149,3 +149,58 @@ TEST(HairRegion, RefusesAnOpenCurveAsTheHairline)
     }
     EXPECT_NO_THROW(HairRegion(sphere, circle_on_sphere({0, 1, 0}, 1, 60), CurveSet(), HairRegionParams{}));
 }
+
+// A closed hairline written closed (its first point again at the end: a USD periodic curve as read,
+// an OBJ record back to its first vertex, a Blender loop of edges) is the same hairline as the open
+// form. It was refused ("point 90 turns back": the closing step has no azimuth) by every op reading
+// it through HairRegion, and gave edges a zero-length piece. A curve that really turns back or runs
+// past its start is refused still.
+TEST(HairRegion, AHairlineClosedByRepeatingItsFirstPointIsTheOpenOne)
+{
+    const AnalyticSphere sphere(kC, kR);
+    const CurveSet open = circle_on_sphere(normalize(float3(0, 1, -0.3f)), 0.25f * kR, 90);
+    const auto with_points = [](std::vector<float3> pts) {
+        CurveSet c = CurveSet::from_counts(std::vector<int64_t>{int64_t(pts.size())});
+        std::copy(pts.begin(), pts.end(), c.positions_for_write().begin());
+        return c;
+    };
+    std::vector<float3> pts(open.positions().begin(), open.positions().end());
+    std::vector<float3> closed_pts = pts;
+    closed_pts.push_back(pts.front());
+    const CurveSet closed = with_points(closed_pts);
+
+    const auto span = check_hairline(closed, "hairline");
+    ASSERT_EQ(span.size(), pts.size());
+    EXPECT_TRUE(std::equal(span.begin(), span.end(), pts.begin()));
+    const HairRegion a(sphere, open, CurveSet(), HairRegionParams{}), b(sphere, closed, CurveSet(), HairRegionParams{});
+    EXPECT_EQ(a.centroid(), b.centroid());
+    Rng rng(5, 6);
+    for (int i = 0; i < 2000; ++i) {
+        const float3 p = random_on_sphere(rng);
+        ASSERT_EQ(a.hairline_margin(p), b.hairline_margin(p)) << i;
+    }
+
+    const auto refused = [&](const std::vector<float3>& q, const std::string& says) {
+        try {
+            HairRegion(sphere, with_points(q), CurveSet(), HairRegionParams{});
+            ADD_FAILURE() << "taken: " << says;
+        }
+        catch (const InvalidGeometry& e) {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+        }
+    };
+    // Runs on past its start, over its first five points again, then closes.
+    std::vector<float3> overlap = pts;
+    overlap.insert(overlap.end(), pts.begin(), pts.begin() + 6);
+    refused(overlap, "turns back");
+    // Ends a little past its first point (a hand-drawn loop closed by overshooting).
+    std::vector<float3> past = pts;
+    past.push_back(pts[0] + (pts[1] - pts[0]) * 0.3f);
+    refused(past, "point 90 turns back");
+    // Turns back between two of its points, open or closed.
+    std::vector<float3> zigzag = pts;
+    std::swap(zigzag[20], zigzag[21]);
+    refused(zigzag, "point 20 turns back");
+    zigzag.push_back(zigzag.front());
+    refused(zigzag, "point 20 turns back");
+}

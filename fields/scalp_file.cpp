@@ -32,6 +32,7 @@
 #include <csignal>
 #include <csignal>
 #include <poll.h>
+#include <new>
 #include <sstream>
 #include <filesystem>
 #include <map>
@@ -239,6 +240,9 @@ DecodedVdb decode_isolated(const std::string& path, const std::string& requested
             }
             reply = out.str();
         }
+        catch (const std::bad_alloc&) {
+            reply = "M";  // over the budget: the parent says so (a user read "std::bad_alloc" as a damaged file)
+        }
         catch (const std::exception& e) {
             reply = std::string("E") + e.what();
         }
@@ -282,6 +286,21 @@ DecodedVdb decode_isolated(const std::string& path, const std::string& requested
     }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || reply.empty()) {
         throw IoError(path + ": cannot read (the reading process failed)");
+    }
+    if (reply[0] == 'M') {
+        // Out of the budget in the child: a budget too small for the file (a user's --memory 0.001
+        // read as "std::bad_alloc", a damaged file), or a damaged length asking for gigabytes. A
+        // grid decodes to a few times its file's size, so a budget 64 times the file (and 64 MiB
+        // for the process) that ran out means damage.
+        std::error_code ec;
+        const double file_bytes = double(std::filesystem::file_size(path, ec));
+        const double budget = double(memory_budget());
+        if (!ec && budget >= 64.0 * (file_bytes + double(1 << 20))) {
+            throw ParseError(path + ": not a readable .vdb file (a length inside it asks for more than the " + format_bytes(budget) +
+                             " memory budget; is it damaged?)");
+        }
+        throw LimitExceeded(path + ": reading it needs more memory than the " + format_bytes(budget) +
+                            " budget allows (--memory, GROOM_MEMORY; the file is " + format_bytes(file_bytes) + "): raise --memory");
     }
     if (reply[0] == 'E') throw ParseError(path + ": not a readable .vdb file (" + reply.substr(1) + ")");
     // The grid's stream is most of the reply: kept in place (the list cut from its front), not copied.

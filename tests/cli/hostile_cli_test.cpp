@@ -210,6 +210,29 @@ TEST(Hostile, OutOfMemoryInsideTheLevelSetNamesTheVoxel)
     EXPECT_TRUE(contains(up_front.err, "over the 0.439453 GiB budget (--memory); use --voxel")) << up_front.err;
 }
 
+// A budget too small to read the scalp's .vdb (the reading child runs within it): a user's
+// `--memory 0.001` was told "not a readable .vdb file (std::bad_alloc)", as if the file were damaged.
+TEST(Hostile, ABudgetTooSmallToReadTheScalpSaysRaiseMemory)
+{
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: RLIMIT_AS cannot apply";
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+    GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: RLIMIT_AS cannot apply";
+#endif
+#endif
+    test::TempDir dir;
+    const std::string mesh = sphere_mesh(dir), vdb = dir.file("s.vdb");
+    ASSERT_EQ(run_groom({"scalp", mesh, "-o", vdb}).exit_code, 0);
+    const std::string points = dir.file("p.xyz");
+    test::write_text(points, "0 30 0\n");
+    const auto r = run_groom({"probe", points, "--scalp", vdb, "-o", dir.file("p.csv"), "--memory", "0.0001"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(contains(r.err, "s.vdb: reading it needs more memory than the")) << r.err;
+    EXPECT_TRUE(contains(r.err, "raise --memory")) << r.err;
+    EXPECT_FALSE(contains(r.err, "bad_alloc")) << r.err;
+}
+
 TEST(Hostile, MemoryBudgetRefusesOutputsBeforeAllocating)
 {
     test::TempDir dir;

@@ -97,6 +97,25 @@ float3 pull_back(const float3& a, const float3& p, float fa, float fp, float nee
     return a + off * float(lo);
 }
 
+/// Whether `p`, carried along `dir` from lift `a` to lift `b`, goes into the scalp on the way (from
+/// a distance of -tol or more to one below -tol): lift_outside's guard against passing through.
+/// `da` and `db` are the distances at the ends, or values of the same sign smaller in size
+/// (Surface::distance_within's bounds). A signed distance changes no faster than the point moves, so
+/// where the ends' distances together span the step no crossing lies between them; elsewhere the
+/// step is halved, each half asked only for the distance it needs, while `budget` queries last (a
+/// point grazing the surface all the way would otherwise be asked at every 2^-k of the step). A
+/// point that starts inside may come out; going back in counts.
+bool enters(const Surface& scalp, const float3& p, const float3& dir, double a, double b, float da, float db, float tol, int& budget)
+{
+    if (!(da < -tol) && db < -tol) return true;
+    const double step = std::fabs(b - a);
+    if (double(std::fabs(da)) + double(std::fabs(db)) >= step || step <= double(tol) || budget <= 0) return false;
+    --budget;
+    const double m = 0.5 * (a + b);
+    const float dm = scalp.distance_within(p + dir * float(m), float(0.5 * step));
+    return enters(scalp, p, dir, a, m, da, dm, tol, budget) || enters(scalp, p, dir, m, b, dm, db, tol, budget);
+}
+
 }  // namespace
 
 bool keep_outside(float3& p, const Surface& scalp, const KeepOutside& rule, float extra, const float3* anchor)
@@ -167,35 +186,91 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
 }
 
 double lift_outside(std::span<const float3> group, const float3& direction, const Surface& scalp, const KeepOutside& rule,
-                    float extra, bool rest)
+                    float extra, bool rest, LiftOutcome* outcome)
 {
     const float need = rule.clearance + extra + rule.margin;
     double lift = 0.0;
+    if (outcome) *outcome = LiftOutcome{};
     if (!rest && need >= 0.0f) {
         // A group with every point clear is not moved: that needs no distances, only comparisons.
         bool clear = true;
         for (const float3& p : group) clear = clear && !(scalp.distance_within(p + direction * float(lift), need) < need);
         if (clear) return lift;
     }
+    // Each step goes as far as the worst point lacks, which never passes the first lift along
+    // `direction` where the whole group is clear (a signed distance changes no faster than a point
+    // moves). But that first lift can lie on the far side of the head: a box-braid guide hanging
+    // behind an ear (the TressFX ponytail head, a trial) was nearer the ear than the skull, and the
+    // ear's inner side faces the skull; its sections, too thick for the gap, were carried on through
+    // the head and out 52 units away on its other side. A demanding artist expects a section
+    // to come out on the near side by about what it lacks, or, where nothing clear lies that way, to
+    // stay where it is clearest and be named (braid warns). So each step out (one taken because the
+    // group was short) is watched: one that takes a point that was outside into the scalp, or the
+    // second in a row that leaves the worst point shorter than before it, ends the search at the
+    // least short place found. The distances (or their bounds) at the lift before are kept for the
+    // first test. A level set is not quite a distance (in a gap a few voxels wide, or where its band
+    // meets the mesh's exact distance): one step may come out a little worse and the next one
+    // settle (the ICT head's box braids: 0.0014 short, then 0.003, then clear), which is why one
+    // is let pass, and why steps back down, toward the least lift or onto the scalp (rest), are
+    // not watched.
+    std::vector<float> at(group.size()), before(group.size());
+    const float tol = rule.margin;
+    const auto short_of = [](float worst) { return std::max(-worst, 0.0f); };
+    double prev = 0.0, best = 0.0;
+    float best_worst = 0.0f, last_worst = 0.0f;
+    bool blocked = false, done = false, grew = false;
+    const auto way_in = [&](double from, double to, std::span<const float> d_from, std::span<const float> d_to) {
+        int budget = 64;
+        for (size_t i = 0; i < group.size(); ++i) {
+            if (enters(scalp, group[i], direction, from, to, d_from[i], d_to[i], tol, budget)) return true;
+        }
+        return false;
+    };
     for (int iter = 0; iter < rule.max_steps; ++iter) {
         float worst = std::numeric_limits<float>::infinity();
-        for (const float3& p : group) {
-            const float3 q = p + direction * float(lift);
+        for (size_t i = 0; i < group.size(); ++i) {
+            const float3 q = group[i] + direction * float(lift);
             // Only a point that lowers the worst needs its distance: one certainly beyond the
             // worst so far (by more than float rounding) can be answered with a bound.
             const double beyond = double(worst) + double(need) + 1e-5 * (std::fabs(double(worst)) + std::fabs(double(need))) + 1e-30;
             float reach = float(beyond);
             if (double(reach) < beyond) reach = std::nextafter(reach, std::numeric_limits<float>::infinity());
             float d = reach > 0.0f && std::isfinite(reach) ? scalp.distance_within(q, reach) : scalp.distance(q);
+            at[i] = d;
             if (d >= reach) continue;
             if (!(std::fabs(d) < reach)) d = scalp.distance(q);  // a bound inside: the value is needed
+            at[i] = d;
             worst = std::min(worst, d - need);
         }
+        if (iter > 0 && last_worst < 0.0f) {
+            const bool worse = short_of(worst) > short_of(last_worst) + rule.margin;
+            if ((worse && grew) || way_in(prev, lift, before, at)) {
+                blocked = true;
+                break;
+            }
+            grew = worse;
+        }
+        else {
+            grew = false;
+        }
+        if (iter == 0 || short_of(worst) < short_of(best_worst)) best = lift, best_worst = worst;
+        last_worst = worst;
+        std::swap(at, before);
+        prev = lift;
         const double next = rest ? lift - worst : std::max(lift - worst, 0.0);
-        const bool done = std::fabs(next - lift) <= rule.margin;
+        done = std::fabs(next - lift) <= rule.margin;
         lift = next;
         if (done) break;
     }
+    if (!blocked && !done && last_worst < 0.0f) {
+        // The steps ran out: the last one was not looked at yet.
+        for (size_t i = 0; i < group.size(); ++i) {
+            at[i] = scalp.distance_within(group[i] + direction * float(lift), float(std::fabs(lift - prev)));
+        }
+        blocked = way_in(prev, lift, before, at);
+    }
+    if (blocked) lift = best, last_worst = best_worst;
+    if (outcome) *outcome = LiftOutcome{blocked && best_worst < 0.0f, last_worst};
     return lift;
 }
 

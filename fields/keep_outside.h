@@ -19,7 +19,7 @@
 //   keep_outside(points, ...)  every point of a span on its own (braid's hair, puff's guide interiors);
 //   keep_outside(curves, ...)  every point but each curve's root (generate, puff's hairs, cull);
 //   lift_outside(group, ...)   a group that must keep its shape (a braid's cross-section) moves as one
-//                              along one direction, and may rest on the scalp.
+//                              along one direction, and may rest on the scalp; never through it.
 #pragma once
 
 #include "fields/surface.h"
@@ -87,14 +87,31 @@ struct KeepOutsideCount {
 /// counts as being at `need`. That bound is used only where scalp.lipschitz(). Writes point P only. Parallel over the curves.
 KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const KeepOutside& rule);
 
+/// What lift_outside found besides the lift.
+struct LiftOutcome {
+    /// The way along `direction` was blocked before the group was clear: going on would have taken
+    /// one of its points into the scalp, or the group closer to it (a gap narrower than the group, a
+    /// thin part such as an ear or a collar in the way; further on, the far side of the head). The
+    /// lift is then the clearest place the iteration found before that.
+    bool blocked = false;
+    /// At the lift returned, the least distance of a point of the group from the scalp less
+    /// need + margin, scene units: negative is how far it is still short (0 for a group that was clear
+    /// and did not move; otherwise within the iteration's rounding of 0 where it converged).
+    float worst = 0.0f;
+};
+
 /// @brief The rule for a group that moves as one: the least lift along `direction` (unit) that puts
 /// every point of `group` at need + margin or more (need = rule.clearance + extra), found by a fixed
 /// point iteration (at most rule.max_steps steps, until a step changes the lift by no more than the
 /// margin): off-centre points move by less than the lift where the scalp curves. Without `rest` the
 /// lift is >= 0 (a clear group is not moved); with it a group floating above is also lowered until
 /// its lowest point rests at need + margin (cornrows lie on the head). Does not move the points.
+/// The group never passes through the scalp on its way out: no step out takes a point that was
+/// outside inside, or leaves the worst point shorter than before; where the way is blocked before the
+/// group is clear the lift stops at the least short place found (outcome->blocked).
+/// @param outcome  optional: whether the way was blocked and how far the group is still short
 /// @return the lift, scene units along `direction` (negative: lowered)
 double lift_outside(std::span<const float3> group, const float3& direction, const Surface& scalp, const KeepOutside& rule,
-                    float extra, bool rest);
+                    float extra, bool rest, LiftOutcome* outcome = nullptr);
 
 }  // namespace groom

@@ -208,14 +208,22 @@ std::vector<StrandFiberPlan> fiber_plans(std::span<const GuidePlan> plans, std::
 /// its width moves out on its own (keep_outside). With fibers (`strands` not null) most points need
 /// no query: a signed distance changes no faster than the point moves, so a hair point within
 /// `reach` of its strand point keeps clearance where the strand point keeps clearance + reach + its
-/// half width. Returns the number of points moved.
+/// half width. Hair of a strand point marked `left_inside` (its guide runs deep in the head, see
+/// braid_guide) stays: pushed one by one, points near the middle of the head would scatter to its
+/// either side. Returns the number of points moved.
 int64_t keep_hair_outside(CurveSet& out, const CurveSet* strands, std::span<const float> reach,
-                          std::span<const int64_t> strand_point, const BraidParams& params, float margin, const Surface& scalp,
-                          Progress* progress)
+                          std::span<const int64_t> strand_point, std::span<const uint8_t> left_inside, const BraidParams& params,
+                          float margin, const Surface& scalp, Progress* progress)
 {
     const KeepOutside rule{params.clearance, margin, 8};
     const auto W = out.find<float>(Domain::Point, attr::width);
     std::vector<uint8_t> known_clear;
+    const bool any_inside = std::find(left_inside.begin(), left_inside.end(), uint8_t(1)) != left_inside.end();
+    if (!strands && any_inside) {
+        // Without fibers the hair is the strands, in order (ties after them).
+        known_clear.assign(out.num_points(), 0);
+        std::copy(left_inside.begin(), left_inside.end(), known_clear.begin());
+    }
     if (strands) {
         const auto SP = strands->positions();
         // Each strand distance is only compared with a threshold. Below `within` the scalp answers
@@ -250,7 +258,7 @@ int64_t keep_hair_outside(CurveSet& out, const CurveSet* strands, std::span<cons
                         exact.store(d, std::memory_order_relaxed);
                     }
                 }
-                known_clear[q] = d - reach[q] >= need;
+                known_clear[q] = d - reach[q] >= need || left_inside[sp];
             }
         });
     }
@@ -292,6 +300,7 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
     StrandSections sec;
     sec.resize(strands.num_points());
     std::vector<int64_t> src_point(strands.num_points());
+    std::vector<uint8_t> left_inside(strands.num_points(), 0);
     std::vector<LiftStats> stats(ng);
     {
         const ProgressStep step(progress, "braid", int64_t(ng));
@@ -300,17 +309,26 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
                 if (first_strand[g] >= 0) {
                     const IndexRange r = guides.points_of(g);
                     stats[g] = braid_guide(ctx, plans[g], GP.subspan(r.begin, r.size()), r.begin, strands, first_strand[g],
-                                           sec, src_point);
+                                           sec, src_point, left_inside);
                 }
                 step.advance(1);
             }
         });
     }
-    for (const LiftStats& s : stats) {
+    for (size_t g = 0; g < ng; ++g) {
+        const LiftStats& s = stats[g];
         report.lifted_sections += s.lifted;
         report.lowered_sections += s.lowered;
         report.max_lift = std::max(report.max_lift, s.max_lift);
         report.max_lower = std::max(report.max_lower, s.max_lower);
+        report.blocked_sections += s.blocked;
+        if (s.blocked > 0 || s.deep > 0) {
+            report.scalp_issues.push_back({int64_t(g), int64_t(g), s.blocked, s.short_by, s.blocked_at, s.deep, s.depth, s.deepest});
+        }
+    }
+    if (!report.scalp_issues.empty()) {
+        const std::vector<int64_t> ids = guides.curve_ids();
+        for (BraidScalpIssue& issue : report.scalp_issues) issue.id = ids[size_t(issue.guide)];
     }
     carry_curve_attributes(guides, strands, src_curve);
     carry_point_attributes(guides, strands, src_point, {attr::P});
@@ -346,8 +364,8 @@ BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surfa
     }
 
     if (scalp) {
-        report.pushed_points = keep_hair_outside(out, M > 0 ? &strands : nullptr, offset_reach, hair_strand_point, params,
-                                                 ctx.margin, *scalp, progress);
+        report.pushed_points = keep_hair_outside(out, M > 0 ? &strands : nullptr, offset_reach, hair_strand_point, left_inside,
+                                                 params, ctx.margin, *scalp, progress);
     }
     report.curves = int64_t(out.num_curves());
     report.points = int64_t(out.num_points());

@@ -170,6 +170,21 @@ double braid_woven_fraction(const BraidParams& params, double guide_length);
 /// InvalidParam when params are invalid.
 std::vector<float> braid_knot_parameters(const BraidParams& params, double guide_length);
 
+/// A guide whose braid could not simply be lifted off the scalp along it (braid() lists them; the
+/// CLI names them in a warning).
+struct BraidScalpIssue {
+    int64_t guide = 0;      ///< guide index
+    int64_t id = 0;         ///< its curve id (its index where the guides have none)
+    int64_t blocked = 0;    ///< its sections with no clear place along the scalp normal short of passing through the scalp
+                            ///< (a gap narrower than the braid): left where clearest, their hair pushed out point by point
+    float short_by = 0.0f;  ///< the most one of those still lacked of its clearance, scene units
+    float3 blocked_at;      ///< the guide point of the first of them
+    int64_t deep = 0;       ///< its sections whose guide point is inside the scalp deeper than the braid is wide: lifted
+                            ///< less the deeper it runs (none from twice that), left inside with the guide, not pushed out
+    float depth = 0.0f;     ///< how far the guide runs inside the scalp at its deepest, scene units
+    float3 deepest;         ///< the guide point there
+};
+
 /// What braid() did, for the CLI to report.
 struct BraidReport {
     int64_t guides = 0;            ///< guides braided
@@ -185,6 +200,8 @@ struct BraidReport {
     float max_lift = 0.0f;         ///< largest lift along the scalp normal, scene units
     float max_lower = 0.0f;        ///< largest lowering, scene units
     int64_t pushed_points = 0;     ///< points still too close after lifting, pushed out one by one
+    int64_t blocked_sections = 0;  ///< cross-sections with no clear place along the scalp normal (see BraidScalpIssue)
+    std::vector<BraidScalpIssue> scalp_issues;  ///< guides with blocked sections or running deep in the scalp, in guide order
 };
 
 struct BraidResult {
@@ -207,7 +224,10 @@ struct BraidResult {
 ///
 /// @param scalp   required for orient = Scalp; with it no output point ends inside the scalp (whole
 ///                cross-sections are lifted along the scalp normal by what is needed plus clearance,
-///                and any point still closer than clearance is pushed out alone).
+///                never through the scalp, and any point still closer than clearance is pushed out
+///                alone), except where a guide runs inside it deeper than its braid is wide: the braid
+///                follows the guide in there. Guides with such places, or with sections that found no
+///                clear place, are listed in report.scalp_issues.
 /// @throws InvalidParam (bad params; Scalp orientation, clearance > 0 or rest without a scalp), LimitExceeded (output over
 ///         kMaxBraidPoints points, or ids that would overflow).
 BraidResult braid(const CurveSet& guides, const BraidParams& params, const Surface* scalp = nullptr,

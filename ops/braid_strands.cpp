@@ -43,7 +43,8 @@ float amplitude_scale(const BraidParams& p, const GuidePlan& plan, float t)
 }  // namespace
 
 LiftStats braid_guide(const BraidContext& ctx, const GuidePlan& plan, std::span<const float3> guide, int64_t guide_point0,
-                      CurveSet& dst, int64_t first_curve, StrandSections& sec, std::span<int64_t> src_point)
+                      CurveSet& dst, int64_t first_curve, StrandSections& sec, std::span<int64_t> src_point,
+                      std::span<uint8_t> left_inside)
 {
     const BraidParams& p = ctx.params;
     const int N = p.strand_count();
@@ -148,13 +149,43 @@ LiftStats braid_guide(const BraidContext& ctx, const GuidePlan& plan, std::span<
     if (!ctx.scalp) return stats;
     // Scalp intersections: each whole cross-section moves along the scalp normal (so the braid keeps its
     // shape) by the least amount that puts every strand's hair `clearance` off the scalp; with `rest`,
-    // sections above that are lowered onto it (lift_outside, fields/keep_outside.h).
+    // sections above that are lowered onto it (lift_outside, fields/keep_outside.h). Never through
+    // the scalp: a section with nothing clear that way (too thick for the gap behind an ear) stays
+    // where it is clearest, its hair then pushed out point by point. A guide that runs
+    // inside the head deeper than its braid is wide gives no sensible place: the near side is a guess
+    // that flips from one sample to the next at the middle of the head, and a braid lifted there
+    // would jump across it. So its sections are lifted less and less the deeper it runs and left
+    // inside with the guide, not pushed; the braid dives in where its guide does. Both are counted
+    // for braid's warning, which names the guide.
     const KeepOutside rule{p.clearance, ctx.margin, 32};
     std::vector<float3> section(N);
     for (int64_t j = 0; j < S; ++j) {
         const float3 dir = ctx.scalp->normal(C[j]);
         for (int i = 0; i < N; ++i) section[i] = P[dst.points_of(first_curve + i).begin + j];
-        const double lift = lift_outside(section, dir, *ctx.scalp, rule, section_reach[j], p.rest);
+        LiftOutcome outcome;
+        double lift = lift_outside(section, dir, *ctx.scalp, rule, section_reach[j], p.rest, &outcome);
+        bool deep = false;
+        if (lift > 0.0 || outcome.blocked) {
+            // The braid here: its width (lateral amplitude and the hair's reach, either side) and half its height.
+            const int64_t q0 = dst.points_of(first_curve).begin + j;
+            const float width = 2.0f * (sec.half_width[q0] - 0.5f * W[q0] + section_reach[j]);
+            const float half_height = sec.half_height[q0] - 0.5f * W[q0] + section_reach[j];
+            const float depth = -ctx.scalp->distance(C[j]);
+            deep = depth > width;
+            if (deep) {
+                // At most the lift that clears a guide a braid's width deep, eased to none where the
+                // guide is twice that deep: the braid slides off the scalp onto its guide, no jump.
+                const float ease = std::clamp(2.0f - depth / width, 0.0f, 1.0f);
+                lift = std::min(lift, double((width + half_height) * ease));
+                ++stats.deep;
+                if (depth > stats.depth) stats.depth = depth, stats.deepest = C[j];
+                for (int i = 0; i < N; ++i) left_inside[dst.points_of(first_curve + i).begin + j] = 1;
+            }
+        }
+        if (outcome.blocked && !deep) {
+            if (stats.blocked++ == 0) stats.blocked_at = C[j];
+            stats.short_by = std::max(stats.short_by, -outcome.worst);
+        }
         if (lift == 0.0) continue;
         for (int i = 0; i < N; ++i) {
             const int64_t q = dst.points_of(first_curve + i).begin + j;

@@ -251,6 +251,37 @@ TEST(KeepOutside, GroupLiftsByTheMissingDistanceAndRestsWhenAsked)
     EXPECT_LE(lowest, 0.101f + 1e-6f);
 }
 
+/// The slot 0 < y < 1 between a floor and a ceiling, solid beyond both: outside the scalp only inside
+/// the slot (the gap behind an ear).
+class Slot final : public Surface {
+public:
+    float distance(const float3& p) const override { return std::min(p.y, 1.0f - p.y); }
+    float3 normal(const float3& p) const override { return p.y < 0.5f ? float3(0, 1, 0) : float3(0, -1, 0); }
+    float3 closest_point(const float3& p) const override { return {p.x, p.y < 0.5f ? 0.0f : 1.0f, p.z}; }
+};
+
+// A group taller than the gap it lies in has no clear place along the floor's normal: the lift used
+// to march on into the ceiling and through whatever lay beyond (on a head, out of its far side, 52
+// units; here the ceiling is solid for ever and the steps doubled to a lift of 10^8). It stops where
+// it is clearest, says it was blocked and how short it still is, and no point goes into the ceiling.
+TEST(KeepOutside, GroupTallerThanItsGapIsBlockedNotThrownThrough)
+{
+    const Slot slot;
+    const KeepOutside rule{0.1f, 0.0f, 32};
+    const std::vector<float3> group = {{0, 0.05f, 0}, {0.3f, 0.9f, 0}};
+    LiftOutcome outcome;
+    const double lift = lift_outside(group, {0, 1, 0}, slot, rule, 0.0f, false, &outcome);
+    EXPECT_TRUE(outcome.blocked);
+    EXPECT_GE(lift, 0.0);
+    EXPECT_LE(lift, 0.05 + 1e-6);
+    EXPECT_NEAR(outcome.worst, -0.05f, 1e-6f);
+    for (const float3& p : group) EXPECT_GE(slot.distance(p + float3(0, float(lift), 0)), 0.0f);
+    // Room enough: the same group a little shorter rises to rest at the clearance, not blocked.
+    const std::vector<float3> shorter = {{0, 0.05f, 0}, {0.3f, 0.75f, 0}};
+    EXPECT_NEAR(lift_outside(shorter, {0, 1, 0}, slot, rule, 0.0f, false, &outcome), 0.05, 1e-6);
+    EXPECT_FALSE(outcome.blocked);
+}
+
 // A field whose sign jumps away from the surface is not 1-Lipschitz, and the curve form's bound
 // (a point whose predecessor's distance less the segment is positive is clear) fails across the
 // jump: hair that went into Sintel's eye sockets was skipped and left up to 1.5 units inside. Here

@@ -1,6 +1,7 @@
 // Tests for ops/braid: the Lissajous cross-section of the talk (Sec. 2.1) checked against its closed
-// form on straight guides, frames on S-curves and helices, cornrows on an exact sphere, the automatic
-// sample count, degenerate guides, determinism and attribute carry-through.
+// form on straight guides, frames on S-curves and helices, cornrows on an exact sphere, sections
+// lifted off the scalp on its near side and never through it, the automatic sample count, degenerate
+// guides, determinism and attribute carry-through.
 #include "ops/braid.h"
 
 #include "kernel/math/polyline.h"
@@ -581,4 +582,150 @@ TEST(Braid, CarriesGuideAttributes)
     EXPECT_EQ(oage[q4 + 0], 30.0f);
     EXPECT_EQ(oage[q4 + 4], 40.0f);
     EXPECT_EQ(out.detail_string("groom_name"), "cornrows");
+}
+
+namespace {
+
+/// Two disjoint exact spheres, a head and an ear beside it with a narrow gap between them (behind an
+/// ear, under a collar): the distance is the nearer sphere's, exact everywhere, and so are its normal
+/// and closest point.
+class HeadAndEar final : public Surface {
+public:
+    HeadAndEar(const AnalyticSphere& head, const AnalyticSphere& ear) : head_(head), ear_(ear) {}
+    float distance(const float3& p) const override { return std::min(head_.distance(p), ear_.distance(p)); }
+    float3 normal(const float3& p) const override { return nearer(p).normal(p); }
+    float3 closest_point(const float3& p) const override { return nearer(p).closest_point(p); }
+    const AnalyticSphere& head() const { return head_; }
+    const AnalyticSphere& ear() const { return ear_; }
+
+private:
+    const AnalyticSphere& nearer(const float3& p) const { return head_.distance(p) <= ear_.distance(p) ? head_ : ear_; }
+    AnalyticSphere head_, ear_;
+};
+
+/// Distance from p to the polyline `line`.
+double distance_to_polyline(const float3& p, const std::vector<float3>& line)
+{
+    double best = 1e30;
+    for (size_t k = 0; k + 1 < line.size(); ++k) {
+        const float3 ab = line[k + 1] - line[k];
+        const double t = std::clamp(double(dot(p - line[k], ab)) / std::max(double(dot(ab, ab)), 1e-30), 0.0, 1.0);
+        best = std::min(best, double(distance(p, line[k] + ab * float(t))));
+    }
+    return best;
+}
+
+/// How far the segment a-b reaches inside `s` (0 when it stays outside).
+double segment_depth(const float3& a, const float3& b, const AnalyticSphere& s)
+{
+    const float3 ab = b - a;
+    const double t = std::clamp(double(dot(s.center() - a, ab)) / std::max(double(dot(ab, ab)), 1e-30), 0.0, 1.0);
+    return std::max(0.0, double(s.radius()) - double(distance(s.center(), a + ab * float(t))));
+}
+
+}  // namespace
+
+// A cross-section too close to the scalp moves out on the near side by about what it lacks, never
+// through the head. A trial on the TressFX ponytail head: a box-braid guide hanging down the side of
+// the head passed behind the ear, nearer the ear than the skull, so its sections were lifted along
+// the ear's inner normal, toward the skull; too thick for the gap, they were carried on through the
+// head and stopped where they were clear on its far side, 52 units away (spikes through the head).
+// Here the same on two exact spheres, a head (radius 10) and an "ear" beside it, 0.8 apart: one
+// guide hangs through the gap, nearer the ear, and its braid (about 1 thick across the gap) cannot
+// fit; another dips 0.7 into the head's other side. Read from the output: no hair point farther from
+// its guide than the braid's width plus how deep the guide is inside, no point inside either
+// sphere, and no segment through one; the report names the guide in the gap.
+TEST(Braid, SectionsLiftOffTheScalpOnTheNearSideNotThroughTheHead)
+{
+    const float R = 10.0f;
+    const HeadAndEar body(AnalyticSphere({0, 0, 0}, R), AnalyticSphere({2 * R + 0.8f, 0, 0}, R));
+    std::vector<float3> gap, dip;
+    for (int k = 0; k <= 80; ++k) {
+        const float y = 8.0f - 16.0f * float(k) / 80.0f;
+        gap.emplace_back(R + 0.45f, y, 0.0f);  // 0.45 from the head, 0.35 from the ear at y = 0
+        dip.emplace_back(-(R - 0.7f), y, 0.0f);  // 0.7 inside the head at y = 0
+    }
+    const float dip_depth = 0.7f;
+    BraidParams p;
+    p.knot_length = 1.5f;
+    p.width = 0.5f;  // A; strands 0.5 thick (touching), so the braid is about 2 (A + strand width) wide
+    p.fibers = 12;
+    p.seed = 5;
+    const BraidResult res = braid(make_curves({gap, dip}), p, &body);
+    const CurveSet& out = res.curves;
+    const auto P = out.positions();
+    const auto guide = out.find<int32_t>(Domain::Curve, "guide");
+    ASSERT_FALSE(guide.empty());
+    const double braid_width = 2.0 * (0.5 + 0.5);
+    double farthest[2] = {0, 0}, deepest = 0, through = 0;
+    for (size_t c = 0; c < out.num_curves(); ++c) {
+        const int g = guide[c];
+        const IndexRange r = out.points_of(c);
+        for (int64_t q = r.begin; q < r.end; ++q) {
+            farthest[g] = std::max(farthest[g], distance_to_polyline(P[q], g == 0 ? gap : dip));
+            deepest = std::max(deepest, -double(body.distance(P[q])));
+            if (q > r.begin) {
+                through = std::max({through, segment_depth(P[q - 1], P[q], body.head()), segment_depth(P[q - 1], P[q], body.ear())});
+            }
+        }
+    }
+    EXPECT_LE(farthest[0], braid_width) << "the braid in the gap left its guide";
+    EXPECT_LE(farthest[1], braid_width + dip_depth) << "the dipping braid left its guide";
+    EXPECT_LE(deepest, 1e-3) << "hair inside the head or the ear";
+    EXPECT_LE(through, 0.02) << "a hair segment passes through the head or the ear";
+    EXPECT_GT(res.report.lifted_sections, 0);
+    EXPECT_LE(res.report.max_lift, braid_width + dip_depth);
+    // The guide in the gap is named; the one dipping less than a braid's width is not.
+    ASSERT_EQ(res.report.scalp_issues.size(), 1u);
+    EXPECT_EQ(res.report.scalp_issues[0].guide, 0);
+    EXPECT_GT(res.report.scalp_issues[0].blocked, 0);
+    EXPECT_EQ(res.report.scalp_issues[0].deep, 0);
+    EXPECT_EQ(res.report.blocked_sections, res.report.scalp_issues[0].blocked);
+}
+
+// A guide drawn through the head, here straight through a sphere's centre: no place outside is near
+// it, and the near side flips from one sample to the next at the middle, so lifting each section
+// out carried the braid 10 from its guide and threw it from one side of the sphere to the other (a
+// bar through it; on the ponytail head, 8 long across the crown). Its braid follows it in instead,
+// and the report names it with its depth. Read from the output: no hair segment longer than the
+// braid is wide, none passing through the sphere from outside to outside, and every hair point
+// within two braid widths of its guide.
+TEST(Braid, GuideThroughTheHeadIsNamedAndItsBraidFollowsIt)
+{
+    const float R = 10.0f;
+    const AnalyticSphere head({0, 0, 0}, R);
+    std::vector<float3> through;
+    for (int k = 0; k <= 120; ++k) through.emplace_back(-15.0f + 30.0f * float(k) / 120.0f, 0.0f, 0.0f);
+    CurveSet guides = make_curves({through});
+    guides.add<int64_t>(Domain::Curve, attr::id)[0] = 42;
+    BraidParams p;
+    p.knot_length = 1.5f;
+    p.width = 0.5f;
+    p.fibers = 12;
+    p.seed = 5;
+    const BraidResult res = braid(guides, p, &head);
+    const CurveSet& out = res.curves;
+    const auto P = out.positions();
+    const double braid_width = 2.0 * (0.5 + 0.5);
+    double farthest = 0, longest = 0, through_depth = 0;
+    for (size_t c = 0; c < out.num_curves(); ++c) {
+        const IndexRange r = out.points_of(c);
+        for (int64_t q = r.begin; q < r.end; ++q) {
+            farthest = std::max(farthest, distance_to_polyline(P[q], through));
+            if (q == r.begin) continue;
+            longest = std::max(longest, double(distance(P[q - 1], P[q])));
+            if (head.distance(P[q - 1]) >= 0.0f && head.distance(P[q]) >= 0.0f) {
+                through_depth = std::max(through_depth, segment_depth(P[q - 1], P[q], head));
+            }
+        }
+    }
+    EXPECT_LE(longest, braid_width) << "a spike: the braid jumps across the sphere";
+    EXPECT_LE(through_depth, 0.02) << "a hair segment passes through the sphere from outside to outside";
+    EXPECT_LE(farthest, 2.0 * braid_width) << "the braid left its guide";
+    ASSERT_EQ(res.report.scalp_issues.size(), 1u);
+    const BraidScalpIssue& issue = res.report.scalp_issues[0];
+    EXPECT_EQ(issue.guide, 0);
+    EXPECT_EQ(issue.id, 42);
+    EXPECT_GT(issue.deep, 0);
+    EXPECT_NEAR(issue.depth, R, 0.1f);
 }

@@ -116,7 +116,8 @@ ShapePoint curl_offset(std::span<const Cycle> cycles, const ShapeParams& sp, flo
 float root_envelope(double u, float ramp)
 {
     if (u < 0.0) return 0.0f;
-    if (ramp <= 0.0f) return 1.0f;
+    // Past the ramp the smoothstep is exactly 1 (u / ramp >= 1 when u >= ramp): no division there.
+    if (ramp <= 0.0f || u >= double(ramp)) return 1.0f;
     return smoothstep(float(u / double(ramp)));
 }
 

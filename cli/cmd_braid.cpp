@@ -178,19 +178,18 @@ void setup(CommandContext& ctx)
                              ", pushed " + std::to_string(r.pushed_points) + " single points out; clearance " +
                              fmt(params.clearance));
             // Each guide by name, so the artist can find it (groom select --ids) and mend it.
-            const auto at = [](const float3& p) { return "(" + fmt(p.x) + ", " + fmt(p.y) + ", " + fmt(p.z) + ")"; };
             const size_t shown = std::min<size_t>(r.scalp_issues.size(), 8);
             for (size_t k = 0; k < shown; ++k) {
                 const BraidScalpIssue& s = r.scalp_issues[k];
                 const std::string who = "braid: warning: guide " + std::to_string(s.guide) + " (id " + std::to_string(s.id) + ")";
                 if (s.deep > 0) {
-                    warn(common, who + " runs up to " + fmt(s.depth) + " inside the scalp (at " + at(s.deepest) +
+                    warn(common, who + " runs up to " + fmt(s.depth) + " inside the scalp (at " + format_xyz(s.deepest) +
                                      "), deeper than its braid is wide: its braid follows it in there (" + std::to_string(s.deep) +
                                      " cross-sections left inside); move the guide out first (groom cull --mode push) or drop it " +
                                      "(groom select --ids " + std::to_string(s.id) + " --invert)");
                 }
                 if (s.blocked > 0) {
-                    warn(common, who + ": " + std::to_string(s.blocked) + " cross-sections (the first at " + at(s.blocked_at) +
+                    warn(common, who + ": " + std::to_string(s.blocked) + " cross-sections (the first at " + format_xyz(s.blocked_at) +
                                      ") have no clear place along the scalp normal short of passing through the scalp " +
                                      "(a gap narrower than the braid, a thin part in the way); they stay where they are clearest, up to " +
                                      fmt(s.short_by) + " short of the clearance, and their hair is pushed out point by point");

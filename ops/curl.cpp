@@ -67,6 +67,7 @@ struct Resolved {
     CurlShapeTiers tiers;
     FloatRange amplitude;
     float amplitude_mid = 0.0f;
+    ShapeTable table;
 };
 
 /// The cycle that cycle coordinate u falls in, of `count`: floor(u) clamped to [0, count - 1] in
@@ -77,39 +78,6 @@ int64_t cycle_of(double u, int64_t count)
 {
     const double f = std::floor(u);
     return f > 0.0 ? int64_t(std::min(f, double(std::max<int64_t>(count - 1, 0)))) : 0;
-}
-
-/// The curl offset in the cross-section plane at cycle coordinate u (u = 0 where the curl starts),
-/// before the root envelope. Sec. 3.1: each cycle takes its own shape; around each join the two
-/// neighbouring cycles' closed curves are cross-faded with a C1 smoothstep, so position and tangent
-/// stay continuous (both shapes are smooth at t = 0, see curl_shapes.h).
-ShapePoint curl_offset(std::span<const Cycle> cycles, const ShapeParams& sp, float cos_phase, float sin_phase, float blend, double u)
-{
-    const int64_t last = int64_t(cycles.size()) - 1;
-    const int64_t k = cycle_of(u, int64_t(cycles.size()));
-    const float t = float(u - double(k));  // in [0, 1) inside the curl; negative before it, > 1 past the end
-    auto eval = [&](int64_t c, float tc) {
-        const Cycle& cy = cycles[size_t(c)];
-        const ShapePoint s = curl_shape_point(cy.shape, sp, tc);
-        const float x = cy.amplitude * s.x, y = cy.amplitude * s.y;
-        return ShapePoint{cy.ox + cos_phase * x - sin_phase * y, cy.oy + sin_phase * x + cos_phase * y};
-    };
-    const ShapePoint here = eval(k, t);
-    if (blend <= 0.0f) return here;
-    ShapePoint other;
-    float w;  // weight of `here`
-    if (t < blend && k > 0) {
-        other = eval(k - 1, t + 1.0f);
-        w = smoothstep((t + blend) / (2.0f * blend));
-    }
-    else if (t > 1.0f - blend && k < last) {
-        other = eval(k + 1, t - 1.0f);
-        w = 1.0f - smoothstep((t - (1.0f - blend)) / (2.0f * blend));
-    }
-    else {
-        return here;
-    }
-    return {w * here.x + (1.0f - w) * other.x, w * here.y + (1.0f - w) * other.y};
 }
 
 /// Root envelope: 0 on the straight part (u <= 0), a smoothstep up to 1 over `ramp` cycles.
@@ -224,6 +192,7 @@ Resolved resolve(const CurlParams& p)
     Resolved r;
     r.preset = &preset_of(p);
     r.tiers = curl_shape_tiers(p);
+    r.table = ShapeTable(p.shape);
     if (p.amplitude.lo == 0.0f && p.amplitude.hi == 0.0f) {
         const float a = curl_default_radius(p);
         r.amplitude = {0.8f * a, 1.2f * a};  // +-20% around the type's radius: our choice
@@ -313,15 +282,92 @@ void draw_curve(const CurlParams& params, const Resolved& res, uint64_t id, floa
 /// Cycle coordinate at centreline arc length s: 0 where the curl starts, after the root ease.
 double cycle_u(const CurveDraws& d, const CurlParams& p, double s) { return double(d.frequency) * (s - double(p.root_ease)); }
 
-/// The curled point at centreline arc length s, from the centre c and frame (n, b) there.
-float3 curled_point(const CurveDraws& d, const CurlParams& p, const float3& c, const float3& n, const float3& b, double s)
-{
-    const double u = cycle_u(d, p, s);
-    const float env = root_envelope(u, p.root_ramp);
-    if (env == 0.0f) return c;
-    const ShapePoint q = curl_offset(d.cycles, p.shape, d.cos_phase, d.sin_phase, p.blend, u);
-    return c + n * (env * q.x) + b * (env * q.y);
-}
+/// The curl's offsets in the cross-section plane at many points of a curve at once (x along the
+/// frame normal, y along the binormal, the root envelope applied), and the scratch they are made in.
+/// Sec. 3.1: each cycle takes its own shape; around each join the two neighbouring cycles' closed
+/// curves are cross-faded with a C1 smoothstep, so position and tangent stay continuous (both shapes
+/// are smooth at t = 0, see curl_shapes.h). The points of one cycle are evaluated together (its
+/// shape's sines and cosines four at a time), then the joins' other cycles, then the blend: one
+/// point at a time, through a call per point, this was a third of the op (perf, curl_bench).
+struct CurlOffsets {
+    std::vector<float> x, y, env;
+    std::vector<int64_t> cycle;
+    std::vector<float> t;
+    // The points near a join: their index, the other cycle, its parameter, the weight of their own.
+    std::vector<uint32_t> join_index;
+    std::vector<int64_t> join_cycle;
+    std::vector<float> join_t, join_weight, join_x, join_y;
+
+    /// Offsets at cycle coordinates u[0..m) (u = 0 where the curl starts; non-decreasing, as the
+    /// points walk up the curve) into x, y, and the envelope into env.
+    void evaluate(const CurveDraws& d, const CurlParams& p, const ShapeTable& table, const double* u, size_t m)
+    {
+        x.resize(m), y.resize(m), env.resize(m), cycle.resize(m), t.resize(m);
+        const int64_t count = int64_t(d.cycles.size()), last = count - 1;
+        for (size_t i = 0; i < m; ++i) {
+            const int64_t k = cycle_of(u[i], count);
+            cycle[i] = k;
+            t[i] = float(u[i] - double(k));  // in [0, 1) inside the curl; negative before it, > 1 past the end
+            env[i] = root_envelope(u[i], p.root_ramp);
+        }
+        cycles(d, table, cycle.data(), t.data(), m, x.data(), y.data());
+        if (p.blend > 0.0f) {
+            const float blend = p.blend;
+            join_index.clear(), join_cycle.clear(), join_t.clear(), join_weight.clear();
+            for (size_t i = 0; i < m; ++i) {
+                const float ti = t[i];
+                const int64_t k = cycle[i];
+                if (ti < blend && k > 0) {
+                    join_cycle.push_back(k - 1), join_t.push_back(ti + 1.0f);
+                    join_weight.push_back(smoothstep((ti + blend) / (2.0f * blend)));
+                }
+                else if (ti > 1.0f - blend && k < last) {
+                    join_cycle.push_back(k + 1), join_t.push_back(ti - 1.0f);
+                    join_weight.push_back(1.0f - smoothstep((ti - (1.0f - blend)) / (2.0f * blend)));
+                }
+                else {
+                    continue;
+                }
+                join_index.push_back(uint32_t(i));
+            }
+            const size_t joins = join_index.size();
+            join_x.resize(joins), join_y.resize(joins);
+            cycles(d, table, join_cycle.data(), join_t.data(), joins, join_x.data(), join_y.data());
+            for (size_t q = 0; q < joins; ++q) {
+                const size_t i = join_index[q];
+                const float w = join_weight[q];
+                x[i] = w * x[i] + (1.0f - w) * join_x[q];
+                y[i] = w * y[i] + (1.0f - w) * join_y[q];
+            }
+        }
+        for (size_t i = 0; i < m; ++i) x[i] = env[i] * x[i], y[i] = env[i] * y[i];
+    }
+
+    /// The curled point i from its centre c and frame (n, b): where the envelope is 0, c itself.
+    float3 point(size_t i, const float3& c, const float3& n, const float3& b) const
+    {
+        return env[i] == 0.0f ? c : c + n * x[i] + b * y[i];
+    }
+
+private:
+    /// Each cycle's own cross-section at t[i] (cycle[i] non-decreasing): centre + amplitude x the
+    /// phase's rotation of its shape.
+    static void cycles(const CurveDraws& d, const ShapeTable& table, const int64_t* cycle, const float* t, size_t m, float* x, float* y)
+    {
+        for (size_t i = 0; i < m;) {
+            size_t j = i + 1;
+            while (j < m && cycle[j] == cycle[i]) ++j;
+            const Cycle& cy = d.cycles[size_t(cycle[i])];
+            curl_shape_points(cy.shape, table, t + i, j - i, x + i, y + i);
+            for (size_t q = i; q < j; ++q) {
+                const float sx = cy.amplitude * x[q], sy = cy.amplitude * y[q];
+                x[q] = cy.ox + d.cos_phase * sx - d.sin_phase * sy;
+                y[q] = cy.oy + d.sin_phase * sx + d.cos_phase * sy;
+            }
+            i = j;
+        }
+    }
+};
 
 /// What curl_curve keeps from curve to curve (a worker's).
 struct CurlScratch {
@@ -330,20 +376,27 @@ struct CurlScratch {
     std::vector<int32_t> lo, hi;
     std::vector<float> frac, at;
     std::vector<uint8_t> far;
+    std::vector<double> u;
+    CurlOffsets offsets;
 };
 
 /// Curls the centreline over arc lengths [0, end] with as many points as it has, evenly spaced:
 /// out[j], and its centreline arc length s_of[j].
-void curl_prefix(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double end, CurlScratch& w, std::vector<float3>& out,
-                 std::vector<double>& s_of)
+void curl_prefix(const Centreline& cl, const CurveDraws& d, const CurlParams& p, const ShapeTable& table, double end, CurlScratch& w,
+                 std::vector<float3>& out, std::vector<double>& s_of)
 {
     const int64_t n = int64_t(cl.points.size());
     const double ds2 = end / double(n - 1);
-    for (int64_t j = 0; j < n; ++j) s_of[size_t(j)] = double(j) * ds2;
+    w.u.resize(size_t(n));
+    for (int64_t j = 0; j < n; ++j) {
+        s_of[size_t(j)] = double(j) * ds2;
+        w.u[size_t(j)] = cycle_u(d, p, s_of[size_t(j)]);
+    }
     cl.frames_at(s_of, w.lo, w.hi, w.frac, w.at, w.far);
+    w.offsets.evaluate(d, p, table, w.u.data(), size_t(n));
     for (int64_t j = 0; j < n; ++j) {
         const float* q = w.at.data() + 9 * j;
-        out[size_t(j)] = curled_point(d, p, {q[0], q[1], q[2]}, {q[3], q[4], q[5]}, {q[6], q[7], q[8]}, s_of[size_t(j)]);
+        out[size_t(j)] = w.offsets.point(size_t(j), {q[0], q[1], q[2]}, {q[3], q[4], q[5]}, {q[6], q[7], q[8]});
     }
 }
 
@@ -383,8 +436,8 @@ double predicted_cut(std::span<const double> chord, std::span<const double> shor
 /// and (Sec. 3.1 says nothing of length; real curls shrink, the curl index) predicts where the curled
 /// hair reaches the input's length `in_len`: it then covers only that part of its centreline, which
 /// pass 2 re-samples with all the points. Without length preservation pass 1 is the result.
-void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, double in_len, CurlScratch& w, std::vector<float3>& out,
-                std::vector<double>& s_of)
+void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, const ShapeTable& table, double in_len, CurlScratch& w,
+                std::vector<float3>& out, std::vector<double>& s_of)
 {
     std::vector<float3>& grid = w.grid;
     std::vector<double>&chord = w.chord, &short_by = w.short_by;
@@ -394,15 +447,25 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
     short_by.clear();
     double acc = 0.0;
     int64_t evaluated = n;
-    for (int64_t j = 0; j < n; ++j) {
-        grid[size_t(j)] = curled_point(d, p, cl.points[size_t(j)], cl.frames[size_t(j)].n, cl.frames[size_t(j)].b, double(j) * cl.ds);
-        if (!p.preserve_length || j == 0) continue;
-        chord.push_back(distance(grid[size_t(j - 1)], grid[size_t(j)]));
-        acc += chord.back();
-        // Past the chords' own cut pass 2 cannot reach: its chords are longer.
-        if (acc >= in_len) {
-            evaluated = j + 1;
-            break;
+    // A chunk of points at a time (the offsets are made together), until the chords reach in_len.
+    constexpr int64_t kChunk = 64;
+    for (int64_t j0 = 0; j0 < n && evaluated == n; j0 += kChunk) {
+        const int64_t j1 = p.preserve_length ? std::min(n, j0 + kChunk) : n;
+        w.u.resize(size_t(j1 - j0));
+        for (int64_t j = j0; j < j1; ++j) w.u[size_t(j - j0)] = cycle_u(d, p, double(j) * cl.ds);
+        w.offsets.evaluate(d, p, table, w.u.data(), size_t(j1 - j0));
+        for (int64_t j = j0; j < j1; ++j) {
+            grid[size_t(j)] = w.offsets.point(size_t(j - j0), cl.points[size_t(j)], cl.frames[size_t(j)].n, cl.frames[size_t(j)].b);
+        }
+        if (!p.preserve_length) break;
+        for (int64_t j = std::max<int64_t>(j0, 1); j < j1; ++j) {
+            chord.push_back(distance(grid[size_t(j - 1)], grid[size_t(j)]));
+            acc += chord.back();
+            // Past the chords' own cut pass 2 cannot reach: its chords are longer.
+            if (acc >= in_len) {
+                evaluated = j + 1;
+                break;
+            }
         }
     }
     // Each chord's bend: the mean of the squared second differences at its two ends, where they
@@ -427,7 +490,7 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
         for (int64_t j = 0; j < n; ++j) s_of[size_t(j)] = double(j) * cl.ds;
         return;
     }
-    curl_prefix(cl, d, p, s_end, w, out, s_of);
+    curl_prefix(cl, d, p, table, s_end, w, out, s_of);
     // Correct the cut on pass 2's own polyline (at most twice) until the length is within 0.2%.
     for (int iter = 0; iter < 2; ++iter) {
         double len = 0.0, cut = -1.0;
@@ -440,7 +503,7 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
         }
         if (std::fabs(len - in_len) <= 2e-3 * in_len) break;
         s_end = cut >= 0.0 ? cut : std::min(cl.length, s_end * in_len / std::max(len, 1e-30));
-        curl_prefix(cl, d, p, s_end, w, out, s_of);
+        curl_prefix(cl, d, p, table, s_end, w, out, s_of);
     }
 }
 
@@ -686,7 +749,7 @@ CurveSet curl_range(const CurveSet& src, const CurlParams& params, const CurlPla
             const int64_t n = d.size();
             build_centreline(in, n, cl);
             draw_curve(params, plan.res, uint64_t(ids[size_t(k)]), plan.frequency[size_t(c)], cl.length, draws);
-            curl_curve(cl, draws, params, in_len, scratch, out, s_of);
+            curl_curve(cl, draws, params, plan.res.table, in_len, scratch, out, s_of);
 
             if (scalp) {
                 // No curled point inside the scalp (fields/keep_outside.h): pulled back toward its

@@ -1,7 +1,9 @@
 #include "ops/curl_shapes.h"
 
 #include "kernel/error.h"
+#include "kernel/math/vector_math.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -19,56 +21,78 @@ float wrap01(float t)
     return w < 1.0f ? w : 0.0f;
 }
 
+/// A run of one shape's points, cut into chunks this long so the angles and their sines and cosines
+/// live on the stack.
+constexpr size_t kChunk = 64;
+
+/// Scratch of one chunk.
+struct Chunk {
+    float a[kChunk], s[kChunk], c[kChunk];
+};
+
 // Sec. 3.1, shape 0: the Lame curve (superellipse) |x|^n + |y|^n = 1, traced by the classic
 // x = sgn(cos a) |cos a|^(2/n), y = sgn(sin a) |sin a|^(2/n). It starts at a = pi/4 because for n < 1
 // the curve has cusps on the axes, and for any n its diagonal point is smooth.
-ShapePoint lame(const ShapeParams& p, float t)
+void lame(const ShapeTable& table, const float* t, size_t n, float* x, float* y, Chunk& w)
 {
-    const float a = kTwoPi * t + 0.25f * std::numbers::pi_v<float>;
-    const float c = std::cos(a), s = std::sin(a), e = 2.0f / p.lame_exponent;
-    return {std::copysign(std::pow(std::fabs(c), e), c), std::copysign(std::pow(std::fabs(s), e), s)};
+    const float e = 2.0f / table.params.lame_exponent;
+    for (size_t i = 0; i < n; ++i) w.a[i] = kTwoPi * t[i] + 0.25f * std::numbers::pi_v<float>;
+    sin_cos(w.a, n, w.s, w.c);
+    for (size_t i = 0; i < n; ++i) w.a[i] = std::fabs(w.c[i]);
+    pow_of(w.a, e, n, x);
+    for (size_t i = 0; i < n; ++i) w.a[i] = std::fabs(w.s[i]);
+    pow_of(w.a, e, n, y);
+    for (size_t i = 0; i < n; ++i) x[i] = std::copysign(x[i], w.c[i]), y[i] = std::copysign(y[i], w.s[i]);
 }
 
 // Shape 1: the regular N-gon with circumradius 1, at constant speed along its perimeter. Vertex j
 // sits at angle 2 pi (j + 1/2) / N so that t = 0 is the middle of the edge crossing +x (a smooth
-// point: consecutive cycles blend on a straight edge, never across a corner).
-ShapePoint polygon(const ShapeParams& p, float t)
+// point: consecutive cycles blend on a straight edge, never across a corner). The corners are the
+// table's.
+void polygon(const ShapeTable& table, const float* t, size_t n, float* x, float* y, Chunk&)
 {
-    const int n = p.polygon_sides;
-    const float tau = wrap01(t) * float(n) + 0.5f;
-    const int edge = int(std::floor(tau));
-    const float f = tau - float(edge);
-    const float a0 = kTwoPi * (float(edge) - 0.5f) / float(n), a1 = kTwoPi * (float(edge) + 0.5f) / float(n);
-    return {std::cos(a0) + (std::cos(a1) - std::cos(a0)) * f, std::sin(a0) + (std::sin(a1) - std::sin(a0)) * f};
+    const int sides = table.params.polygon_sides;
+    for (size_t i = 0; i < n; ++i) {
+        const float tau = wrap01(t[i]) * float(sides) + 0.5f;
+        const int edge = int(std::floor(tau));
+        const float f = tau - float(edge);
+        const ShapePoint a = table.corners[size_t(edge)], b = table.corners[size_t(edge) + 1];
+        x[i] = a.x + (b.x - a.x) * f;
+        y[i] = a.y + (b.y - a.y) * f;
+    }
 }
 
 // Shape 2: the ellipse x = cos, y = aspect * sin (major axis along the frame normal).
-ShapePoint ellipse(const ShapeParams& p, float t)
+void ellipse(const ShapeTable& table, const float* t, size_t n, float* x, float* y, Chunk& w)
 {
-    const float a = kTwoPi * t;
-    return {std::cos(a), p.ellipse_aspect * std::sin(a)};
+    for (size_t i = 0; i < n; ++i) w.a[i] = kTwoPi * t[i];
+    sin_cos(w.a, n, y, x);
+    for (size_t i = 0; i < n; ++i) y[i] = table.params.ellipse_aspect * y[i];
 }
 
 // Shape 3: the circle, the cross-section of the classic helix curl.
-ShapePoint circle(const ShapeParams&, float t)
+void circle(const ShapeTable&, const float* t, size_t n, float* x, float* y, Chunk& w)
 {
-    const float a = kTwoPi * t;
-    return {std::cos(a), std::sin(a)};
+    for (size_t i = 0; i < n; ++i) w.a[i] = kTwoPi * t[i];
+    sin_cos(w.a, n, y, x);
 }
 
 // Shape 4: the polar rose r = cos(k theta). For odd k the curve closes after theta = pi (k petals),
 // for even k after 2 pi (2k petals); one cycle traces it exactly once, starting on a petal tip.
-ShapePoint rose(const ShapeParams& p, float t)
+void rose(const ShapeTable& table, const float* t, size_t n, float* x, float* y, Chunk& w)
 {
-    const int k = p.rose_petals;
-    const float theta = (k % 2 ? std::numbers::pi_v<float> : kTwoPi) * wrap01(t);
-    const float r = std::cos(float(k) * theta);
-    return {r * std::cos(theta), r * std::sin(theta)};
+    const int k = table.params.rose_petals;
+    const float turn = k % 2 ? std::numbers::pi_v<float> : kTwoPi;
+    for (size_t i = 0; i < n; ++i) w.a[i] = turn * wrap01(t[i]);
+    sin_cos(w.a, n, w.s, w.c);
+    for (size_t i = 0; i < n; ++i) w.a[i] = float(k) * w.a[i];
+    cos_of(w.a, n, w.a);  // r
+    for (size_t i = 0; i < n; ++i) x[i] = w.a[i] * w.c[i], y[i] = w.a[i] * w.s[i];
 }
 
 struct ShapeEntry {
     const char* name;
-    ShapePoint (*point)(const ShapeParams&, float);
+    void (*points)(const ShapeTable&, const float*, size_t, float*, float*, Chunk&);
 };
 
 // The dictionary, in the talk's order. A new shape: one function above and one line here.
@@ -115,9 +139,29 @@ std::string curl_shape_list()
     return out;
 }
 
+ShapeTable::ShapeTable(const ShapeParams& p) : params(p)
+{
+    const int n = std::clamp(p.polygon_sides, 3, 64);
+    for (int j = 0; j < n + 2; ++j) {
+        const float a = kTwoPi * (float(j) - 0.5f) / float(n);
+        corners.push_back({std::cos(a), std::sin(a)});
+    }
+}
+
+void curl_shape_points(int shape, const ShapeTable& table, const float* t, size_t n, float* x, float* y)
+{
+    Chunk w;
+    for (size_t i = 0; i < n; i += kChunk) {
+        const size_t count = std::min(kChunk, n - i);
+        kShapes[size_t(shape)].points(table, t + i, count, x + i, y + i, w);
+    }
+}
+
 ShapePoint curl_shape_point(int shape, const ShapeParams& params, float t)
 {
-    return kShapes[size_t(shape)].point(params, t);
+    ShapePoint q;
+    curl_shape_points(shape, ShapeTable(params), &t, 1, &q.x, &q.y);
+    return q;
 }
 
 }  // namespace groom

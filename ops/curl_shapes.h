@@ -5,6 +5,7 @@
 // 4 polar rose. Adding a shape is one function and one entry in the table in curl_shapes.cpp.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,11 +40,27 @@ std::string_view curl_shape_name(int shape);
 /// "0 lame, 1 polygon, ..." for messages and help text.
 std::string curl_shape_list();
 
+/// What the shapes need computed once for a run's parameters: the polygon's corners.
+struct ShapeTable {
+    ShapeParams params;
+    /// polygon_sides + 2 corners, corner j at angle 2 pi (j - 1/2) / N (the last two repeat the first
+    /// two, so an edge is always corners j and j + 1).
+    std::vector<ShapePoint> corners;
+
+    ShapeTable() : ShapeTable(ShapeParams{}) {}
+    explicit ShapeTable(const ShapeParams& params);
+};
+
+/// Points of `shape` at cycle parameters t[0..n) into x[i], y[i]: curl_shape_point's points, many at
+/// once (the curl op asks for millions: sines and cosines four at a time, kernel/math/vector_math.h).
+/// `shape` must be in [0, curl_shape_count()).
+void curl_shape_points(int shape, const ShapeTable& table, const float* t, size_t n, float* x, float* y);
+
 /// Point of `shape` at cycle parameter t (any real; the shape repeats with period 1), unit scale.
 /// Every shape starts (t = 0) at a point where it is smooth, so consecutive cycles can be blended
 /// around t = 0 without creating a corner (the polygon starts mid-edge, the Lame curve on its
 /// diagonal, the rose on a petal tip). Points move counter-clockwise (x towards y).
-/// `shape` must be in [0, curl_shape_count()).
+/// `shape` must be in [0, curl_shape_count()). One point of curl_shape_points (the same bits).
 ShapePoint curl_shape_point(int shape, const ShapeParams& params, float t);
 
 }  // namespace groom

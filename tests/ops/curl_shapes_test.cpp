@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 using namespace groom;
 
@@ -120,6 +121,27 @@ TEST(CurlShapes, EveryShapeIsClosedAndSmoothWhereCyclesJoin)
         EXPECT_GT(std::hypot(lx, ly), 0.1f) << curl_shape_name(s) << " stalls at t = 0";
         EXPECT_NEAR(lx, rx, 0.05f * std::hypot(lx, ly)) << curl_shape_name(s);
         EXPECT_NEAR(ly, ry, 0.05f * std::hypot(lx, ly)) << curl_shape_name(s);
+    }
+}
+
+// The curl op evaluates many points at once; a point must not depend on the run it came in (the
+// op's output would then depend on where a curve is cut into chunks).
+TEST(CurlShapes, ManyPointsAtOnceAreEachPointOnItsOwn)
+{
+    ShapeParams p;
+    p.polygon_sides = 7;
+    p.rose_petals = 4;
+    const ShapeTable table(p);
+    std::vector<float> t;
+    for (int i = -300; i < 700; ++i) t.push_back(0.00731f * float(i));
+    for (int s = 0; s < curl_shape_count(); ++s) {
+        std::vector<float> x(t.size()), y(t.size());
+        curl_shape_points(s, table, t.data(), t.size(), x.data(), y.data());
+        for (size_t i = 0; i < t.size(); ++i) {
+            const ShapePoint q = curl_shape_point(s, p, t[i]);
+            ASSERT_EQ(q.x, x[i]) << curl_shape_name(s) << " t " << t[i];
+            ASSERT_EQ(q.y, y[i]) << curl_shape_name(s) << " t " << t[i];
+        }
     }
 }
 

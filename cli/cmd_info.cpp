@@ -256,8 +256,9 @@ void setup(CommandContext& ctx)
         if (!args->curves && !args->mesh) {
             if (args->input != "-" && !is_curve_path(args->input) && !is_mesh_path(args->input)) {
                 const io::Format* f = io::format_of_path(args->input);
-                if (f && !f->refusal.empty()) throw InvalidParam("info: " + args->input + ": " + std::string(f->refusal));
-                throw InvalidParam("info: " + args->input + ": unknown format (expected curves " + curve_formats() + ", a mesh " +
+                // ParseError, as every other command refuses a file it cannot read (exit 1, not 2).
+                if (f && !f->refusal.empty()) throw ParseError("info: " + args->input + ": " + std::string(f->refusal));
+                throw ParseError("info: " + args->input + ": unknown format (expected curves " + curve_formats() + ", a mesh " +
                                    mesh_formats() + " or a scalp .vdb)");
             }
             curves = holds_curves(args->input);

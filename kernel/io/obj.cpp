@@ -136,6 +136,11 @@ ObjData parse_obj(const FileBytes& file)
             else if (key == "f") {
                 take_indices("face", true);
                 if (record.empty()) fail_at_line(file.name, cur.line(), "expected vertex indices after 'f', found end of line");
+                if (record.size() < 3) {
+                    // Not a polygon: counted as a degenerate face it vanished into the repair report unnamed.
+                    fail_at_line(file.name, cur.line(), "expected a face of 3 or more vertex indices, found " + std::to_string(record.size()) +
+                                                          " (an edge is an 'l' record)");
+                }
                 if (any_uv) obj.faces.add_face(record, uv_record);
                 else obj.faces.add_face(record);
                 obj.face_names.push_back(current_names);

@@ -110,6 +110,16 @@ TEST(Cli, UnreadableOrMalformedInputExitsOneNamingTheFile)
     EXPECT_NE(bad.err.find(dir.file("bad.obj") + ":3: vertex index 3 out of range (2 vertices)"), std::string::npos) << bad.err;
     // Atomic output: nothing named out.usda, and no temporary left behind either.
     EXPECT_EQ(files_in(dir), std::vector<std::string>{"bad.obj"});
+    // A format groom does not read is the file's problem for info as for convert (a user trial
+    // found 2 from one and 1 from the other on a TressFX .tfx).
+    write_text(dir.file("strands.tfx"), "x");
+    for (const std::string command : {"info", "convert"}) {
+        std::vector<std::string> args = {command, dir.file("strands.tfx")};
+        if (command == "convert") args.insert(args.end(), {"-o", dir.file("out.usda")});
+        const auto r = run_groom(args);
+        EXPECT_EQ(r.exit_code, 1) << command << ": " << r.err;
+        EXPECT_NE(r.err.find("strands.tfx"), std::string::npos) << r.err;
+    }
 }
 
 TEST(Cli, FailedWriteLeavesNoFile)

@@ -79,6 +79,8 @@ TEST(CurlCli, RejectsInvalidOptionsClearlyAndWritesNothing)
         {{"--shapes", "circle", "--uniformity", "0.5"}, "--uniformity"},
         {{"--amplitude", "0.5,0.1"}, "--amplitude"},
         {{"--amplitude", "a,b"}, "--amplitude"},
+        {{"--amplitude", "0"}, "--amplitude"},  // not the type's default in disguise
+        {{"--frequency", "0,0"}, "--frequency"},
         {{"--frequency", "1,2,3"}, "--frequency"},
         {{"--phase", "1,0"}, "--phase"},
         {{"--offset=-1,0"}, "--offset"},

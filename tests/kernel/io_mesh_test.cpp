@@ -148,6 +148,8 @@ TEST(MeshIoObj, RejectsMalformedInput)
     expect_mesh_error(dir.file("range.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9001\n", "range.obj:4: vertex index 9001 out of range (3 vertices)");
     expect_mesh_error(dir.file("nan.obj"), "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:2: vertex coordinate is not finite");
     expect_mesh_error(dir.file("curves.obj"), "v 0 0 0\nv 1 0 0\nl 1 2\n", "these are curves");
+    expect_mesh_error(dir.file("edge.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 3 1\n",
+                      "edge.obj:5: expected a face of 3 or more vertex indices, found 2");
 }
 
 TEST(MeshIoObj, WriteReadRoundTripKeepsFaces)

@@ -5,7 +5,6 @@
 #include "ops/hair_types.h"
 
 #include <charconv>
-#include <tuple>
 
 namespace groom::cli {
 
@@ -78,12 +77,14 @@ CurlParams curl_params_from(const CurlOptions& o, const std::string& command)
     p.frequency = parse_range("--frequency", o.frequency, p.frequency);
     // The op reads {0, 0} as "the type's default"; a user who typed 0 asked for no curl, or a
     // mistake, and got the default curl without a word (a user trial).
-    for (const auto& [option, text, range] : {std::tuple{"--amplitude", &o.amplitude, p.amplitude}, std::tuple{"--frequency", &o.frequency, p.frequency}}) {
-        if (!text->empty() && range.lo == 0.0f && range.hi == 0.0f) {
-            throw InvalidParam(command + ": " + option + " must be lo,hi with hi > 0 (got '" + *text + "'); leave " + option +
+    const auto refuse_zero = [&command](const char* option, const std::string& text, const FloatRange& range) {
+        if (!text.empty() && range.lo == 0.0f && range.hi == 0.0f) {
+            throw InvalidParam(command + ": " + option + " must be lo,hi with hi > 0 (got '" + text + "'); leave " + option +
                                " out for the hair type's default, or skip curl for straight hair");
         }
-    }
+    };
+    refuse_zero("--amplitude", o.amplitude, p.amplitude);
+    refuse_zero("--frequency", o.frequency, p.frequency);
     p.phase = parse_range("--phase", o.phase, p.phase);
     p.offset = parse_range("--offset", o.offset, p.offset);
     p.preserve_length = !o.keep_extent;

@@ -448,16 +448,16 @@ void curl_curve(const Centreline& cl, const CurveDraws& d, const CurlParams& p, 
     double acc = 0.0;
     int64_t evaluated = n;
     // A chunk of points at a time (the offsets are made together), until the chords reach in_len.
-    constexpr int64_t kChunk = 64;
-    for (int64_t j0 = 0; j0 < n && evaluated == n; j0 += kChunk) {
-        const int64_t j1 = p.preserve_length ? std::min(n, j0 + kChunk) : n;
+    const int64_t chunk = p.preserve_length ? 64 : n;
+    for (int64_t j0 = 0; j0 < n && evaluated == n; j0 += chunk) {
+        const int64_t j1 = std::min(n, j0 + chunk);
         w.u.resize(size_t(j1 - j0));
         for (int64_t j = j0; j < j1; ++j) w.u[size_t(j - j0)] = cycle_u(d, p, double(j) * cl.ds);
         w.offsets.evaluate(d, p, table, w.u.data(), size_t(j1 - j0));
         for (int64_t j = j0; j < j1; ++j) {
             grid[size_t(j)] = w.offsets.point(size_t(j - j0), cl.points[size_t(j)], cl.frames[size_t(j)].n, cl.frames[size_t(j)].b);
         }
-        if (!p.preserve_length) break;
+        if (!p.preserve_length) continue;
         for (int64_t j = std::max<int64_t>(j0, 1); j < j1; ++j) {
             chord.push_back(distance(grid[size_t(j - 1)], grid[size_t(j)]));
             acc += chord.back();

@@ -20,6 +20,10 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Rng streams (kernel/rng.h), per gathered hair: one per purpose so adding a draw never shifts another.
+constexpr uint64_t kStreamLift = 11;    // the flat part's height over the scalp
+constexpr uint64_t kStreamFollow = 12;  // the point of the base whose guides the hair follows
+
 float smoothstep01(float x)
 {
     x = std::clamp(x, 0.0f, 1.0f);
@@ -165,7 +169,7 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
             f.normals.resize(path.size());
             for (size_t j = 0; j < path.size(); ++j) f.normals[j] = scalp.normal(path[j]);
             f.normals.front() = roots[i].normal;
-            Rng rng(params.curl.seed, uint64_t(params.first_id + i), 11);
+            Rng rng(params.curl.seed, uint64_t(params.first_id + i), kStreamLift);
             height[i] = params.lift * (1.0f + 3.0f * rng.uniform()) * 0.25f;
         }
         step.advance(e - b);
@@ -188,7 +192,7 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
             const float3 rim = flat[i].points.back();
             at.push_back(rim);
             normals.push_back(flat[i].normals.back());
-            Rng rng(params.curl.seed, uint64_t(params.first_id + i), 12);
+            Rng rng(params.curl.seed, uint64_t(params.first_id + i), kStreamFollow);
             blend_at.push_back(scalp.closest_point(puff.base + (rim - puff.base) * std::sqrt(rng.uniform())));
         }
         GenerateParams gen;

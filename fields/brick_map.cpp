@@ -170,6 +170,16 @@ bool BrickMap::sample(float x, float y, float z, BandValue& out) const
     return true;
 }
 
+bool BrickMap::cell_corners(int32_t ix, int32_t iy, int32_t iz, BandValue out[8]) const
+{
+    if (!values_) return false;
+    const int32_t b = find(ix >> 3, iy >> 3, iz >> 3);
+    if (b < 0 || !((whole_[size_t(b) * 8 + size_t(ix & 7)] >> ((iy & 7) * kLeaf + (iz & 7))) & 1)) return false;
+    const BandValue* c = &values_[size_t(b) * kVolume + size_t(index(ix & 7, iy & 7, iz & 7))];
+    for (int k = 0; k < 8; ++k) out[k] = c[index(k & 1, (k >> 1) & 1, (k >> 2) & 1)];
+    return true;
+}
+
 bool BrickMap::gradient(float x, float y, float z, float& gx, float& gy, float& gz) const
 {
     float r[4];

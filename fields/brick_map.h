@@ -53,6 +53,11 @@ public:
     /// cells at its edge whose distance sample() refuses. False only where no brick holds the cell.
     bool gradient(float x, float y, float z, float& gx, float& gy, float& gz) const;
 
+    /// The 8 corners of the trilinear cell [ix, ix + 1] x [iy, iy + 1] x [iz, iz + 1] (voxel
+    /// indices), corner k at (ix + (k & 1), iy + (k >> 1 & 1), iz + (k >> 2 & 1)): what sample()
+    /// interpolates in that cell. False where sample() fails there (a corner outside the band).
+    bool cell_corners(int32_t ix, int32_t iy, int32_t iz, BandValue out[8]) const;
+
     /// Value marking a voxel outside the band: NaN distance, which any interpolation carries along,
     /// and a zero gradient, which gradient() may average in.
     static BandValue outside();

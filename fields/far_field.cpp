@@ -457,16 +457,20 @@ uint64_t FarField::first_level(int64_t ix, int64_t iy, int64_t iz) const
     return it->second;
 }
 
-float FarField::bound(const float3& p) const
+bool FarField::voxel_of(const float3& p, int64_t v[3]) const
 {
     const double x = (double(p.x) - ox_) * inv_voxel_, y = (double(p.y) - oy_) * inv_voxel_, z = (double(p.z) - oz_) * inv_voxel_;
-    if (!(std::fabs(x) < kLimit && std::fabs(y) < kLimit && std::fabs(z) < kLimit)) return 0.0f;  // also NaN
-    // The voxel; a cell of level L is the voxel's coordinates shifted right by L (floor(x / 2^L)).
-    const int64_t vx = int64_t(std::floor(x)), vy = int64_t(std::floor(y)), vz = int64_t(std::floor(z));
+    if (!(std::fabs(x) < kLimit && std::fabs(y) < kLimit && std::fabs(z) < kLimit)) return false;  // also NaN
+    v[0] = int64_t(std::floor(x)), v[1] = int64_t(std::floor(y)), v[2] = int64_t(std::floor(z));
+    return true;
+}
+
+uint64_t FarField::locate(int64_t vx, int64_t vy, int64_t vz, int& level) const
+{
     // The cell this thread answered from last: consecutive queries walk along a curve, mostly
     // within one cell, and the walk down the levels is then skipped.
     thread_local Last last;
-    int level = last.level;
+    level = last.level;
     uint64_t slot = last.slot;
     if (!(last.owner == id_ && (vx >> level) == last.ix && (vy >> level) == last.iy && (vz >> level) == last.iz)) {
         level = kStartLevel;
@@ -479,15 +483,54 @@ float FarField::bound(const float3& p) const
         }
         last = Last{id_, level, vx >> level, vy >> level, vz >> level, slot};
     }
+    return slot;
+}
+
+float FarField::bound(const float3& p) const
+{
+    // The voxel; a cell of level L is the voxel's coordinates shifted right by L (floor(x / 2^L)).
+    int64_t v[3];
+    if (!voxel_of(p, v)) return 0.0f;
+    int level = 0;
+    const uint64_t slot = locate(v[0], v[1], v[2], level);
     const float m = slot_m(slot), dc = slot_dc(slot);
     if (m < 0.0f) return 0.0f;
-    const int64_t ix = vx >> level, iy = vy >> level, iz = vz >> level;
+    const int64_t ix = v[0] >> level, iy = v[1] >> level, iz = v[2] >> level;
     const double side = voxel_ * double(int64_t(1) << level);
     const float3 cf(float(ox_ + side * (double(ix) + 0.5)), float(oy_ + side * (double(iy) + 0.5)), float(oz_ + side * (double(iz) + 0.5)));
     const double dx = double(p.x) - cf.x, dy = double(p.y) - cf.y, dz = double(p.z) - cf.z;
     double lower = std::max(std::fabs(double(dc)) - std::sqrt(dx * dx + dy * dy + dz * dz), double(m));
     // Stay clear of the float rounding of the distance the exact query would return.
     lower -= 1e-5 * (max_abs(p.x, p.y, p.z) + std::fabs(double(dc)) + side);
+    if (!(lower > 0.0)) return 0.0f;
+    return float(dc < 0.0f ? -lower : lower);
+}
+
+float FarField::voxel_lower(int64_t vx, int64_t vy, int64_t vz) const
+{
+    if (!(std::max({std::llabs(vx), std::llabs(vy), std::llabs(vz)}) < int64_t(kLimit) - 1)) return 0.0f;
+    int level = 0;
+    const uint64_t slot = locate(vx, vy, vz, level);
+    const float m = slot_m(slot), dc = slot_dc(slot);
+    if (m < 0.0f) return 0.0f;
+    const int64_t ix = vx >> level, iy = vy >> level, iz = vz >> level;
+    const double side = voxel_ * double(int64_t(1) << level);
+    const float3 cf(float(ox_ + side * (double(ix) + 0.5)), float(oy_ + side * (double(iy) + 0.5)), float(oz_ + side * (double(iz) + 0.5)));
+    // bound()'s value at every point p of the voxel, from above: |p - cf| and max_abs(p) at most
+    // their largest over the voxel's corners (both convex), which bound() then subtracts.
+    double reach = 0.0, far_coordinate = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        const double x = ox_ + voxel_ * double(vx + (k & 1)), y = oy_ + voxel_ * double(vy + ((k >> 1) & 1)), z = oz_ + voxel_ * double(vz + ((k >> 2) & 1));
+        const double dx = x - cf.x, dy = y - cf.y, dz = z - cf.z;
+        reach = std::max(reach, std::sqrt(dx * dx + dy * dy + dz * dz));
+        far_coordinate = std::max(far_coordinate, max_abs(x, y, z));
+    }
+    // A point counted in this voxel lies in it up to the rounding of its index (a relative 1e-16
+    // of its coordinates): a millionth of the voxel covers that many times over.
+    reach += 1e-6 * voxel_;
+    far_coordinate += 1e-6 * voxel_;
+    double lower = std::max(std::fabs(double(dc)) - reach, double(m));
+    lower -= 1e-5 * (far_coordinate + std::fabs(double(dc)) + side);
     if (!(lower > 0.0)) return 0.0f;
     return float(dc < 0.0f ? -lower : lower);
 }

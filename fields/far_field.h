@@ -61,6 +61,14 @@ public:
     /// grid's origin, where the exact query answers).
     float bound(const float3& p) const;
 
+    /// The voxel holding p, as bound() counts it (floor of the index coordinates, in double);
+    /// false where bound() answers 0 for being too far or not finite.
+    bool voxel_of(const float3& p, int64_t v[3]) const;
+    /// A value with the sign of bound() and at most its size at every point of the voxel
+    /// [v, v + 1]^3 (index coordinates), or 0 where the voxel's cell has no certificate (or some
+    /// point of it gets bound() 0). Certifies the cell on first use, as bound() does.
+    float voxel_lower(int64_t vx, int64_t vy, int64_t vz) const;
+
     /// Cells examined so far, per outcome (for tests and benchmarks).
     struct Counts {
         int64_t certified = 0, split = 0, exact = 0;
@@ -100,6 +108,9 @@ private:
     uint64_t resolve(uint64_t& slot, int level, int64_t ix, int64_t iy, int64_t iz, const Faces* parent) const;
     /// The slot of a first-level cell: in the dense block around the mesh, else in the hash table.
     uint64_t first_level(int64_t ix, int64_t iy, int64_t iz) const;
+    /// The slot of the smallest examined cell holding voxel v, and its level (walking down the
+    /// splits, certifying on first use); the last answer per thread is kept.
+    uint64_t locate(int64_t vx, int64_t vy, int64_t vz, int& level) const;
 
     uint64_t id_;
     const MeshGeometry& geometry_;

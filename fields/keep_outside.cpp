@@ -121,6 +121,7 @@ bool enters(const Surface& scalp, const float3& p, const float3& dir, double a, 
 bool keep_outside(float3& p, const Surface& scalp, const KeepOutside& rule, float extra, const float3* anchor)
 {
     const float need = rule.clearance + extra;
+    if (scalp.known_clear(p, need)) return false;
     const float d = distance_for(scalp, p, need);
     if (!(d < need)) return false;
     if (anchor) {
@@ -143,6 +144,7 @@ int64_t keep_outside(std::span<float3> points, const Surface& scalp, const KeepO
         for (int64_t q = begin; q < end; ++q) {
             if (!known_clear.empty() && known_clear[q]) continue;
             const float need = widths.empty() ? rule.clearance : rule.clearance + 0.5f * widths[q];
+            if (scalp.known_clear(points[q], need)) continue;
             moved[q] = settle(points[q], distance_for(scalp, points[q], need), need, scalp, rule);
         }
         step.advance(end - begin);
@@ -168,6 +170,10 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
             for (int64_t q = r.begin + 1; q < r.end; ++q) {
                 lower -= distance(P[q], P[q - 1]);
                 if (bounded && lower > need) continue;
+                if (scalp.known_clear(P[q], need)) {
+                    lower = need;  // at least
+                    continue;
+                }
                 // A bound where the point is clear by more than `need`: still a lower bound for the walk.
                 const float d = distance_for(scalp, P[q], need);
                 lower = d;
@@ -194,7 +200,10 @@ double lift_outside(std::span<const float3> group, const float3& direction, cons
     if (!rest && need >= 0.0f) {
         // A group with every point clear is not moved: that needs no distances, only comparisons.
         bool clear = true;
-        for (const float3& p : group) clear = clear && !(scalp.distance_within(p + direction * float(lift), need) < need);
+        for (const float3& p : group) {
+            const float3 q = p + direction * float(lift);
+            clear = clear && (scalp.known_clear(q, need) || !(scalp.distance_within(q, need) < need));
+        }
         if (clear) return lift;
     }
     // Each step goes as far as the worst point lacks, which never passes the first lift along

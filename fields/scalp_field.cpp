@@ -7,7 +7,10 @@
 #include "kernel/rng.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 
 namespace groom {
 
@@ -85,6 +88,75 @@ float ScalpField::distance_within(const float3& p, float reach) const
     float3 closest;
     int32_t face = -1;
     return impl_->exact_distance(p, closest, face);
+}
+
+bool ScalpField::known_clear(const float3& p, float need) const
+{
+    if (!(need >= 0.0f)) return false;
+    const Impl& im = *impl_;
+    const detail::ClearCells* cells = im.clear_cells();
+    if (!cells) return false;
+    // The voxel as the band samples p (float index) and as the far field counts it (double): they
+    // differ only where p lies on a voxel's face to within rounding, and there the question is asked.
+    const float x = (p.x - im.origin.x) * im.inv_voxel, y = (p.y - im.origin.y) * im.inv_voxel, z = (p.z - im.origin.z) * im.inv_voxel;
+    if (!(std::fabs(x) < 1e9f && std::fabs(y) < 1e9f && std::fabs(z) < 1e9f)) return false;  // also NaN
+    int64_t v[3];
+    if (!im.far().voxel_of(p, v) || v[0] != int64_t(std::floor(x)) || v[1] != int64_t(std::floor(y)) || v[2] != int64_t(std::floor(z))) return false;
+    uint8_t* slot = cells->slot(v[0], v[1], v[2]);
+    if (!slot) return false;
+    const std::atomic_ref<uint8_t> byte(*slot);
+    uint8_t code = byte.load(std::memory_order_relaxed);
+    if (code == detail::ClearCells::kUnknown) {
+        code = cells->encode(im.voxel_lower(v[0], v[1], v[2]));
+        byte.store(code, std::memory_order_relaxed);
+    }
+    return cells->decode(code) >= need && code > detail::ClearCells::kNothing;
+}
+
+float ScalpField::Impl::voxel_lower(int64_t vx, int64_t vy, int64_t vz) const
+{
+    // Where the band holds the voxel's 8 corners, distance_within answers its points with their
+    // trilinear value, at least the least corner (less the rounding of three lerps), wherever the
+    // interpolated gradient passes sample()'s test |g| > 1/2; elsewhere in the voxel the far
+    // field's certificate (or the exact search, never nearer than it) answers.
+    detail::BandValue c[8];
+    if (std::max({std::llabs(vx), std::llabs(vy), std::llabs(vz)}) < (1ll << 30) && band().cell_corners(int32_t(vx), int32_t(vy), int32_t(vz), c)) {
+        float least = std::numeric_limits<float>::infinity(), largest = 0.0f;
+        float3 sum;
+        for (const detail::BandValue& k : c) {
+            least = std::min(least, k.d);
+            largest = std::max(largest, std::fabs(k.d));
+            sum += float3(k.nx, k.ny, k.nz);
+        }
+        if (!(least > 0.0f)) return 0.0f;  // inside or on the surface somewhere in the voxel (or NaN)
+        const float band_lower = least - 1e-5f * largest;
+        // The interpolated gradient is a convex combination of the corners' gradients: if each has
+        // a component above 1/2 along one unit direction u, so has g(p), and |g(p)| > 1/2 (the
+        // margin covers the interpolation's rounding).
+        const float len = length(sum);
+        float along = len > 0.0f ? std::numeric_limits<float>::infinity() : 0.0f;
+        for (const detail::BandValue& k : c) along = std::min(along, dot(float3(k.nx, k.ny, k.nz), sum) / std::max(len, 1e-30f));
+        if (along > 0.501f) return std::max(band_lower, 0.0f);
+        const float f = far().voxel_lower(vx, vy, vz);
+        return f > 0.0f ? std::min(band_lower, f) : 0.0f;
+    }
+    const float f = far().voxel_lower(vx, vy, vz);
+    return f > 0.0f ? f : 0.0f;
+}
+
+void ScalpField::Impl::make_clear_cells() const
+{
+    if (geometry.points.empty() || !(voxel > 0.0f)) return;
+    // The mesh's box and 8 blocks (64 voxels) round it, as the far field's dense first level.
+    const float3 lo = (geometry.bounds_lo - origin) * inv_voxel, hi = (geometry.bounds_hi - origin) * inv_voxel;
+    int64_t block_lo[3], blocks[3];
+    const float los[3] = {lo.x, lo.y, lo.z}, his[3] = {hi.x, hi.y, hi.z};
+    for (int k = 0; k < 3; ++k) {
+        if (!(std::fabs(los[k]) < 1e9f && std::fabs(his[k]) < 1e9f)) return;
+        block_lo[k] = int64_t(std::floor(los[k] / 8.0f)) - 8;
+        blocks[k] = int64_t(std::floor(his[k] / 8.0f)) + 8 - block_lo[k] + 1;
+    }
+    clear_ = std::make_unique<detail::ClearCells>(block_lo, blocks, voxel);
 }
 
 float3 ScalpField::normal(const float3& p) const

@@ -90,6 +90,9 @@ public:
     /// bound instead (fields/far_field.h): no exact mesh search, and the same answer as distance(p)
     /// to every comparison with a threshold in (-reach, reach].
     float distance_within(const float3& p, float reach) const override;
+    /// From p's voxel's byte (fields/clear_cells.h): the voxel's lower bound of distance_within,
+    /// worked out on the first question in it, compared with `need`.
+    bool known_clear(const float3& p, float need) const override;
 
     /// False when the band holds a seam (neighbouring voxels differing by more than 1.2 voxels):
     /// an open mesh's rims, overlapping shells that disagree on inside.

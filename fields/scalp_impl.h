@@ -3,6 +3,7 @@
 #pragma once
 
 #include "fields/brick_map.h"
+#include "fields/clear_cells.h"
 #include "fields/far_field.h"
 #include "fields/mesh_repair.h"
 #include "fields/near_faces.h"
@@ -218,6 +219,17 @@ struct ScalpField::Impl {
         return *far_;
     }
 
+    /// Per voxel, a lower bound of distance_within over the voxel (fields/clear_cells.h), made on
+    /// first use (thread-safe); null when the mesh's box is too large to index.
+    const detail::ClearCells* clear_cells() const
+    {
+        std::call_once(clear_built_, [this] { make_clear_cells(); });
+        return clear_.get();
+    }
+    /// What ClearCells keeps for voxel [v, v + 1]^3: a positive lower bound of distance_within at
+    /// every point of it, or 0 where none is known.
+    float voxel_lower(int64_t vx, int64_t vy, int64_t vz) const;
+
     /// Candidate closest faces per cell outside the band (fields/near_faces.h), made on first use:
     /// cells of NearFaces::kCellVoxels << level voxels, level in [0, ScalpField::kDenseLevels).
     const detail::NearFaces& near(int level = 0) const
@@ -254,6 +266,9 @@ private:
     mutable int64_t seam_voxels_ = 0;
     mutable std::once_flag far_built_;
     mutable std::unique_ptr<detail::FarField> far_;
+    void make_clear_cells() const;
+    mutable std::once_flag clear_built_;
+    mutable std::unique_ptr<detail::ClearCells> clear_;
     mutable std::once_flag near_built_[kDenseLevels];
     mutable std::unique_ptr<detail::NearFaces> near_[kDenseLevels];
 };

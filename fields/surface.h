@@ -27,6 +27,11 @@ public:
     /// that compares with a clearance needs, where it needs no value. ScalpField answers most points
     /// outside its narrow band this way without an exact search of the mesh; the default is distance(p).
     virtual float distance_within(const float3& p, float reach) const;
+    /// True only where `distance_within(p, need) >= need` is already known without asking it
+    /// (need >= 0); false means "ask". The rule that keeps hair out of the scalp asks this first
+    /// of every point (fields/keep_outside.h). ScalpField knows it for most voxels near the head
+    /// from one worked-out answer per voxel; the default knows nothing.
+    virtual bool known_clear(const float3& /*p*/, float /*need*/) const { return false; }
 
     bool inside(const float3& p) const { return distance_within(p, 0.0f) < 0.0f; }
 

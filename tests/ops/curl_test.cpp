@@ -1,10 +1,15 @@
 // The curl op (talk, Sec. 3.1) on straight and curved in-memory guides and an exact sphere scalp.
 #include "ops/curl.h"
 
+#include "fields/scalp_field.h"
 #include "kernel/error.h"
+#include "kernel/io/curve_io.h"
+#include "kernel/io/mesh_io.h"
 #include "kernel/math/polyline.h"
 #include "kernel/parallel.h"
 #include "ops/hair_types.h"
+#include "support/ask_every_point.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -397,6 +402,31 @@ TEST(Curl, NoCurledPointInsideTheScalp)
     int inside = 0;
     for (const float3& q : out.positions()) inside += sphere.inside(q);
     EXPECT_EQ(inside, 0);
+}
+
+TEST(CurlReal, OnSintelTheVoxelsShortcutChangesNoBit)
+{
+    GROOM_REQUIRE_SHARED(head, "sintel_tressfx_opengl/sintel.obj");
+    GROOM_REQUIRE_SHARED(guides_path, "sintel_tressfx_opengl/sintel_guides.obj");
+    // Sintel's own guides curled tightly along her open head (rims, seams), many points dipping
+    // into it: the same bits whether the voxels' bytes say "clear" (fields/clear_cells.h) or every
+    // point is asked in full.
+    const ScalpField field = build_scalp(read_mesh(head));
+    const CurveSet guides = read_curves(guides_path);
+    CurlParams params;
+    params.amplitude = {0.6f, 0.9f};
+    params.frequency = {1.0f, 1.5f};
+    params.labels = false;
+    const CurveSet loose = curl(guides, params);
+    int inside = 0;
+    for (const float3& q : loose.positions()) inside += field.inside(q);
+    ASSERT_GT(inside, 200) << "the curls must dip into the head, or the comparison below is vacuous";
+    const CurveSet quick = curl(guides, params, &field);
+    const test::AskEveryPoint every(field);
+    const CurveSet full = curl(guides, params, &every);
+    const auto pq = quick.positions(), pf = full.positions();
+    ASSERT_EQ(pq.size(), pf.size());
+    EXPECT_EQ(std::memcmp(pq.data(), pf.data(), pq.size() * sizeof(float3)), 0);
 }
 
 TEST(Curl, SameResultForOneAndTwoThreadsAndIndependentOfCurveOrder)

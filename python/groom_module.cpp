@@ -577,12 +577,25 @@ PYBIND11_MODULE(groom, m)
     py::class_<Scalp, std::shared_ptr<Scalp>>(m, "Scalp", "The scalp as a signed distance field (OpenVDB level set)")
         .def_static(
             "load",
-            [](const std::filesystem::path& path, float voxel) {
+            [](const std::filesystem::path& path, float voxel, const std::string& grid, const std::string& group) {
                 ScalpBuildParams p;
                 p.voxel_size = voxel;
+                p.grid = grid;
+                p.group = group;
                 Scalp s = guarded([&] {
-                    p.validate();
-                    return Scalp(load_scalp(path.string(), p));
+                    try {
+                        p.validate();
+                        return Scalp(load_scalp(path.string(), p));
+                    }
+                    catch (const InvalidParam& e) {
+                        // The loader speaks of the commands' --scalp-grid/--scalp-group: here they are grid= and group=.
+                        std::string m = e.what();
+                        for (const auto& [cli, kw] : {std::pair<std::string, std::string>{"grid", "grid"}, {"group", "group"}}) {
+                            m = std::regex_replace(m, std::regex("--scalp-" + cli + " NAME"), kw + "='NAME'");
+                            m = std::regex_replace(m, std::regex("--scalp-" + cli + " "), kw + "=");
+                        }
+                        throw InvalidParam(m);
+                    }
                 });
                 if (voxel > 0.0f && path.extension() == ".vdb" && s.field->voxel_size() != voxel) {
                     // A .vdb is read as it was built; the voxel asked for was silently dropped.
@@ -591,8 +604,10 @@ PYBIND11_MODULE(groom, m)
                 }
                 return s;
             },
-            py::arg("path"), py::arg("voxel") = 0.0f,
-            "A .vdb from `groom scalp`, or a mesh converted with the given voxel size (0 = automatic); a str or a pathlib.Path")
+            py::arg("path"), py::arg("voxel") = 0.0f, py::arg("grid") = "", py::arg("group") = "",
+            "A .vdb from `groom scalp` (another program's too: grid= picks its level set by name, default the grid "
+            "'scalp', else the file's only float level set), or a mesh converted with the given voxel size (0 = automatic; "
+            "group= keeps one OBJ object or group, e.g. the head without its eyes); a str or a pathlib.Path")
         .def_static(
             "from_mesh",
             [](py::array_t<float, py::array::c_style | py::array::forcecast> vertices,

@@ -186,6 +186,36 @@ def test_scalp_queries_are_probes_numbers(tmp_path):
         np.testing.assert_allclose(d[far], r[far] - 1.0, atol=0.003)
 
 
+def test_scalp_load_picks_a_grid_or_a_group_by_keyword(tmp_path):
+    """Scalp.load(grid=) and (group=) as the commands' --scalp-grid and --scalp-group (a trial found
+    no way to pick another program's grid from Python), refused by their Python names where they do
+    not apply."""
+    v, f = uv_sphere(rings=16, segments=32)
+    with open(tmp_path / "two.obj", "w") as out:
+        out.write("o head\n")
+        out.writelines(f"v {x} {y} {z}\n" for x, y, z in v)
+        out.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f)
+        out.write("o eye\n")  # a small ball 3 units off to the side
+        out.writelines(f"v {0.2 * x + 3.0} {0.2 * y} {0.2 * z}\n" for x, y, z in v)
+        out.writelines(f"f {a + 1 + len(v)} {b + 1 + len(v)} {c + 1 + len(v)}\n" for a, b, c in f)
+    both = groom.Scalp.load(tmp_path / "two.obj", voxel=0.05)
+    head = groom.Scalp.load(tmp_path / "two.obj", voxel=0.05, group="head")
+    eye_centre = np.array([[3.0, 0.0, 0.0]], dtype=np.float32)
+    assert both.distance(eye_centre)[0] < 0.0  # inside the eye
+    assert abs(head.distance(eye_centre)[0] - 2.0) < 0.01  # the head's unit sphere alone
+    vdb = str(tmp_path / "head.vdb")
+    subprocess.run([GROOM, "scalp", str(tmp_path / "two.obj"), "--group", "head", "-o", vdb, "--voxel", "0.05", "-q"], check=True)
+    named = groom.Scalp.load(vdb, grid="scalp")
+    assert named.voxel_size == pytest.approx(0.05)
+    with pytest.raises(groom.ParamError) as e:
+        groom.Scalp.load(vdb, grid="surface")
+    assert "grid=surface" in str(e.value) and "found: 'scalp'" in str(e.value) and "--" not in str(e.value)
+    with pytest.raises(groom.ParamError, match=r"grid=scalp: .*two\.obj is a mesh"):
+        groom.Scalp.load(tmp_path / "two.obj", grid="scalp")
+    with pytest.raises(groom.ParamError, match=r"group=head: .*head\.vdb is a level set"):
+        groom.Scalp.load(vdb, group="head")
+
+
 def test_errors_name_the_parameter_and_the_value():
     cs = straight_guides()
     with pytest.raises(ValueError) as e:

@@ -491,6 +491,18 @@ float FarField::bound(const float3& p) const
     // The voxel; a cell of level L is the voxel's coordinates shifted right by L (floor(x / 2^L)).
     int64_t v[3];
     if (!voxel_of(p, v)) return 0.0f;
+    return certified_lower(v, &p);
+}
+
+float FarField::voxel_lower(int64_t vx, int64_t vy, int64_t vz) const
+{
+    if (!(std::max({std::llabs(vx), std::llabs(vy), std::llabs(vz)}) < int64_t(kLimit) - 1)) return 0.0f;
+    const int64_t v[3] = {vx, vy, vz};
+    return certified_lower(v, nullptr);
+}
+
+float FarField::certified_lower(const int64_t v[3], const float3* p) const
+{
     int level = 0;
     const uint64_t slot = locate(v[0], v[1], v[2], level);
     const float m = slot_m(slot), dc = slot_dc(slot);
@@ -498,41 +510,34 @@ float FarField::bound(const float3& p) const
     const int64_t ix = v[0] >> level, iy = v[1] >> level, iz = v[2] >> level;
     const double side = voxel_ * double(int64_t(1) << level);
     const float3 cf(float(ox_ + side * (double(ix) + 0.5)), float(oy_ + side * (double(iy) + 0.5)), float(oz_ + side * (double(iz) + 0.5)));
-    const double dx = double(p.x) - cf.x, dy = double(p.y) - cf.y, dz = double(p.z) - cf.z;
-    double lower = std::max(std::fabs(double(dc)) - std::sqrt(dx * dx + dy * dy + dz * dz), double(m));
+    // The way from the cell's centre and the largest coordinate: p's own, or, for the whole voxel,
+    // their largest over its corners (both are convex in the point).
+    double reach = 0.0, coordinate = 0.0;
+    const auto take = [&](double x, double y, double z) {
+        const double dx = x - cf.x, dy = y - cf.y, dz = z - cf.z;
+        reach = std::max(reach, std::sqrt(dx * dx + dy * dy + dz * dz));
+        coordinate = std::max(coordinate, max_abs(x, y, z));
+    };
+    if (p) {
+        take(p->x, p->y, p->z);
+    }
+    else {
+        for (int k = 0; k < 8; ++k) take(ox_ + voxel_ * double(v[0] + (k & 1)), oy_ + voxel_ * double(v[1] + ((k >> 1) & 1)), oz_ + voxel_ * double(v[2] + ((k >> 2) & 1)));
+        // A point counted in this voxel lies in it up to the rounding of its index (a relative
+        // 1e-16 of its coordinates): a millionth of the voxel covers that many times over.
+        reach += 1e-6 * voxel_;
+        coordinate += 1e-6 * voxel_;
+    }
+    double lower = std::max(std::fabs(double(dc)) - reach, double(m));
     // Stay clear of the float rounding of the distance the exact query would return.
-    lower -= 1e-5 * (max_abs(p.x, p.y, p.z) + std::fabs(double(dc)) + side);
+    lower -= 1e-5 * (coordinate + std::fabs(double(dc)) + side);
     if (!(lower > 0.0)) return 0.0f;
     return float(dc < 0.0f ? -lower : lower);
 }
 
-float FarField::voxel_lower(int64_t vx, int64_t vy, int64_t vz) const
+void FarField::first_level_box(int64_t lo[3], int64_t n[3]) const
 {
-    if (!(std::max({std::llabs(vx), std::llabs(vy), std::llabs(vz)}) < int64_t(kLimit) - 1)) return 0.0f;
-    int level = 0;
-    const uint64_t slot = locate(vx, vy, vz, level);
-    const float m = slot_m(slot), dc = slot_dc(slot);
-    if (m < 0.0f) return 0.0f;
-    const int64_t ix = vx >> level, iy = vy >> level, iz = vz >> level;
-    const double side = voxel_ * double(int64_t(1) << level);
-    const float3 cf(float(ox_ + side * (double(ix) + 0.5)), float(oy_ + side * (double(iy) + 0.5)), float(oz_ + side * (double(iz) + 0.5)));
-    // bound()'s value at every point p of the voxel, from above: |p - cf| and max_abs(p) at most
-    // their largest over the voxel's corners (both convex), which bound() then subtracts.
-    double reach = 0.0, far_coordinate = 0.0;
-    for (int k = 0; k < 8; ++k) {
-        const double x = ox_ + voxel_ * double(vx + (k & 1)), y = oy_ + voxel_ * double(vy + ((k >> 1) & 1)), z = oz_ + voxel_ * double(vz + ((k >> 2) & 1));
-        const double dx = x - cf.x, dy = y - cf.y, dz = z - cf.z;
-        reach = std::max(reach, std::sqrt(dx * dx + dy * dy + dz * dz));
-        far_coordinate = std::max(far_coordinate, max_abs(x, y, z));
-    }
-    // A point counted in this voxel lies in it up to the rounding of its index (a relative 1e-16
-    // of its coordinates): a millionth of the voxel covers that many times over.
-    reach += 1e-6 * voxel_;
-    far_coordinate += 1e-6 * voxel_;
-    double lower = std::max(std::fabs(double(dc)) - reach, double(m));
-    lower -= 1e-5 * (far_coordinate + std::fabs(double(dc)) + side);
-    if (!(lower > 0.0)) return 0.0f;
-    return float(dc < 0.0f ? -lower : lower);
+    for (int k = 0; k < 3; ++k) lo[k] = dense_lo_[k], n[k] = dense_n_[k];
 }
 
 FarField::Counts FarField::counts() const

@@ -68,6 +68,9 @@ public:
     /// [v, v + 1]^3 (index coordinates), or 0 where the voxel's cell has no certificate (or some
     /// point of it gets bound() 0). Certifies the cell on first use, as bound() does.
     float voxel_lower(int64_t vx, int64_t vy, int64_t vz) const;
+    /// The first level's cells (8 voxels) over the mesh's box and 8 cells round it, where their
+    /// slots need no hashing: cells [lo, lo + n) per axis (n = 0 for an empty mesh).
+    void first_level_box(int64_t lo[3], int64_t n[3]) const;
 
     /// Cells examined so far, per outcome (for tests and benchmarks).
     struct Counts {
@@ -111,6 +114,8 @@ private:
     /// The slot of the smallest examined cell holding voxel v, and its level (walking down the
     /// splits, certifying on first use); the last answer per thread is kept.
     uint64_t locate(int64_t vx, int64_t vy, int64_t vz, int& level) const;
+    /// bound()'s value at p, or with p null a value at most bound()'s size at every point of voxel v.
+    float certified_lower(const int64_t v[3], const float3* p) const;
 
     uint64_t id_;
     const MeshGeometry& geometry_;

@@ -146,17 +146,11 @@ float ScalpField::Impl::voxel_lower(int64_t vx, int64_t vy, int64_t vz) const
 
 void ScalpField::Impl::make_clear_cells() const
 {
-    if (geometry.points.empty() || !(voxel > 0.0f)) return;
-    // The mesh's box and 8 blocks (64 voxels) round it, as the far field's dense first level.
-    const float3 lo = (geometry.bounds_lo - origin) * inv_voxel, hi = (geometry.bounds_hi - origin) * inv_voxel;
-    int64_t block_lo[3], blocks[3];
-    const float los[3] = {lo.x, lo.y, lo.z}, his[3] = {hi.x, hi.y, hi.z};
-    for (int k = 0; k < 3; ++k) {
-        if (!(std::fabs(los[k]) < 1e9f && std::fabs(his[k]) < 1e9f)) return;
-        block_lo[k] = int64_t(std::floor(los[k] / 8.0f)) - 8;
-        blocks[k] = int64_t(std::floor(his[k] / 8.0f)) + 8 - block_lo[k] + 1;
-    }
-    clear_ = std::make_unique<detail::ClearCells>(block_lo, blocks, voxel);
+    // The far field's first level covers the mesh's box and 64 voxels round it in cells of 8
+    // voxels: the same blocks.
+    int64_t lo[3], n[3];
+    far().first_level_box(lo, n);
+    clear_ = std::make_unique<detail::ClearCells>(lo, n, voxel);
 }
 
 float3 ScalpField::normal(const float3& p) const

@@ -590,9 +590,9 @@ PYBIND11_MODULE(groom, m)
                     catch (const InvalidParam& e) {
                         // The loader speaks of the commands' --scalp-grid/--scalp-group: here they are grid= and group=.
                         std::string m = e.what();
-                        for (const auto& [cli, kw] : {std::pair<std::string, std::string>{"grid", "grid"}, {"group", "group"}}) {
-                            m = std::regex_replace(m, std::regex("--scalp-" + cli + " NAME"), kw + "='NAME'");
-                            m = std::regex_replace(m, std::regex("--scalp-" + cli + " "), kw + "=");
+                        for (const std::string name : {"grid", "group"}) {
+                            m = std::regex_replace(m, std::regex("--scalp-" + name + " NAME"), name + "='NAME'");
+                            m = std::regex_replace(m, std::regex("--scalp-" + name + " "), name + "=");
                         }
                         throw InvalidParam(m);
                     }

@@ -2,8 +2,7 @@
 // worked-out lower bound per voxel (fields/clear_cells.h). It may only ever say yes where the full
 // question (distance_within) says yes, and the exact distance agrees: checked on a closed sphere, an
 // open cap (rims signed by the winding number) and Sintel's open head, at points packed into few
-// voxels (so most answers come from a byte another point's question filled), voxel corners
-// included. keep_outside must come out bit for bit as when every point is asked in full (curl's
+// voxels (so most answers come from a byte another point's question filled). keep_outside must come out bit for bit as when every point is asked in full (curl's
 // use: tests/ops/curl_test.cpp).
 #include "fields/clear_cells.h"
 #include "fields/keep_outside.h"
@@ -27,8 +26,9 @@ namespace groom {
 namespace {
 
 /// Points near the surface where hair lies: `voxels` voxels picked within `spread` voxels of the
-/// surface (by the closest point of a random point), each given its 8 corners and 12 random
-/// points, so a voxel's byte is filled by one of them and read by the rest.
+/// surface (by the closest point of a random point), each given the 8 corners of a voxel-sized
+/// box around it and 12 random points in that box, so a voxel's byte is filled by one of them and
+/// read by the rest.
 std::vector<float3> points_in_voxels(const ScalpField& field, const float3& lo, const float3& hi, int voxels, float spread, uint64_t seed)
 {
     const float h = field.voxel_size();

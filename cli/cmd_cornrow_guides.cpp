@@ -99,6 +99,25 @@ void setup(CommandContext& ctx)
         char line[256];
         std::snprintf(line, sizeof line, "cornrow-guides: %zu guides x %d points, %.2f s -> ", g.guides.num_curves(), a.params.samples, secs);
         note(common, line + a.output + (a.tails_out.empty() ? std::string() : " (tails -> " + a.tails_out + ")"));
+        // Rows whose nearest-point projection jumped across a fold of the scalp (a brow, an ear):
+        // laid along rays instead, or, where that did not help, left with the jump, which cuts
+        // through the head (ICT's face with the default --center: a trial).
+        std::string along, jumped;
+        for (size_t c = 0; c < g.rows.size(); ++c) {
+            if (g.rows[c].along_rays) along += (along.empty() ? "" : ", ") + std::to_string(c);
+            if (g.rows[c].jump > 0.0f) {
+                jumped += (jumped.empty() ? "" : ", ") + std::to_string(c) + " (" + format_number(g.rows[c].jump) + ")";
+            }
+        }
+        if (!along.empty()) {
+            note(common, "cornrow-guides: rows " + along + " jumped across a fold of the scalp when projected to its nearest point; " +
+                             "they were laid on the outermost scalp along rays from their arc's centre instead");
+        }
+        if (!jumped.empty()) {
+            warn(common, "cornrow-guides: warning: rows " + jumped + " jump across a fold of the scalp in one step of that length, " +
+                             "which cuts through the head (under a brow or an ear): pass this head's own --center and --radius, " +
+                             "a --hairline, or a smaller --spread");
+        }
         // A row cut to a stub by the hairline (at a sideburn, above an ear) braids into a short tuft
         // with its tail hanging by the face (a trial on Lee Perry-Smith and MakeHuman): say which.
         const double median = median_curve_length(g.guides);

@@ -16,7 +16,9 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <span>
 #include <utility>
+#include <vector>
 
 namespace groom {
 
@@ -24,6 +26,9 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 constexpr float kDeg = kPi / 180.0f;
+/// A dense path whose largest chord is this many times its median has jumped across a fold (its
+/// even parts differ by a few percent; ICT's forehead jumped 14 times the median).
+constexpr float kJumpRatio = 4.0f;
 
 std::string fmt(float v) { return format_number(v); }
 
@@ -37,6 +42,26 @@ float3 on_scalp(const Surface& scalp, const float3& q, float offset)
 {
     const float3 p = scalp.closest_point(q);
     return offset > 0.0f ? p + scalp.normal(p) * offset : p;
+}
+
+/// The dense path's largest chord, and how many times its median that is: a path projected to the
+/// nearest scalp point runs evenly where the scalp follows the arc, and jumps where the arc passes
+/// under a fold (a brow, an ear), its points' nearest surface switching from one side of the fold
+/// to the other.
+struct Jump {
+    float chord = 0.0f, ratio = 0.0f;
+};
+Jump largest_step(std::span<const float3> path)
+{
+    Jump j;
+    if (path.size() < 3) return j;
+    std::vector<float> chords(path.size() - 1);
+    for (size_t k = 0; k + 1 < path.size(); ++k) chords[k] = distance(path[k], path[k + 1]);
+    j.chord = *std::max_element(chords.begin(), chords.end());
+    std::nth_element(chords.begin(), chords.begin() + chords.size() / 2, chords.end());
+    const float median = chords[chords.size() / 2];
+    j.ratio = median > 0.0f ? j.chord / median : (j.chord > 0.0f ? std::numeric_limits<float>::infinity() : 0.0f);
+    return j;
 }
 
 }  // namespace
@@ -137,6 +162,7 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     std::vector<int64_t> counts(size_t(n), params.samples);
     out.guides = CurveSet::from_counts(counts);
     auto P = out.guides.positions_for_write();
+    out.rows.resize(size_t(n));
     // Dense paths before re-spacing: projection bunches points where the head curves away from the
     // sphere, so sample generously and resample by arc length afterwards.
     const int dense = std::max(4 * params.samples, 64);
@@ -179,6 +205,38 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
                 const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
                 const float3 q = at(a);
                 path[size_t(k)] = params.offset > 0.0f ? q + scalp.normal(q) * params.offset : q;
+            }
+            // Where the nearest-point projection jumps across a fold, the row would cut through
+            // the head along the jump's chord (ICT's forehead with the default --center: a chord
+            // 2.6 long and 1.1 deep under the skin, its braid and edge hairs inside the head). The
+            // row is laid instead on the outermost scalp along rays from its circle's centre, which
+            // goes over the fold, if that path jumps less.
+            const Jump jump = largest_step(path);
+            if (jump.ratio > kJumpRatio) {
+                const float3 o = pivot + lean * s0;
+                std::vector<float3> rays(path);
+                int missed = 0;
+                for (int k = 0; k < dense; ++k) {
+                    const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
+                    const float3 dir = normalize(lean * std::sin(a) + Z * std::cos(a));
+                    float3 hit;
+                    // The outermost surface along the ray, coming in from far out; a ray that
+                    // meets none (the centre itself outside the head, at the side) keeps its
+                    // nearest point.
+                    if (!scalp.first_intersection(o + dir * (4.0f * (rho + params.radius)), o, hit)) {
+                        ++missed;
+                        continue;
+                    }
+                    const float3 q = on_scalp(scalp, hit, 0.0f);
+                    rays[size_t(k)] = params.offset > 0.0f ? q + scalp.normal(q) * params.offset : q;
+                }
+                const bool laid = missed < dense;
+                const Jump ray_jump = laid ? largest_step(rays) : Jump{};
+                CornrowGuides::Row& row = out.rows[size_t(i)];
+                row.along_rays = laid && ray_jump.ratio < jump.ratio;
+                if (row.along_rays) path = std::move(rays);
+                const Jump left = row.along_rays ? ray_jump : jump;
+                row.jump = left.ratio > kJumpRatio ? left.chord : 0.0f;
             }
             const std::vector<float3> even = resample_by_count(path, params.samples);
             for (int k = 0; k < params.samples; ++k) {

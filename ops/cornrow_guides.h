@@ -4,8 +4,9 @@
 // `pivot` below `center` and leans sideways by phi_i (evenly spaced in [-spread, spread]). Where
 // that plane cuts a sphere around the cranium is a circle; the guide is its arc from the hairline
 // at the front over the crown down to the nape. Every point is then projected onto the scalp
-// (Surface::closest_point), lifted by `offset` along the scalp normal and re-spaced evenly in arc
-// length. pivot = 0 gives great circles (rows meeting at the front and back); a pivot below the
+// (Surface::closest_point; where that jumps across a fold, along rays from the circle's centre
+// instead: CornrowGuides::rows), lifted by `offset` along the scalp normal and re-spaced evenly in
+// arc length. pivot = 0 gives great circles (rows meeting at the front and back); a pivot below the
 // radius gives rows that converge to where its axis pierces the sphere; the default, twice the
 // radius with a 24 degree spread, gives nearly parallel straight-back rows whose outer ones run
 // above the ears (7.5 and 55 had every row end in one point at the nape: a trial). Optionally each guide continues past the nape as a free-hanging tail (the loose
@@ -63,6 +64,15 @@ struct CornrowGuides {
     /// scalp (keep_outside, fields/keep_outside.h) before the next. Same `id` and `guide` as its
     /// guide. Empty otherwise.
     CurveSet tails;
+    /// Per guide, how its arc was laid on the scalp. Each arc point goes to its nearest scalp
+    /// point, unless that path jumps across a fold (largest chord over 4 times the median: the
+    /// arc passes under a brow or a ridge, and the chord of the jump cuts through the head). Then
+    /// the row goes on the outermost scalp along rays from its circle's centre, if that jumps less.
+    struct Row {
+        bool along_rays = false;  ///< laid along the rays
+        float jump = 0.0f;        ///< where the path used still jumps: its largest step, scene units (else 0)
+    };
+    std::vector<Row> rows;
 };
 
 /// Makes the guides on `scalp` (any Surface: an exact sphere in tests, a ScalpField for real heads).

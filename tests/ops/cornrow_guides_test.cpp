@@ -3,10 +3,13 @@
 #include "circle_on_sphere.h"
 
 #include "kernel/error.h"
+#include "fields/scalp_field.h"
 #include "kernel/math/polyline.h"
+#include "support/sphere_mesh.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace groom;
@@ -280,4 +283,57 @@ TEST(CornrowGuides, InvalidOptionsAreRejected)
     p = {};
     p.tail_length = -1.0f;
     rejects(p, "`tail_length`");
+}
+
+namespace {
+/// A sphere of radius 8 around c with a mesa on its crown: within 0.35 rad of +Y the radius rises
+/// to 11 over a steep wall (a super-Gaussian of order 8). A row's arc of radius 10 around c passes
+/// through the mesa 1 below its top: its points' nearest surface is the wall near the wall and the
+/// top farther in, so the nearest-point path jumps from one to the other (about 1.4 long), a
+/// chord through the mesa; along rays from c the surface is one radius per direction.
+ScalpField mesa_head(const float3& c)
+{
+    PolygonSoup soup = icosphere(float3(), 1.0f, 6);
+    for (float3& p : soup.points) {
+        const float angle = std::acos(std::clamp(p.y, -1.0f, 1.0f));
+        p = c + p * (8.0f + 3.0f * std::exp(-std::pow(angle / 0.35f, 8.0f)));
+    }
+    return build_scalp(soup, {0.1f, 3.0f});
+}
+}  // namespace
+
+TEST(CornrowGuides, ARowWhoseNearestPointsJumpAcrossAFoldFollowsTheSurfaceOverIt)
+{
+    const float3 c{0.0f, 3.0f, -1.0f};
+    const ScalpField head = mesa_head(c);
+    CornrowGuidesParams p;
+    p.center = c;
+    p.count = 1;  // the middle row: the circle of radius 10 around c in the YZ plane
+    p.samples = 60;
+    const CornrowGuides g = cornrow_guides(head, p);
+    ASSERT_EQ(g.rows.size(), 1u);
+    EXPECT_TRUE(g.rows[0].along_rays);
+    EXPECT_EQ(g.rows[0].jump, 0.0f);
+    // What an artist sees: a row lying on the scalp, evenly spaced, with no step cutting through
+    // the mesa. Every point within 2% of a voxel of the surface, every chord's midpoint outside
+    // or within the chord's sagitta over the mesa's rounded edge (step 0.8, radius of curvature
+    // about 0.5: 0.8^2 / (8 x 0.5) = 0.16), every step within 1.2 times the row's even step.
+    const auto P = g.guides.positions();
+    const std::vector<float3> row(P.begin(), P.end());
+    const float step = polyline_length(row) / float(row.size() - 1);
+    bool over_the_top = false;
+    for (size_t k = 0; k < row.size(); ++k) {
+        EXPECT_NEAR(head.distance(row[k]), 0.0f, 2e-3f) << "point " << k;
+        over_the_top |= distance(row[k], c) > 10.9f;
+        if (k == 0) continue;
+        EXPECT_LT(distance(row[k], row[k - 1]), 1.2f * step) << "step " << k;
+        EXPECT_GT(head.distance(0.5f * (row[k] + row[k - 1])), -0.16f) << "chord " << k;
+    }
+    EXPECT_TRUE(over_the_top);  // the row climbs onto the mesa's top (radius 11)
+
+    // On a plain sphere nothing jumps: each point is its arc point's nearest, as always.
+    const ScalpField sphere = build_scalp(icosphere(c, 8.0f, 5), {0.1f, 3.0f});
+    const CornrowGuides plain = cornrow_guides(sphere, p);
+    EXPECT_FALSE(plain.rows[0].along_rays);
+    EXPECT_EQ(plain.rows[0].jump, 0.0f);
 }

@@ -386,6 +386,44 @@ TEST(Partition, SegmentsFollowTheScalpInsteadOfCuttingThroughIt)
     EXPECT_LE(lowest, 1e-5f);  // and they lie on it, since the source is on it too
 }
 
+TEST(Partition, EndsOnACoarseGuidesChordsAreLiftedOntoTheScalp)
+{
+    // Guides of 5 points over 1 rad of the unit sphere: each chord dips up to 1 - cos(0.125) =
+    // 0.0078 inside it, and a station between two points lies on a chord. Its segment's end is put
+    // on the sphere straight out from it (the closed form: the station normalised), every point
+    // of every segment outside the sphere.
+    const std::vector<Arc> arcs = {{0.0f, -0.5f, 0.5f}, {0.6f, -0.5f, 0.5f}};
+    CurveSet coarse = CurveSet::from_counts(std::vector<int64_t>{5, 5});
+    auto C = coarse.positions_for_write();
+    for (size_t g = 0; g < 2; ++g) {
+        for (int k = 0; k < 5; ++k) C[g * 5 + size_t(k)] = on_sphere(arcs[g].lat0 + (arcs[g].lat1 - arcs[g].lat0) * float(k) / 4.0f, arcs[g].lon);
+    }
+    PartitionParams params;
+    params.count = 6;
+    params.samples = 8;
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    const CurveSet out = partition(coarse, sphere, params);
+    ASSERT_EQ(out.num_curves(), 12u);
+    float deepest_station = 0.0f;
+    const auto src = coarse.positions();
+    for (int g = 0; g < 2; ++g) {
+        // Stations 1/6 of the polyline apart, centred: at (i + 1/2) / 6 of its length.
+        const std::vector<float3> poly(src.begin() + g * 5, src.begin() + g * 5 + 5);
+        const std::vector<double> cum = cumulative_lengths(poly);
+        // Each has its one neighbour on one side.
+        const auto curves = curves_of(out, g, curves_of(out, g, 0).empty() ? 1 : 0);
+        ASSERT_EQ(curves.size(), 6u);
+        for (int i = 0; i < 6; ++i) {
+            const float3 station = point_at_length(poly, cum, cum.back() * (i + 0.5) / 6.0);
+            deepest_station = std::min(deepest_station, sphere.distance(station));
+            EXPECT_NEAR3(last_point(out, curves[size_t(i)]), normalize(station), 1e-5f);
+            const IndexRange r = out.points_of(curves[size_t(i)]);
+            for (int64_t p = r.begin; p < r.end; ++p) EXPECT_GE(sphere.distance(out.positions()[p]), -1e-5f);
+        }
+    }
+    EXPECT_LT(deepest_station, -1e-3f);  // the case is real: some stations lie well inside
+}
+
 TEST(Partition, EveryKGroupsConvergeOnTheirCentroid)
 {
     const CurveSet guides = straight_guides({0.0f, 1.0f});

@@ -67,8 +67,8 @@ std::mutex g_running_mutex;
 
 void error(const std::string& message)
 {
-    if (error_sink) *error_sink = message;
-    else std::cerr << "groom: error: " << message << "\n";
+    if (error_sink) *error_sink = shown(message);
+    else std::cerr << "groom: error: " << shown(message) << "\n";
 }
 
 /// Integer options take decimal integers only. CLI11 reads them with strtoll(..., 0), so `--count 010`
@@ -136,7 +136,7 @@ uint64_t memory_budget_from(const CommonOptions& common)
 
 void warn(const CommonOptions& o, const std::string& message)
 {
-    if (warning_sink) warning_sink->push_back(message);
+    if (warning_sink) warning_sink->push_back(shown(message));
     else note(o, message);
 }
 
@@ -327,6 +327,7 @@ int run_one(int argc, char** argv)
 int run(int argc, char** argv)
 {
     const std::vector<std::string> args(argv + 1, argv + argc);
+    set_shown_paths({});  // a frame's, left for its error by a run before (run_captured reuses the thread)
     if (!wants_frames(args)) return run_one(argc, argv);
     try {
         return run_frames(args, [](std::vector<std::string>& words) {

@@ -68,6 +68,14 @@ std::string out_of_memory_message();
 
 // --- helpers for command implementations -----------------------------------------------------------
 
+/// Paths a command is run with in place of the user's (`--shard` and `--scalp-xform` route outputs
+/// and posed inputs through memory as "mem:PATH"), each with the user's own path, which every
+/// message shows instead (note, detail, warn, error): a shard's note read "-> mem:out.usda".
+/// Set for the current thread; an empty list clears it.
+void set_shown_paths(std::vector<std::pair<std::string, std::string>> memory_to_user);
+/// `message` with each such path replaced by the user's.
+std::string shown(const std::string& message);
+
 /// Messages on stderr: note() unless --quiet, detail() only with --verbose.
 void note(const CommonOptions& o, const std::string& message);
 void detail(const CommonOptions& o, const std::string& message);

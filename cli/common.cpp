@@ -20,14 +20,29 @@
 
 namespace groom::cli {
 
+namespace {
+thread_local std::vector<std::pair<std::string, std::string>> shown_paths;
+}  // namespace
+
+void set_shown_paths(std::vector<std::pair<std::string, std::string>> memory_to_user) { shown_paths = std::move(memory_to_user); }
+
+std::string shown(const std::string& message)
+{
+    std::string out = message;
+    for (const auto& [memory, user] : shown_paths) {
+        for (size_t at = out.find(memory); at != std::string::npos; at = out.find(memory, at + user.size())) out.replace(at, memory.size(), user);
+    }
+    return out;
+}
+
 void note(const CommonOptions& o, const std::string& message)
 {
-    if (!o.quiet) std::cerr << message << "\n";
+    if (!o.quiet) std::cerr << shown(message) << "\n";
 }
 
 void detail(const CommonOptions& o, const std::string& message)
 {
-    if (o.verbose && !o.quiet) std::cerr << message << "\n";
+    if (o.verbose && !o.quiet) std::cerr << shown(message) << "\n";
 }
 
 void add_prim_option(CLI::App* app, CommonOptions& common)

@@ -219,8 +219,14 @@ int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform
     int rc = 0;
     ShardRequest& request = current_shard();
     request = ShardRequest{plan.shard, plan.shards, false};
+    // The command's messages name the user's files, not the memory paths it was given.
+    std::vector<std::pair<std::string, std::string>> aliases;
+    for (const Out& o : outs) aliases.emplace_back(o.memory, o.path);
+    for (const std::string& m : memory_inputs) aliases.emplace_back(m, m.substr(4, m.size() - 4 - 5));  // "mem:" PATH "@rest"
+    set_shown_paths(aliases);  // an error's message is printed after a throw: run() clears them next time
     try {
         rc = run_one(argv);
+        set_shown_paths({});
     }
     catch (...) {
         request = ShardRequest{};

@@ -218,6 +218,28 @@ TEST(FramesCli, RigidlyMovingHeadAndGuidesGiveFrameZerosGroomMoved)
     }
 }
 
+// --scalp-xform and --shard run the command on memory paths ("mem:PATH"): what it prints names
+// the user's files instead (a trial read "generate: ... -> mem:out.0000.usda").
+TEST(FramesCli, MessagesNameTheUsersFilesNotTheMemoryPaths)
+{
+    test::TempDir dir;
+    const std::string scalp = sphere_mesh(dir);
+    const std::string poses = write_poses(dir, 2);
+    for (int f = 0; f < 2; ++f) {
+        CurveSet g = sphere_guides(0.3f);
+        for (float3& p : g.positions_for_write()) p = apply(pose_at(f), p);
+        write_curves(g, frame_file(dir, "guides", f, "usda"));
+    }
+    const auto posed = run_groom({"curl", dir.file("guides.####.usda"), "--scalp", scalp, "--frames", "0:1", "--scalp-xform", poses, "-o",
+                                  dir.file("curl.####.usda"), "--type", "3b", "--verbose"});
+    ASSERT_EQ(posed.exit_code, 0) << posed.err;
+    EXPECT_NE(posed.err.find(frame_file(dir, "curl", 1, "usda")), std::string::npos) << posed.err;
+    const auto shard = run_groom({"curl", frame_file(dir, "guides", 0, "usda"), "-o", dir.file("part.usda"), "--shard", "1/2", "--type", "3b"});
+    ASSERT_EQ(shard.exit_code, 0) << shard.err;
+    EXPECT_NE(shard.err.find(dir.file("part.usda")), std::string::npos) << shard.err;
+    for (const auto* r : {&posed, &shard}) EXPECT_EQ(r->err.find("mem:"), std::string::npos) << r->err;
+}
+
 // Guides that bend smoothly (every joint turns a little more each frame) over a still head. The
 // roots stay (they come from the scalp and the seed), and generate blends each guide's offsets from
 // its root with weights of the root alone, turned by a rotation of the root alone: a generated point

@@ -18,8 +18,8 @@ struct HairlineParams {
     /// the middle of the scalp's bounds in the two horizontal directions, used when `has_center` is false).
     float3 center{};
     bool has_center = false;
-    /// The head's length front to back, scene units (--head-length); 0 = measured on the scalp at
-    /// 40% of the way from the top of the head to its centre.
+    /// The head's length front to back, scene units (--head-length); 0 = measured on the scalp at the
+    /// first depth below the top that is 0.36 of the length measured there (wherever the centre is).
     float head_length = 0.0f;
     /// Heights of the hairline below the top of the head, as fractions of head_length, at the
     /// forehead (azimuth 0), the temples (55 deg), the sideburns (80 deg), over the ears (100 deg)

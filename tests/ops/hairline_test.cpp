@@ -30,8 +30,9 @@ TEST(Hairline, OnASphereFollowsTheKeyHeights)
     const CurveSet h = make_hairline(sphere, box, p);
     ASSERT_EQ(h.num_points(), 360u);
     const auto P = h.positions();
-    // The top is C + R up; the length is measured 0.4 R below it: 2 sqrt(R^2 - (0.6 R)^2) = 1.6 R.
-    const float L = 1.6f * R;
+    // The top is C + R up; the length L is measured h = 0.36 L below it, where it is 2 sqrt(2 R h - h^2):
+    // h^2 = 0.36^2 4 (2 R h - h^2), so h = 8 k^2 R / (1 + 4 k^2) and L = 8 k R / (1 + 4 k^2) (1.897 R).
+    const float k = 0.36f, L = 8.0f * k * R / (1.0f + 4.0f * k * k);
     auto height_below_top = [&](int i) { return C.y + R - P[i].y; };
     EXPECT_NEAR(height_below_top(180), p.forehead * L, 2e-3f * R);
     EXPECT_NEAR(height_below_top(0), p.nape * L, 2e-3f * R);
@@ -79,9 +80,9 @@ private:
 }  // namespace
 
 // An ear higher than the key heights expect (the Lee Perry-Smith scan's: the hairline crossed its
-// bowl and gathered hair rooted on it, a trial). On a sphere of radius 10 (head length 16) a flap
-// stands 2 units out at azimuths 84-107 degrees, from y = -2 up to y = 3.5 (0.41 head lengths below
-// the top), where the "over the ears" key puts the hairline at y = 0.6-2.5. The hairline must pass
+// bowl and gathered hair rooted on it, a trial). On a sphere of radius 10 (head length 19.0) a flap
+// stands 2 units out at azimuths 84-107 degrees, from y = -2 up to y = 3.5 (0.34 head lengths below
+// the top), where the "over the ears" keys put the hairline at y = 1.1 and lower. The hairline must pass
 // above the flap, on the sphere, and stay on the closed form everywhere else.
 TEST(Hairline, PassesAboveAnEarThatStandsHigherThanTheKeys)
 {
@@ -186,24 +187,61 @@ TEST(Hairline, OnTheDefaultHeadSitsWhereAHairlineDoes)
     EXPECT_FALSE(region.inside_hairline({0, -15, -6}));  // back of the neck
 }
 
-// A head on a tall body: the middle of the bounds is far below the head, so the axis through it
-// meets the head only at its top and the length cannot be measured. The message says to give
-// --center (its old advice, --head-length, put the hairline across a MakeHuman body's eyebrows),
-// and with a centre inside the head the same scalp gets its hairline.
-TEST(Hairline, OnABodyItAsksForACentreInsideTheHead)
+// The same head, whatever the centre below its top: the length is measured at a depth found from
+// the top down, not at a fraction of the centre's depth (a --center in the middle of the ponytail
+// head's skull put the hairline 10 units higher than its bounds' middle, a trial). A sphere of
+// radius 1 on a tall body (its top at y = 1, the feet at y = -11: the bounds' middle is the belly),
+// with a bun behind the head (a box at y 0..0.28, z -1.4..-0.8): measured through the bun the length
+// is 2.39, and 0.36 of that is again a depth in the bun, a second answer below the sphere's own
+// (0.683 down, above the bun). Every centre gives the sphere's own curve, within 1e-4 R.
+TEST(Hairline, TheCentreOnlyPicksTheAxis)
+{
+    class SphereWithBun final : public Surface {
+    public:
+        float distance(const float3& p) const override
+        {
+            const float qx = std::fabs(p.x) - 0.3f, qy = std::fabs(p.y - 0.14f) - 0.14f, qz = std::fabs(p.z + 1.1f) - 0.3f;
+            const float box = length(float3(std::max(qx, 0.0f), std::max(qy, 0.0f), std::max(qz, 0.0f))) + std::min(std::max(qx, std::max(qy, qz)), 0.0f);
+            return std::min(sphere_.distance(p), box);
+        }
+        float3 normal(const float3& p) const override { return sphere_.normal(p); }
+        float3 closest_point(const float3& p) const override { return sphere_.closest_point(p); }
+
+    private:
+        AnalyticSphere sphere_{{0, 0, 0}, 1.0f};
+    } head;
+    Bounds3 body;
+    body.extend(float3(-1, -11, -1.4f));
+    body.extend(float3(1, 1, 1.4f));
+    HairlineParams p;
+    const CurveSet from_the_belly = make_hairline(head, body, p);
+    const float L = 8.0f * 0.36f / (1.0f + 4.0f * 0.36f * 0.36f);
+    EXPECT_NEAR(1.0f - from_the_belly.positions()[p.points / 2].y, p.forehead * L, 2e-3f);  // the sphere's length
+    for (float y : {0.6f, 0.0f, -0.5f}) {
+        p.center = {0, y, 0};
+        p.has_center = true;
+        const CurveSet h = make_hairline(head, body, p);
+        ASSERT_EQ(h.num_points(), from_the_belly.num_points());
+        for (size_t i = 0; i < h.num_points(); ++i) EXPECT_LT(distance(h.positions()[i], from_the_belly.positions()[i]), 1e-4f) << y << " " << i;
+    }
+}
+
+// A centre beside the head (a body's bounds made wide by its arms, say): nothing above it to measure
+// from. The message says to give --center and where the axis ran.
+TEST(Hairline, WithNoHeadAboveTheCentreItAsksForOne)
 {
     const AnalyticSphere head({0, 0, 0}, 1.0f);
-    Bounds3 body;  // the head's top at y = 1, the feet at y = -11
+    Bounds3 body;
     body.extend(float3(-1, -11, -1));
-    body.extend(float3(1, 1, 1));
+    body.extend(float3(9, 1, 1));
     HairlineParams p;
     try {
         make_hairline(head, body, p);
-        ADD_FAILURE() << "measured a head from the middle of the body";
+        ADD_FAILURE() << "measured a head that is not above the centre";
     }
     catch (const InvalidGeometry& e) {
         EXPECT_NE(std::string(e.what()).find("give --center inside the head"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("middle of the scalp's bounds, 0,-5,0"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("4,-5,0"), std::string::npos) << e.what();
     }
     p.center = {0, 0, 0};
     p.has_center = true;
@@ -236,4 +274,25 @@ TEST(Hairline, RejectsBadParams)
     p.center = {5, 0, 0};
     p.has_center = true;
     EXPECT_THROW(make_hairline(sphere, box, p), InvalidGeometry);
+}
+
+// The trial's bust: the ponytail head on its jacket, looking along -Z, a bun at the back. The middle
+// of its bounds is in the neck; a user's --center anywhere in the skull must give the same hairline
+// (before, one at the skull's middle put it 10 units higher than the default, and the default's was
+// measured through the bun), within a voxel.
+TEST(Hairline, OnABustAnyCentreInTheSkullGivesTheSameCurve)
+{
+    GROOM_REQUIRE_SHARED(path, "amd_tressfx_ponytail/ponytail_head.obj");
+    const ScalpField scalp = build_scalp(read_mesh(path));
+    HairlineParams p;
+    p.forward = {0, 0, -1};
+    const CurveSet by_default = make_hairline(scalp, scalp.bounds(), p);
+    for (float y : {80.0f, 90.0f, 105.0f}) {
+        p.center = {scalp.bounds().center().x, y, scalp.bounds().center().z};  // the same axis, higher or lower
+        p.has_center = true;
+        const CurveSet h = make_hairline(scalp, scalp.bounds(), p);
+        float worst = 0.0f;
+        for (size_t i = 0; i < h.num_points(); ++i) worst = std::max(worst, distance(h.positions()[i], by_default.positions()[i]));
+        EXPECT_LT(worst, scalp.voxel_size()) << "centre at y " << y;
+    }
 }

@@ -76,14 +76,35 @@ void setup(CommandContext& ctx)
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
         // The default sphere is the default head's cranium (`groom head`: centimetres, +Y up, its top
         // at y = 13). On another head it lays rows somewhere else without a word (a trial on a scan
-        // in other units ran them onto the shoulders): refuse unless the head's top is about there.
-        const Bounds3 box = scalp->bounds();
-        const float top = a.params.center.y + a.params.radius;
-        if (app->count("--center") == 0 && app->count("--radius") == 0 && !box.empty() && std::fabs(box.hi.y - top) > 0.5f * a.params.radius) {
-            throw InvalidParam("cornrow-guides: the default --center " + format_xyz(a.params.center) + " and --radius " + format_number(a.params.radius) +
-                               " are the default head's cranium (top at y " + format_number(top) + ", centimetres, +Y up), but " + a.scalp +
-                               " reaches y " + format_number(box.hi.y) + " (bounds " + format_xyz(box.lo) + " to " + format_xyz(box.hi) +
-                               "): pass --center (the middle of this head's cranium) and --radius (about half its width)");
+        // in other units ran them onto the shoulders): refuse unless the scalp lies about on that
+        // sphere. The top's height alone let MakeHuman's body through (decimetres, its head's top at
+        // y 8.5, 4.5 from 13 by chance: rows over the chest), so the scalp's distance is asked at 17
+        // points of the sphere's upper half too: within 0.22 R on the default head, 0.25 R on ICT's
+        // face and Sintel's (cm), 0.44-0.88 R on MakeHuman's body.
+        if (app->count("--center") == 0 && app->count("--radius") == 0) {
+            const Bounds3 box = scalp->bounds();
+            const float3 c = a.params.center;
+            const float r = a.params.radius, top = c.y + r;
+            std::vector<float> off{std::fabs(scalp->distance(c + float3(0, r, 0)))};
+            for (int az = 0; az < 360; az += 45) {
+                for (const float el : {60.0f, 35.0f}) {
+                    const float e = el * 3.14159265f / 180.0f, t = float(az) * 3.14159265f / 180.0f;
+                    const float3 d(std::cos(e) * std::sin(t), std::sin(e), std::cos(e) * std::cos(t));
+                    off.push_back(std::fabs(scalp->distance(c + d * r)));
+                }
+            }
+            std::nth_element(off.begin(), off.begin() + off.size() / 2, off.end());
+            const float median = off[off.size() / 2];
+            const bool top_off = !box.empty() && std::fabs(box.hi.y - top) > 0.5f * r;
+            if (top_off || median > 0.4f * r) {
+                throw InvalidParam("cornrow-guides: the default --center " + format_xyz(c) + " and --radius " + format_number(r) +
+                                   " are the default head's cranium (top at y " + format_number(top) + ", centimetres, +Y up), but " + a.scalp +
+                                   (top_off ? " reaches y " + format_number(box.hi.y)
+                                            : " lies " + format_number(median) + " from that sphere (the median over its upper half; within " +
+                                                  format_number(0.4f * r) + " on a head it fits)") +
+                                   " (bounds " + format_xyz(box.lo) + " to " + format_xyz(box.hi) +
+"): pass --center (the middle of this head's cranium) and --radius (about half its width)");
+            }
         }
         // The hairline is read around the same up direction the rows are laid with.
         RegionOptions region_options;

@@ -1,5 +1,7 @@
 #include "kernel/io/curve_io.h"
 #include "kernel/math/polyline.h"
+#include "kernel/io/mesh_io.h"
+#include "support/sphere_mesh.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -131,4 +133,28 @@ TEST(CornrowGuidesCli, BadOptionsAreUsageErrors)
     EXPECT_FALSE(std::filesystem::exists(dir.file("g.usda")));
     const auto onto_input = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("head.obj")});
     EXPECT_EQ(onto_input.exit_code, 2) << onto_input.err;
+}
+
+// The default --center and --radius are the default head's cranium. A head whose top happens to be
+// near the default's (MakeHuman's body in decimetres reaches y 8.5, 4.5 from 13) is refused too when
+// the scalp does not lie on that sphere: here a sphere of radius 1 with its top at y 13.6 (it passed
+// the old check of the top alone, and the rows were laid in the air around it). Given its own centre
+// and radius, the same scalp is accepted.
+TEST(CornrowGuidesCli, DefaultsOnAHeadTheyDoNotFitAreRefused)
+{
+    test::TempDir dir;
+    write_mesh(icosphere(float3(0, 12.6f, -1), 1.0f, 4), dir.file("small.obj"));
+    const auto r = run_groom({"cornrow-guides", "--scalp", dir.file("small.obj"), "-o", dir.file("g.usda")});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("from that sphere"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("pass --center"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("g.usda")));
+    const auto fits = run_groom({"cornrow-guides", "--scalp", dir.file("small.obj"), "-o", dir.file("g.usda"), "--center", "0,12.6,-1",
+                                 "--radius", "1", "--count", "4", "--quiet"});
+    EXPECT_EQ(fits.exit_code, 0) << fits.err;
+    GROOM_REQUIRE_SHARED(body, "makehuman/base.obj");
+    const auto mh = run_groom({"cornrow-guides", "--scalp", body, "-o", dir.file("mh.usda")});
+    EXPECT_EQ(mh.exit_code, 2) << mh.err;
+    EXPECT_NE(mh.err.find("from that sphere"), std::string::npos) << mh.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("mh.usda")));
 }

@@ -81,8 +81,8 @@ void setup(CommandContext& ctx)
         // y 8.5, 4.5 from 13 by chance: rows over the chest), so the scalp's distance is asked at 17
         // points of the sphere's upper half too: within 0.22 R on the default head, 0.25 R on ICT's
         // face and Sintel's (cm), 0.44-0.88 R on MakeHuman's body.
-        if (app->count("--center") == 0 && app->count("--radius") == 0) {
-            const Bounds3 box = scalp->bounds();
+        const Bounds3 box = scalp->bounds();
+        if (app->count("--center") == 0 && app->count("--radius") == 0 && !box.empty()) {
             const float3 c = a.params.center;
             const float r = a.params.radius, top = c.y + r;
             std::vector<float> off{std::fabs(scalp->distance(c + float3(0, r, 0)))};
@@ -95,7 +95,7 @@ void setup(CommandContext& ctx)
             }
             std::nth_element(off.begin(), off.begin() + off.size() / 2, off.end());
             const float median = off[off.size() / 2];
-            const bool top_off = !box.empty() && std::fabs(box.hi.y - top) > 0.5f * r;
+            const bool top_off = std::fabs(box.hi.y - top) > 0.5f * r;
             if (top_off || median > 0.4f * r) {
                 throw InvalidParam("cornrow-guides: the default --center " + format_xyz(c) + " and --radius " + format_number(r) +
                                    " are the default head's cranium (top at y " + format_number(top) + ", centimetres, +Y up), but " + a.scalp +

@@ -113,7 +113,9 @@ void setup(CommandContext& ctx)
             HairlineParams hp;
             hp.up = params.up;
             hp.forward = params.forward;
-            hairline = make_hairline(*scalp, scalp->bounds(), hp);
+            HairlineReport report;
+            hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);
+            if (report.faces_backward()) warn(common, report.warning("edges", hp.forward));
         }
         std::optional<HairRegion> region;
         if (partings.num_curves() > 0) region.emplace(*scalp, hairline, partings, region_params);

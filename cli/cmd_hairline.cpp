@@ -51,7 +51,9 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
-        const CurveSet hairline = make_hairline(*scalp, scalp->bounds(), params);
+        HairlineReport report;
+        const CurveSet hairline = make_hairline(*scalp, scalp->bounds(), params, &report);
+        if (report.faces_backward()) warn(common, report.warning("hairline", params.forward));
         // Written closed (.usda wrap "periodic", .obj's record back to its first vertex): written
         // open, a DCC showed the hairline with a gap between its last point and its first.
         CurveWriteOptions closed;

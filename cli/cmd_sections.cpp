@@ -98,7 +98,9 @@ void setup(CommandContext& ctx)
             HairlineParams hp;
             hp.up = params.up;
             hp.forward = params.forward;
-            hairline = make_hairline(*scalp, scalp->bounds(), hp);
+            HairlineReport report;
+            hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);
+            if (report.faces_backward()) warn(common, report.warning("sections", hp.forward));
         }
         else {
             hairline = read_hairline(args->hairline, &common);

@@ -71,6 +71,14 @@ double ear_top_above(const Surface& scalp, const float3& top, const float3& up, 
 
 }  // namespace
 
+std::string HairlineReport::warning(const std::string& command, const float3& forward) const
+{
+    return command + ": warning: the head seems to face away from --forward " + format_xyz(forward) + ": 0.8-0.9 head lengths below its top the scalp reaches " +
+           format_number(back) + " behind the head's middle and " + format_number(front) +
+           " in front (a face and chin in front, a neck behind, expected), so the hairline's nape may cross the face; if the face looks the "
+           "other way pass --forward " + format_xyz(float3(0.0f, 0.0f, 0.0f) - forward);
+}
+
 void HairlineParams::validate() const
 {
     if (!isfinite(up) || length(up) == 0.0f) throw InvalidParam("hairline: `up` must be a finite non-zero direction");
@@ -91,7 +99,7 @@ void HairlineParams::validate() const
     if (points < 16 || points > 100000) throw InvalidParam("hairline: `points` must be in [16, 100000] (got " + std::to_string(points) + ")");
 }
 
-CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const HairlineParams& params)
+CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const HairlineParams& params, HairlineReport* report)
 {
     params.validate();
     if (bounds.empty()) throw InvalidGeometry("hairline: the scalp is empty");
@@ -140,6 +148,27 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
             h = next;
         }
         if (!(length_fb > 0.0f)) throw InvalidGeometry("hairline: measured a head length <= 0; give --head-length");
+    }
+
+    if (report) {
+        // The head's middle front to back at the measuring depth, then the scalp's reach in front of
+        // and behind it lower down, where a face and chin stand out and a neck is set back.
+        *report = HairlineReport{};
+        const auto reach_along = [&](double depth, float& ahead, float& behind) {
+            const float3 a = top - up * float(depth);
+            float3 front, back;
+            if (!outermost_hit(scalp, a + fwd * reach, a, front) || !outermost_hit(scalp, a - fwd * reach, a, back)) return false;
+            ahead = dot(front - a, fwd);
+            behind = dot(a - back, fwd);
+            return true;
+        };
+        float f0, b0, f1, b1, f2, b2;
+        if (reach_along(0.36 * length_fb, f0, b0) && reach_along(0.8 * length_fb, f1, b1) && reach_along(0.9 * length_fb, f2, b2)) {
+            const float middle = 0.5f * (f0 - b0);  // ahead of the axis
+            report->measured = true;
+            report->front = f1 + f2 - 2.0f * middle;
+            report->back = b1 + b2 + 2.0f * middle;
+        }
     }
 
     // Start at the nape (azimuth -180) so the seam of the closed curve sits at the back.

@@ -9,6 +9,8 @@
 #include "kernel/curve_set.h"
 #include "kernel/math/vec.h"
 
+#include <string>
+
 namespace groom {
 
 struct HairlineParams {
@@ -43,6 +45,25 @@ struct HairlineParams {
 /// @param bounds  the scalp's bounding box (for the default centre and how far out rays start).
 /// Writes point P and curve int64 `id` = 0.
 /// Throws InvalidParam (params), InvalidGeometry (no scalp above the centre, or a ray that finds none).
-CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const HairlineParams& params);
+/// `report`, when given, receives which way the head seems to face (HairlineReport).
+struct HairlineReport;
+CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const HairlineParams& params, HairlineReport* report = nullptr);
+
+/// Which way the head seems to face, read from the scalp below the hairline: 0.8 and 0.9 head lengths
+/// below the top, a face and chin stand farther in front of the head's middle than the neck behind it
+/// (1.2-10x on the default head, ICT, Lee Perry-Smith, Sintel, Nefertiti and the ponytail head). A head
+/// turned the other way from `forward` (the ponytail head looks along -Z) got a hairline whose nape
+/// ran across the eyes without a word (a trial).
+struct HairlineReport {
+    bool measured = false;  ///< false where a ray missed the scalp (nothing said)
+    float front = 0.0f;     ///< the scalp's reach in front of the head's middle, summed over the two depths
+    float back = 0.0f;      ///< ... behind it
+    /// True when the back reaches over 1.15 times as far as the front: `forward` is probably reversed
+    /// (the ponytail head looked at along +Z: 1.43; the right way round 0.1-0.83 on the heads above,
+    /// MakeHuman's body 0.92 either way, its helper shells behind the head).
+    bool faces_backward() const { return measured && back > 1.15f * front; }
+    /// The warning to print when faces_backward(), naming the option to pass.
+    std::string warning(const std::string& command, const float3& forward) const;
+};
 
 }  // namespace groom

@@ -297,4 +297,40 @@ TEST(Hairline, OnABustAnyCentreInTheSkullGivesTheSameCurve)
         for (size_t i = 0; i < h.num_points(); ++i) worst = std::max(worst, distance(h.positions()[i], by_default.positions()[i]));
         EXPECT_LT(worst, scalp.voxel_size()) << "centre at y " << y;
     }
+    // Looked at along +Z (the default --forward, which a trial used) the head is reported facing away.
+    HairlineReport along_minus_z, along_plus_z;
+    make_hairline(scalp, scalp.bounds(), p, &along_minus_z);
+    EXPECT_FALSE(along_minus_z.faces_backward()) << along_minus_z.front << " in front, " << along_minus_z.back << " behind";
+    make_hairline(scalp, scalp.bounds(), HairlineParams{}, &along_plus_z);
+    EXPECT_TRUE(along_plus_z.faces_backward()) << along_plus_z.front << " in front, " << along_plus_z.back << " behind";
+}
+
+// Which way the head faces, read from the scalp below the hairline: the default head (ops/head.h,
+// face along +Z) is reported the right way round with its default forward, and turned (forward -Z)
+// it is reported as facing away, with a warning that names the option and the other direction.
+// Read from the geometry: the default head's chin stands farther out in front than its neck behind.
+TEST(Hairline, ReportsAHeadThatFacesAwayFromForward)
+{
+    HeadParams hp;
+    hp.resolution = 48;
+    const ScalpField scalp = build_scalp(make_head(hp));
+    HairlineParams p;
+    HairlineReport right, turned;
+    make_hairline(scalp, scalp.bounds(), p, &right);
+    ASSERT_TRUE(right.measured);
+    EXPECT_FALSE(right.faces_backward()) << right.front << " in front, " << right.back << " behind";
+    p.forward = {0, 0, -1};
+    make_hairline(scalp, scalp.bounds(), p, &turned);
+    ASSERT_TRUE(turned.measured);
+    EXPECT_TRUE(turned.faces_backward()) << turned.front << " in front, " << turned.back << " behind";
+    const std::string w = turned.warning("hairline", p.forward);
+    EXPECT_NE(w.find("pass --forward 0,0,1"), std::string::npos) << w;
+    // On a sphere nothing stands out either way: no warning.
+    const AnalyticSphere sphere({0, 0, 0}, 10.0f);
+    Bounds3 box;
+    box.extend(float3(-10, -10, -10));
+    box.extend(float3(10, 10, 10));
+    HairlineReport round;
+    make_hairline(sphere, box, HairlineParams{}, &round);
+    EXPECT_FALSE(round.faces_backward());
 }

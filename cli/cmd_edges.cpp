@@ -115,7 +115,7 @@ void setup(CommandContext& ctx)
             hp.forward = params.forward;
             HairlineReport report;
             hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);
-            if (report.faces_backward()) warn(common, report.warning("edges", hp.forward));
+            for (const auto& [is_warning, m] : report.messages("edges", hp.forward)) is_warning ? warn(common, m) : note(common, m);
         }
         std::optional<HairRegion> region;
         if (partings.num_curves() > 0) region.emplace(*scalp, hairline, partings, region_params);

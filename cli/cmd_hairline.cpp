@@ -53,7 +53,7 @@ void setup(CommandContext& ctx)
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         HairlineReport report;
         const CurveSet hairline = make_hairline(*scalp, scalp->bounds(), params, &report);
-        if (report.faces_backward()) warn(common, report.warning("hairline", params.forward));
+        for (const auto& [is_warning, m] : report.messages("hairline", params.forward)) is_warning ? warn(common, m) : note(common, m);
         // Written closed (.usda wrap "periodic", .obj's record back to its first vertex): written
         // open, a DCC showed the hairline with a gap between its last point and its first.
         CurveWriteOptions closed;

@@ -100,7 +100,7 @@ void setup(CommandContext& ctx)
             hp.forward = params.forward;
             HairlineReport report;
             hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);
-            if (report.faces_backward()) warn(common, report.warning("sections", hp.forward));
+            for (const auto& [is_warning, m] : report.messages("sections", hp.forward)) is_warning ? warn(common, m) : note(common, m);
         }
         else {
             hairline = read_hairline(args->hairline, &common);

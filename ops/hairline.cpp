@@ -79,6 +79,25 @@ std::string HairlineReport::warning(const std::string& command, const float3& fo
            "other way pass --forward " + format_xyz(float3(0.0f, 0.0f, 0.0f) - forward);
 }
 
+std::string HairlineReport::axis_message(const std::string& command) const
+{
+    const std::string off = format_number(length(middle_offset));
+    if (moved_axis) {
+        return command + ": the middle of the scalp's bounds is " + off + " off the head's middle (a bust's or a body's is not its head's), " +
+               "so the head's axis runs through its middle, about " + format_xyz(suggested_center) + ", instead; pass --center to choose another";
+    }
+    return command + ": warning: --center is " + off + " off the head's middle 0.36 head lengths below its top, over 0.15 of the length: " +
+           "the hairline's rays start from there and may cross the face or the ears; the head's middle is about " + format_xyz(suggested_center);
+}
+
+std::vector<std::pair<bool, std::string>> HairlineReport::messages(const std::string& command, const float3& forward) const
+{
+    std::vector<std::pair<bool, std::string>> out;
+    if (axis_off_middle) out.emplace_back(!moved_axis, axis_message(command));
+    if (faces_backward()) out.emplace_back(true, warning(command, forward));
+    return out;
+}
+
 void HairlineParams::validate() const
 {
     if (!isfinite(up) || length(up) == 0.0f) throw InvalidParam("hairline: `up` must be a finite non-zero direction");
@@ -111,12 +130,12 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
     // The head's axis: a vertical line through the centre; its top is the highest scalp point on it.
     float3 c = params.has_center ? params.center : bounds.center();
     float3 top;
-    if (!outermost_hit(scalp, c + up * reach, c, top)) {
-        throw InvalidGeometry("hairline: no scalp above the centre " + format_xyz(c) +
-                              " (give --center inside the head)");
-    }
     float length_fb = params.head_length;
-    if (length_fb == 0.0f) {
+    const auto find_top_and_length = [&] {
+        if (!outermost_hit(scalp, c + up * reach, c, top)) {
+            throw InvalidGeometry("hairline: no scalp above the centre " + format_xyz(c) + " (give --center inside the head)");
+        }
+        if (params.head_length > 0.0f) return;
         // Measured where the axis is a fixed fraction of the length itself below the top, the first
         // such depth down from the top (iterated from just under it: each step goes down while the
         // head widens, and stops above a bun or shoulders lower down). Measured at a fraction of the
@@ -148,12 +167,41 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
             h = next;
         }
         if (!(length_fb > 0.0f)) throw InvalidGeometry("hairline: measured a head length <= 0; give --head-length");
+    };
+    find_top_and_length();
+
+    // The head's middle at 0.36 of its length below the top, front to back and side to side: the
+    // axis must run near it, the hairline's rays start there. The bounds' middle of a head alone is
+    // within 0.06 lengths of it (the default head, ICT, Lee Perry-Smith, Sintel, Nefertiti, the
+    // ponytail bust); MakeHuman's body's is 0.26 in front of it (the feet stand forward), and the
+    // rays from there crossed the face (a trial). Without --center, the axis moves to the middle when
+    // it is over 0.15 lengths off; a --center that far off is kept, and reported.
+    float3 middle_offset(0.0f, 0.0f, 0.0f);
+    {
+        const float3 a = top - up * float(0.36 * length_fb);
+        float3 front, back, left, right;
+        if (outermost_hit(scalp, a + fwd * reach, a, front) && outermost_hit(scalp, a - fwd * reach, a, back) &&
+            outermost_hit(scalp, a + side * reach, a, left) && outermost_hit(scalp, a - side * reach, a, right)) {
+            middle_offset = fwd * (0.5f * (dot(front - a, fwd) + dot(back - a, fwd))) + side * (0.5f * (dot(left - a, side) + dot(right - a, side)));
+        }
     }
+    const bool off_middle = length(middle_offset) > 0.15f * length_fb;
+    if (report) {
+        *report = HairlineReport{};
+        report->axis_off_middle = off_middle;
+        report->middle_offset = middle_offset;
+        report->suggested_center = top - up * float(0.5 * length_fb) + middle_offset;
+    }
+    if (off_middle && !params.has_center) {
+        c = c + middle_offset;
+        find_top_and_length();
+        if (report) report->moved_axis = true;
+    }
+    if (report) report->axis = c;
 
     if (report) {
         // The head's middle front to back at the measuring depth, then the scalp's reach in front of
         // and behind it lower down, where a face and chin stand out and a neck is set back.
-        *report = HairlineReport{};
         const auto reach_along = [&](double depth, float& ahead, float& behind) {
             const float3 a = top - up * float(depth);
             float3 front, back;

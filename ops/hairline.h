@@ -10,6 +10,8 @@
 #include "kernel/math/vec.h"
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace groom {
 
@@ -55,7 +57,7 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
 /// turned the other way from `forward` (the ponytail head looks along -Z) got a hairline whose nape
 /// ran across the eyes without a word (a trial).
 struct HairlineReport {
-    bool measured = false;  ///< false where a ray missed the scalp (nothing said)
+    bool measured = false;  ///< false where a ray missed the scalp (nothing said of the facing)
     float front = 0.0f;     ///< the scalp's reach in front of the head's middle, summed over the two depths
     float back = 0.0f;      ///< ... behind it
     /// True when the back reaches over 1.15 times as far as the front: `forward` is probably reversed
@@ -64,6 +66,23 @@ struct HairlineReport {
     bool faces_backward() const { return measured && back > 1.15f * front; }
     /// The warning to print when faces_backward(), naming the option to pass.
     std::string warning(const std::string& command, const float3& forward) const;
+
+    /// The axis the rays started from (the centre, or the head's middle when the axis moved).
+    float3 axis{};
+    /// The head's middle 0.36 head lengths below its top, from the centre's axis, horizontally; the
+    /// axis is off the middle when that is over 0.15 head lengths (0.06 at most on every head alone
+    /// tried, 0.26 on MakeHuman's body from the middle of its bounds).
+    float3 middle_offset{};
+    bool axis_off_middle = false;
+    /// Without `has_center`, an axis off the middle is moved to it (and the top and length found
+    /// again from there); a given centre is kept.
+    bool moved_axis = false;
+    /// A centre in the head's middle, halfway down: what to pass as --center.
+    float3 suggested_center{};
+    /// What to print when axis_off_middle: a note that the axis moved, or a warning naming --center.
+    std::string axis_message(const std::string& command) const;
+    /// Everything a command prints of this report, in order: {is a warning, text}.
+    std::vector<std::pair<bool, std::string>> messages(const std::string& command, const float3& forward) const;
 };
 
 }  // namespace groom

@@ -228,6 +228,39 @@ TEST(Hairline, TheCentreOnlyPicksTheAxis)
     }
 }
 
+// An axis off the head's middle: MakeHuman's body's bounds reach forward with its feet, and the
+// rays from their middle, 0.26 head lengths in front of the head's middle, crossed the face (a
+// trial). On a unit sphere with bounds to z = 2.4, the axis through their middle (z = 0.5) moves
+// to the sphere's centre line: the sphere's own curve within 1e-4 R, and the report says so. A
+// --center as far off is kept, and reported with the middle to pass instead.
+TEST(Hairline, AnAxisFarFromTheHeadsMiddleMovesToIt)
+{
+    const AnalyticSphere head({0, 0, 0}, 1.0f);
+    Bounds3 body;
+    body.extend(float3(-1, -11, -1.4f));
+    body.extend(float3(1, 1, 2.4f));
+    HairlineParams own;
+    own.has_center = true;  // the sphere's axis
+    const CurveSet expected = make_hairline(head, body, own);
+    HairlineReport report;
+    const CurveSet h = make_hairline(head, body, HairlineParams{}, &report);
+    EXPECT_TRUE(report.axis_off_middle);
+    EXPECT_TRUE(report.moved_axis);
+    EXPECT_NEAR(report.middle_offset.z, -0.5f, 1e-3f);
+    ASSERT_EQ(h.num_points(), expected.num_points());
+    for (size_t i = 0; i < h.num_points(); ++i) EXPECT_LT(distance(h.positions()[i], expected.positions()[i]), 1e-4f) << i;
+    HairlineParams given;
+    given.center = {0, 0, 0.5f};
+    given.has_center = true;
+    make_hairline(head, body, given, &report);
+    EXPECT_TRUE(report.axis_off_middle);
+    EXPECT_FALSE(report.moved_axis);
+    EXPECT_NE(report.axis_message("hairline").find("the head's middle is about 0,"), std::string::npos) << report.axis_message("hairline");
+    // The sphere's own axis is on its middle: nothing to say.
+    make_hairline(head, body, own, &report);
+    EXPECT_FALSE(report.axis_off_middle);
+}
+
 // A centre beside the head (a body's bounds made wide by its arms, say): nothing above it to measure
 // from. The message says to give --center and where the axis ran.
 TEST(Hairline, WithNoHeadAboveTheCentreItAsksForOne)

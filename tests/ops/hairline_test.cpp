@@ -17,6 +17,19 @@
 
 using namespace groom;
 
+namespace {
+
+/// The box [lo, hi]: a scalp's bounds as a body around the test head makes them.
+Bounds3 box_of(const float3& lo, const float3& hi)
+{
+    Bounds3 b;
+    b.extend(lo);
+    b.extend(hi);
+    return b;
+}
+
+}  // namespace
+
 TEST(Hairline, OnASphereFollowsTheKeyHeights)
 {
     const float3 C{1, 2, 3};
@@ -212,9 +225,7 @@ TEST(Hairline, TheCentreOnlyPicksTheAxis)
     private:
         AnalyticSphere sphere_{{0, 0, 0}, 1.0f};
     } head;
-    Bounds3 body;
-    body.extend(float3(-1, -11, -1.4f));
-    body.extend(float3(1, 1, 1.4f));
+    const Bounds3 body = box_of(float3(-1, -11, -1.4f), float3(1, 1, 1.4f));
     HairlineParams p;
     const CurveSet from_the_belly = make_hairline(head, body, p);
     const float L = 8.0f * 0.36f / (1.0f + 4.0f * 0.36f * 0.36f);
@@ -236,9 +247,7 @@ TEST(Hairline, TheCentreOnlyPicksTheAxis)
 TEST(Hairline, AnAxisFarFromTheHeadsMiddleMovesToIt)
 {
     const AnalyticSphere head({0, 0, 0}, 1.0f);
-    Bounds3 body;
-    body.extend(float3(-1, -11, -1.4f));
-    body.extend(float3(1, 1, 2.4f));
+    const Bounds3 body = box_of(float3(-1, -11, -1.4f), float3(1, 1, 2.4f));
     HairlineParams own;
     own.has_center = true;  // the sphere's axis
     const CurveSet expected = make_hairline(head, body, own);
@@ -266,9 +275,7 @@ TEST(Hairline, AnAxisFarFromTheHeadsMiddleMovesToIt)
 TEST(Hairline, WithNoHeadAboveTheCentreItAsksForOne)
 {
     const AnalyticSphere head({0, 0, 0}, 1.0f);
-    Bounds3 body;
-    body.extend(float3(-1, -11, -1));
-    body.extend(float3(9, 1, 1));
+    const Bounds3 body = box_of(float3(-1, -11, -1), float3(9, 1, 1));
     HairlineParams p;
     try {
         make_hairline(head, body, p);

@@ -615,9 +615,24 @@ PYBIND11_MODULE(groom, m)
                 if (vertices.ndim() != 2 || vertices.shape(1) != 3) raise(true, "vertices: expected an array of shape (n, 3)");
                 if (faces.ndim() != 2 || faces.shape(1) < 3) raise(true, "faces: expected an array of shape (m, 3) or (m, 4)");
                 PolygonSoup soup;
-                for (py::ssize_t i = 0; i < vertices.shape(0); ++i) soup.points.emplace_back(vertices.at(i, 0), vertices.at(i, 1), vertices.at(i, 2));
+                for (py::ssize_t i = 0; i < vertices.shape(0); ++i) {
+                    const float3 v(vertices.at(i, 0), vertices.at(i, 1), vertices.at(i, 2));
+                    // As the mesh readers refuse such a vertex by its line: left in, it reached the
+                    // repair as "the mesh has no extent (all vertices at one point)" (a trial).
+                    if (!isfinite(v)) raise(true, "vertices: row " + std::to_string(i) + " is not finite (" + format_xyz(v) + ")");
+                    soup.points.push_back(v);
+                }
                 const size_t k = size_t(faces.shape(1));
-                for (py::ssize_t f = 0; f < faces.shape(0); ++f) soup.add_face(std::span<const int32_t>(faces.data(f, 0), k));
+                for (py::ssize_t f = 0; f < faces.shape(0); ++f) {
+                    for (size_t j = 0; j < k; ++j) {
+                        const int32_t index = faces.at(f, py::ssize_t(j));
+                        if (index < 0 || index >= vertices.shape(0)) {
+                            raise(true, "faces: row " + std::to_string(f) + " names vertex " + std::to_string(index) + "; expected 0 to " +
+                                            std::to_string(vertices.shape(0) - 1));
+                        }
+                    }
+                    soup.add_face(std::span<const int32_t>(faces.data(f, 0), k));
+                }
                 ScalpBuildParams p;
                 p.voxel_size = voxel;
                 return guarded([&] {

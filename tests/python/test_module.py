@@ -96,6 +96,13 @@ def test_bad_arrays_name_what_is_wrong():
         groom.CurveSet(np.zeros((4, 2)), np.array([4]))
     with pytest.raises(groom.Error, match="nan"):
         groom.CurveSet(np.full((2, 3), np.nan), np.array([2]))
+    # A mesh with a NaN vertex was refused as "no extent (all vertices at one point)" (a trial); a
+    # face naming a vertex past the end is named by its array row (the repair counted faces from 1).
+    tri = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [np.nan, 0, 0]], np.float32)
+    with pytest.raises(groom.ParamError, match=r"vertices: row 3 is not finite \(nan,0,0\)"):
+        groom.Scalp.from_mesh(tri, np.array([[0, 1, 2]]), voxel=0.1)
+    with pytest.raises(groom.ParamError, match=r"faces: row 1 names vertex 7; expected 0 to 2"):
+        groom.Scalp.from_mesh(tri[:3], np.array([[0, 1, 2], [0, 2, 7]]), voxel=0.1)
 
 
 @pytest.mark.parametrize("op,kwargs,options", [

@@ -123,12 +123,19 @@ void setup(CommandContext& ctx)
         // Rows whose nearest-point projection jumped across a fold of the scalp (a brow, an ear):
         // laid along rays instead, or, where that did not help, left with the jump, which cuts
         // through the head (ICT's face with the default --center: a trial).
-        std::string along, jumped;
+        std::string along, jumped, trimmed;
         for (size_t c = 0; c < g.rows.size(); ++c) {
             if (g.rows[c].along_rays) along += (along.empty() ? "" : ", ") + std::to_string(c);
+            if (g.rows[c].trimmed > 0.0f) trimmed += (trimmed.empty() ? "" : ", ") + std::to_string(c) + " (" + format_number(g.rows[c].trimmed) + ")";
             if (g.rows[c].jump > 0.0f) {
                 jumped += (jumped.empty() ? "" : ", ") + std::to_string(c) + " (" + format_number(g.rows[c].jump) + ")";
             }
+        }
+        if (!trimmed.empty()) {
+            // Laid on the scalp, rows can come closer than in their planes on the sphere (a trial on
+            // the ponytail head: braids through each other at the nape).
+            note(common, "cornrow-guides: rows " + trimmed + " were cut short by that length where, on the scalp, they came closer to the next row than " +
+                             "--min-spacing " + format_number(a.params.min_spacing) + " of the rows' spacing over the crown");
         }
         if (!along.empty()) {
             note(common, "cornrow-guides: rows " + along + " jumped across a fold of the scalp when projected to its nearest point; " +

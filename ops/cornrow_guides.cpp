@@ -2,6 +2,7 @@
 #include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
+#include "fields/point_index.h"
 #include "kernel/error.h"
 #include "kernel/math/polyline.h"
 #include "kernel/memory_budget.h"
@@ -147,12 +148,13 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     params.validate(region != nullptr);
     const int n = params.count;
     // Before allocating: the guides (position, root UV; id and guide per curve), the tails (position;
-    // id and guide), and on each worker one dense path of 4 x `samples` points (position) and its
-    // re-spaced copy (one per worker thread at a time). Bounded by the ranges (256 x 2 x 100,000 points, about 0.6 GB), but
-    // estimated like every op's output.
+    // id and guide), and every row's dense path of 4 x `samples` points (position), with a trimmed
+    // copy for the spacing check and a re-spaced one per worker thread. Bounded by the ranges
+    // (256 x 2 x 400,000 points, about 2.5 GB), but estimated like every op's output.
     const double guide_points = double(n) * double(params.samples);
     const double tail_points = params.tail_length > 0.0f ? double(n) * double(params.tail_samples) : 0.0;
-    const double dense_points = double(std::max(4 * params.samples, 64)) * 2.0 * double(std::min<size_t>(size_t(n), tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+    const double dense_points = double(std::max(4 * params.samples, 64)) *
+                                (2.0 * double(n) + double(std::min<size_t>(size_t(n), tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
     check_memory("cornrow-guides: " + std::to_string(n) + " guides (`count`) x " + std::to_string(params.samples) + " `samples`" +
                      (tail_points > 0.0 ? " + " + std::to_string(n) + " tails x " + std::to_string(params.tail_samples) + " `tail_samples`"
                                         : std::string()),
@@ -169,6 +171,7 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     // The head's frame (X to its side, Y up, Z where the face looks): with the defaults exactly the
     // world's axes, so a +Y-up head's guides are the same bits as before the frame was an option.
     const float3 Y = normalize(params.up), Z = normalize(params.forward - Y * dot(params.forward, Y)), X = cross(Y, Z);
+    std::vector<std::vector<float3>> paths(static_cast<size_t>(n));  // each row's dense path on the scalp
     parallel_for(n, 1, [&](int64_t b, int64_t e) {
         for (int64_t i = b; i < e; ++i) {
             const float u = n == 1 ? 0.0f : -1.0f + 2.0f * float(i) / float(n - 1);  // -1 .. 1 across the head
@@ -238,7 +241,68 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
                 const Jump left = row.along_rays ? ray_jump : jump;
                 row.jump = left.ratio > kJumpRatio ? left.chord : 0.0f;
             }
-            const std::vector<float3> even = resample_by_count(path, params.samples);
+            paths[size_t(i)] = std::move(path);
+        }
+    });
+    if (region != nullptr && n > 1) {
+        // The spacing rule above holds in the rows' planes on the sphere; laid on the scalp, rows can
+        // come closer (a scalp narrower than the sphere at the nape, rows laid along rays over a
+        // fold: on the ponytail head two rows ended 1.44 apart where the rule asked 2.3, their braids
+        // through each other, a trial). Measured on the laid rows: each keeps the run through its
+        // highest point where it stays min_spacing (R + h) sin(dphi) from both neighbours.
+        const float dphi = 2.0f * params.spread * kDeg / float(n - 1);
+        const double want = double(params.min_spacing) * double(params.radius + params.pivot) * std::sin(double(dphi));
+        // A segment within `want` of a point has an end within want + half its length of it: the
+        // rows' points in kd-trees, walked outward to that reach, and their segments tested.
+        std::vector<PointIndex> index;
+        std::vector<double> longest(static_cast<size_t>(n), 0.0);
+        for (int64_t i = 0; i < n; ++i) {
+            index.emplace_back(paths[size_t(i)]);
+            for (size_t k = 0; k + 1 < paths[size_t(i)].size(); ++k) longest[size_t(i)] = std::max(longest[size_t(i)], double(distance(paths[size_t(i)][k], paths[size_t(i)][k + 1])));
+        }
+        std::vector<std::vector<float3>> kept(static_cast<size_t>(n));
+        parallel_for(n, 1, [&](int64_t b, int64_t e) {
+            for (int64_t i = b; i < e; ++i) {
+                const std::vector<float3>& path = paths[size_t(i)];
+                const size_t m = path.size();
+                std::vector<char> crowded(m, 0);
+                for (const int64_t j : {i - 1, i + 1}) {
+                    if (j < 0 || j >= n) continue;
+                    const std::vector<float3>& other = paths[size_t(j)];
+                    const double reach = want + 0.5 * longest[size_t(j)];
+                    std::vector<PointIndex::Neighbour> nearest;
+                    for (size_t k = 0; k < m; ++k) {
+                        if (crowded[k]) continue;
+                        index[size_t(j)].nearest(path[k], 1, nearest);  // most points: farther than the reach
+                        if (nearest.empty() || nearest[0].distance > reach) continue;
+                        index[size_t(j)].walk(path[k], [&](uint32_t q, double d2) {
+                            if (d2 > reach * reach) return false;
+                            for (const size_t a : {size_t(q) - 1, size_t(q)}) {  // the segments on either side (q - 1 wraps past 0: skipped)
+                                if (a + 1 < other.size() && segment_distance_sq(path[k], path[k], other[a], other[a + 1]) < want * want) crowded[k] = 1;
+                            }
+                            return !crowded[k];
+                        });
+                    }
+                }
+                size_t top = 0;
+                for (size_t k = 1; k < m; ++k) {
+                    if (dot(path[k], Y) > dot(path[top], Y)) top = k;
+                }
+                size_t first = top, last = top;
+                while (first > 0 && !crowded[first - 1]) --first;
+                while (last + 1 < m && !crowded[last + 1]) ++last;
+                if (crowded[top] || last - first + 1 < 2 || (first == 0 && last + 1 == m)) continue;  // nothing to keep, or all of it
+                kept[size_t(i)].assign(path.begin() + std::ptrdiff_t(first), path.begin() + std::ptrdiff_t(last) + 1);
+                out.rows[size_t(i)].trimmed = float(polyline_length(path) - polyline_length(kept[size_t(i)]));
+            }
+        });
+        for (int64_t i = 0; i < n; ++i) {
+            if (!kept[size_t(i)].empty()) paths[size_t(i)] = std::move(kept[size_t(i)]);
+        }
+    }
+    parallel_for(n, 1, [&](int64_t b, int64_t e) {
+        for (int64_t i = b; i < e; ++i) {
+            const std::vector<float3> even = resample_by_count(paths[size_t(i)], params.samples);
             for (int k = 0; k < params.samples; ++k) {
                 // Resampled points sit on chords; put them back on the scalp.
                 P[i * params.samples + k] = on_scalp(scalp, even[size_t(k)], params.offset);

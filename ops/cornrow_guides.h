@@ -71,6 +71,9 @@ struct CornrowGuides {
     struct Row {
         bool along_rays = false;  ///< laid along the rays
         float jump = 0.0f;        ///< where the path used still jumps: its largest step, scene units (else 0)
+        /// With a hairline: the length cut off the row's ends where, laid on the scalp, it came
+        /// within min_spacing of its crown spacing of a neighbouring row (scene units; else 0).
+        float trimmed = 0.0f;
     };
     std::vector<Row> rows;
 };

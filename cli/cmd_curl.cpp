@@ -47,6 +47,26 @@ void setup(CommandContext& ctx)
             warn_curl_scale(common, "curl", in, curl_default_radius(params),
                             "type " + params.hair_type + "'s default x --units-per-cm " + format_number(params.units_per_cm));
         }
+        {
+            // The op passes a curve of one point or of zero length through as it is (nothing to curl
+            // around); a trial's five points at one spot came back unchanged without a word.
+            const auto P = in.positions();
+            int64_t flat = 0, first = -1;
+            for (size_t c = 0; c < in.num_curves(); ++c) {
+                const IndexRange r = in.points_of(c);
+                bool moves = false;
+                for (int64_t i = r.begin + 1; i < r.end && !moves; ++i) moves = P[size_t(i)] != P[size_t(r.begin)];
+                if (!moves) {
+                    if (first < 0) first = int64_t(c);
+                    ++flat;
+                }
+            }
+            if (flat > 0) {
+                warn(common, "curl: warning: " + std::to_string(flat) + " of " + std::to_string(in.num_curves()) +
+                                 " curves have one point or zero length (the first: curve " + std::to_string(first) +
+                                 "); they were passed through uncurled");
+            }
+        }
         const auto progress = make_progress(common);
         std::shared_ptr<const ScalpField> scalp;
         if (!args->scalp.empty()) scalp = load_scalp(args->scalp, args->scalp_params, progress.get());

@@ -56,6 +56,24 @@ TEST(CurlCli, CurlsGuidesAndWritesShapeCycleAndHairType)
     }
 }
 
+// A curve with nothing to curl around (one point, or every point at one spot) passes through as it
+// is, and the command says so, naming how many and the first (a trial's came back without a word).
+TEST(CurlCli, CurvesWithNothingToCurlAroundAreNamed)
+{
+    TempDir dir;
+    const std::string in = dir.file("mixed.obj");
+    groom::test::write_text(in, "v 0 0 0\nv 0 5 0\nv 0 10 0\nv 1 1 1\nv 1 1 1\nv 1 1 1\nl 1 2 3\nl 4 5 6\n");
+    const auto r = run_groom({"curl", in, "-o", dir.file("out.usda"), "--type", "4a"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("1 of 2 curves have one point or zero length (the first: curve 1)"), std::string::npos) << r.err;
+    const CurveSet out = read_curves(dir.file("out.usda"));
+    ASSERT_EQ(out.num_curves(), 2u);
+    const IndexRange flat = out.points_of(1);
+    for (int64_t i = flat.begin; i < flat.end; ++i) EXPECT_EQ(out.positions()[size_t(i)], float3(1, 1, 1));
+    const auto fine = run_groom({"curl", guides_obj(dir), "-o", dir.file("fine.usda"), "--type", "4a"});
+    EXPECT_EQ(fine.err.find("zero length"), std::string::npos) << fine.err;
+}
+
 TEST(CurlCli, SameBytesForAnyThreadCount)
 {
     TempDir dir;

@@ -277,8 +277,8 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
                         if (nearest.empty() || nearest[0].distance > reach) continue;
                         index[size_t(j)].walk(path[k], [&](uint32_t q, double d2) {
                             if (d2 > reach * reach) return false;
-                            for (const size_t a : {size_t(q) - 1, size_t(q)}) {  // the segments on either side (q - 1 wraps past 0: skipped)
-                                if (a + 1 < other.size() && segment_distance_sq(path[k], path[k], other[a], other[a + 1]) < want * want) crowded[k] = 1;
+                            for (const size_t a : {size_t(q) - 1, size_t(q)}) {  // the segments on either side (q - 1 wraps at 0: skipped)
+                                if (a < other.size() && a + 1 < other.size() && segment_distance_sq(path[k], path[k], other[a], other[a + 1]) < want * want) crowded[k] = 1;
                             }
                             return !crowded[k];
                         });

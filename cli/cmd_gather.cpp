@@ -10,9 +10,11 @@
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
 #include "ops/gather.h"
+#include "ops/hairline.h"
 
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 namespace groom::cli {
 namespace {
@@ -23,6 +25,7 @@ struct Args {
     ScalpBuildParams scalp_params;
     GatherParams params;
     RegionOptions region;
+    std::string forward = "0,0,1";
     CurlOptions curl;
 };
 
@@ -68,6 +71,8 @@ void setup(CommandContext& ctx)
     app->add_option("-o,--output", args->output, "Output curves: the gathered hairs (kind 1) and the bands (kind 2)")->required();
     app->add_option("--bands-out", args->bands_out, "Write the bands to this file instead of with the hairs");
     add_region_options(app, args->region);
+    app->add_option("--forward", args->forward, "X,Y,Z: the direction the face looks (for the default hairline, without --hairline)")
+        ->capture_default_str();
     app->add_option("--hairs", p.hairs, "Gathered hairs over the haired scalp outside the puffs' bases, >= 1")->capture_default_str();
     app->add_option("--lift", p.lift, "Greatest height of the gathered hair above the scalp, scene units, > 0")->capture_default_str();
     app->add_option("--step", p.step, "Spacing of a hair's points along the scalp, scene units, > 0")->capture_default_str();
@@ -113,7 +118,26 @@ void setup(CommandContext& ctx)
         for (const std::string& f : args->puffs) puffs.push_back(read_puff(f));
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
-        std::unique_ptr<HairRegion> region = make_region(region_options, *scalp);
+        // Without --hairline, the head's default one (as edges and sections take it): the whole
+        // scalp laid hair over Sintel's face, neck and chest into the puff without a word (a trial,
+        // on the command line and from Blender, whose panel says "none: groom's default hairline").
+        std::optional<CurveSet> default_hairline;
+        if (region_options.hairline.empty()) {
+            HairlineParams hp;
+            hp.up = parse_float3("--up", region_options.up);
+            hp.forward = parse_float3("--forward", args->forward);
+            HairlineReport report;
+            try {
+                default_hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);
+                for (const auto& [is_warning, m] : report.messages("gather", hp.forward)) is_warning ? warn(common, m) : note(common, m);
+                note(common, "gather: no --hairline: hair grows inside the head's default hairline (`groom hairline`); pass --hairline to draw your own");
+            }
+            catch (const InvalidGeometry& e) {
+                warn(common, "gather: warning: no --hairline, and no default hairline could be made (" + std::string(e.what()) +
+                                 "): hair grows over the whole scalp, face included; pass --hairline");
+            }
+        }
+        std::unique_ptr<HairRegion> region = make_region(region_options, *scalp, default_hairline ? &*default_hairline : nullptr);
         if (!region) region = std::make_unique<HairRegion>(*scalp, CurveSet(), CurveSet(), HairRegionParams{});  // the whole scalp
         const GatherResult r = gather(*scalp, scalp_root_sampler(*scalp), puffs, *region, params, progress.get());
         if (args->bands_out.empty()) {

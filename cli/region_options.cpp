@@ -22,14 +22,14 @@ CurveSet read_hairline(const std::string& path, const CommonOptions* common)
     return read_curves(path, ro);
 }
 
-std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp)
+std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp, const CurveSet* hairline_if_none)
 {
     HairRegionParams params = o.params;
     params.up = parse_float3("--up", o.up);
     params.validate();
-    if (!o.given()) return nullptr;
+    if (!o.given() && !hairline_if_none) return nullptr;
     // Readers name the file in their own errors.
-    const CurveSet hairline = o.hairline.empty() ? CurveSet() : read_hairline(o.hairline);
+    const CurveSet hairline = !o.hairline.empty() ? read_hairline(o.hairline) : hairline_if_none ? *hairline_if_none : CurveSet();
     const CurveSet partings = o.parting.empty() ? CurveSet() : read_curves(o.parting);
     try {
         return std::make_unique<HairRegion>(scalp, hairline, partings, params);
@@ -37,7 +37,7 @@ std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& s
     catch (const InvalidGeometry& e) {
         // The region names `hairline` or `parting`; the user typed a file.
         const std::string what = e.what();
-        const std::string file = what.rfind("hairline", 0) == 0 ? o.hairline : o.parting;
+        const std::string file = what.rfind("hairline", 0) == 0 ? (o.hairline.empty() ? std::string("the default hairline") : o.hairline) : o.parting;
         throw InvalidGeometry(file + ": " + what);
     }
 }

@@ -33,7 +33,8 @@ struct CommonOptions;
 CurveSet read_hairline(const std::string& path, const CommonOptions* common = nullptr);
 
 /// The region the options describe, or null when neither --hairline nor --parting is given.
+/// `hairline_if_none`: the hairline to use when no --hairline is given (gather's default one).
 /// Throws InvalidParam / InvalidGeometry naming the option or file.
-std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp);
+std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp, const CurveSet* hairline_if_none = nullptr);
 
 }  // namespace groom::cli

@@ -66,7 +66,14 @@ std::vector<float3> vertex_normals(const PolygonSoup& mesh, std::vector<std::arr
             for (int32_t v : t) n[v] += fn;
         }
     }
-    for (float3& v : n) v = normalize(v, float3(0, 0, 0));
+    // Turned outward where the winding runs inward throughout (the ponytail head's is left-handed):
+    // the signed volume, positive for an outward closed surface, tells which way it runs, and the
+    // normals' sign which side of the surface a sample shows (draw_segment). Shading is two-sided
+    // and does not change.
+    double volume = 0.0;
+    for (const auto& t : tris) volume += double(dot(mesh.points[t[0]], cross(mesh.points[t[1]], mesh.points[t[2]])));
+    const float sign = volume < 0.0 ? -1.0f : 1.0f;
+    for (float3& v : n) v = normalize(v, float3(0, 0, 0)) * sign;
     return n;
 }
 
@@ -180,6 +187,9 @@ struct Buffers {
     int ws, hs;
     std::vector<float> depth;
     std::vector<uint32_t> color;
+    /// 1 where the sample shows the inside of the scalp (its far wall through an eye hole or a neck
+    /// cut): hair must be in front of it by its centreline, not by its tube (draw_segment).
+    std::vector<uint8_t> inner;
 };
 
 void draw_triangle(const Prepared& p, const std::array<int32_t, 3>& t, const Rect& tile, const RenderParams& params, Buffers& buf)
@@ -205,10 +215,12 @@ void draw_triangle(const Prepared& p, const std::array<int32_t, 3>& t, const Rec
             const size_t idx = size_t(y) * size_t(buf.ws) + size_t(x);
             if (!(d < buf.depth[idx])) continue;
             float3 n = normalize(p.vn[a] * w0 + p.vn[b] * w1 + p.vn[c] * w2, float3(0, 0, -1));
-            if (n.z > 0.0f) n = -n;  // two-sided: inside-out or inconsistently wound meshes still shade
+            const bool inner = n.z > 0.0f;  // facing away from the viewer: the surface's inside
+            if (inner) n = -n;  // two-sided: inside-out or inconsistently wound meshes still shade
             const float diffuse = std::max(0.0f, dot(n, kViewer));
             const float key = std::max(0.0f, dot(n, kKey));
             buf.depth[idx] = d;
+            buf.inner[idx] = inner ? 1 : 0;
             buf.color[idx] = pack(params.scalp_color * (0.18f + 0.55f * diffuse + 0.40f * key));
         }
     }
@@ -264,6 +276,7 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
         const float dy = sy - ay;
         float* depth_row = buf.depth.data() + size_t(y) * size_t(buf.ws);
         uint32_t* color_row = buf.color.data() + size_t(y) * size_t(buf.ws);
+        uint8_t* inner_row = buf.inner.data() + size_t(y) * size_t(buf.ws);
         for (int x = xa; x <= xb; ++x) {
             const float dx = float(x) + 0.5f - ax;
             const float t = std::clamp((dx * ex + dy * ey) * inv_len2, 0.0f, 1.0f);
@@ -281,10 +294,16 @@ void draw_segment(const Prepared& p, uint32_t i, const Rect& tile, Buffers& buf)
             const float cosv = std::sqrt(std::max(0.0f, 1.0f - dist2 / r2));
             const float d = centre_depth - rw * cosv;
             if (!(d < depth_row[x])) continue;
+            // The tube's near side lets hair lying on the scalp win over it. Seen from inside the
+            // head, hair lying just outside its far wall won the same way and filled the eye holes
+            // of Sintel's open bust with the gathered hair behind (a trial): there the centreline
+            // must be in front.
+            if (inner_row[x] && !(centre_depth < depth_row[x])) continue;
             const float cue = 1.0f - cue_scale * (centre_depth - p.dmin);
             const float light = (light0 + 0.50f * cosv) * cue;
             const float s = spec * cosv;
             depth_row[x] = d;
+            inner_row[x] = 0;
             color_row[x] = pack((t < 0.5f ? base0 : base1) * light + float3(s, s, s));
         }
     }
@@ -393,6 +412,7 @@ RgbImage render(const RenderScene& scene, const Camera& camera_in, const RenderP
     Buffers buf{p.ws, p.hs, {}, {}};
     buf.depth.assign(size_t(p.ws) * size_t(p.hs), std::numeric_limits<float>::infinity());
     buf.color.assign(buf.depth.size(), pack(params.background));
+    buf.inner.assign(buf.depth.size(), 0);
     ProgressStep step(progress, "render", int64_t(num_tiles));
     parallel_for(int64_t(num_tiles), 1, [&](int64_t tb, int64_t te) {
         for (int64_t t = tb; t < te; ++t) {

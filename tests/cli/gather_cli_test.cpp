@@ -131,6 +131,41 @@ TEST(GatherCli, UnitsPerCmScalesEveryCentimetreDefault)
                                           "--band-thickness", "0.12", "--parting-gap", "0.3"}));
 }
 
+// Without --hairline, gather grows hair inside the head's default hairline, the one `groom hairline`
+// writes: the same bytes as with that file, and no root below it. Before, the whole scalp was
+// gathered: on Sintel's bust hair ran over the face, neck and chest into the puff (a trial).
+TEST(GatherCli, WithoutAHairlineHairGrowsInsideTheDefaultOne)
+{
+    TempDir dir;
+    const std::string scalp = dir.file("head.vdb");
+    ASSERT_EQ(run_groom({"scalp", sphere_scalp(dir), "-o", scalp}).exit_code, 0);
+    const std::vector<std::string> puffs = make_puffs(dir, scalp);
+    const std::string hairline = dir.file("hairline.usda");
+    ASSERT_EQ(run_groom({"hairline", "--scalp", scalp, "-o", hairline, "-q"}).exit_code, 0);
+    const std::vector<std::string> base{"gather", puffs[0], puffs[1], "--scalp", scalp, "--hairs", "300", "--seed", "2"};
+    std::vector<std::string> plain = base, drawn = base;
+    plain.insert(plain.end(), {"-o", dir.file("plain.usda")});
+    drawn.insert(drawn.end(), {"-o", dir.file("drawn.usda"), "--hairline", hairline, "-q"});
+    const auto r = run_groom(plain);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("no --hairline: hair grows inside the head's default hairline"), std::string::npos) << r.err;
+    ASSERT_EQ(run_groom(drawn).exit_code, 0);
+    EXPECT_TRUE(test::read_bytes(dir.file("plain.usda")) == test::read_bytes(dir.file("drawn.usda")));
+    const CurveSet g = read_curves(dir.file("plain.usda"));
+    const auto kind = g.find<int32_t>(Domain::Curve, "kind");
+    ASSERT_EQ(kind.size(), g.num_curves());
+    const CurveSet h = read_curves(hairline);
+    float lowest_hairline = 1e30f;
+    for (const float3& q : h.positions()) lowest_hairline = std::min(lowest_hairline, q.y);
+    int hairs = 0;
+    for (size_t c = 0; c < g.num_curves(); ++c) {
+        if (kind[c] != 1) continue;
+        ++hairs;
+        EXPECT_GE(g.positions()[size_t(g.points_of(c).begin)].y, lowest_hairline - 1e-3f) << "hair " << c << " roots below the hairline";
+    }
+    EXPECT_GT(hairs, 100);
+}
+
 TEST(GatherCli, RefusesHairlinesAndPartingsThatCannotBeRead)
 {
     TempDir dir;

@@ -172,6 +172,50 @@ TEST(Render, HeadHidesCurveBehindItAndShowsCurveInFront)
     EXPECT_FALSE(is_red(im.at(50, 50)));
 }
 
+// Through a hole in the scalp (an eye hole, a neck cut) the camera sees the inside of the far wall.
+// A hair lying just outside that wall, nearer to it than its own radius, is behind it: hidden, not
+// drawn over it by the tube's near side that lets hair lying on the scalp win over the scalp (the
+// gathered hair at the back of Sintel's head filled her eye holes, a trial). From behind, the same
+// hair lies on the outside and shows; a hair inside the shell shows through the hole.
+TEST(Render, HairJustOutsideTheFarWallIsHiddenThroughAHole)
+{
+    PolygonSoup shell = uv_sphere({0, 0, 0}, 1.0f);
+    PolygonSoup open;  // the shell without the faces facing the camera (z > 0.6)
+    open.points = shell.points;
+    for (size_t f = 0; f < shell.num_faces(); ++f) {
+        const auto face = shell.face(f);
+        float z = 0.0f;
+        for (const int32_t v : face) z += shell.points[size_t(v)].z / float(face.size());
+        if (z <= 0.6f) open.add_face(face);
+    }
+    RenderParams p = small_params();
+    p.default_width_px = 4.0f;  // 2 pixels of 0.015 units: a radius of 0.03, more than the hair's gap below
+    Camera front = front_ortho();
+    front.ortho_height = 1.5f;
+    const CurveSet outside = polyline({{-0.2f, 0.0f, -1.02f}, {0.2f, 0.0f, -1.02f}});
+    const CurveSet inside = polyline({{-0.2f, 0.0f, -0.9f}, {0.2f, 0.0f, -0.9f}});
+    RenderScene scene;
+    scene.mesh = &open;
+    scene.curves = {&outside};
+    EXPECT_EQ(count_red(render(scene, front, p)), 0) << "a hair behind the far wall shows through the hole";
+    Camera back = front;
+    back.eye = {0, 0, -10};
+    EXPECT_GT(count_red(render(scene, back, p)), 50) << "seen from behind, the hair lies on the outside";
+    scene.curves = {&inside};
+    EXPECT_GT(count_red(render(scene, front, p)), 50) << "a hair inside the shell is seen through the hole";
+    // Wound inward throughout (as the ponytail head is), the same.
+    PolygonSoup inward;
+    inward.points = open.points;
+    for (size_t f = 0; f < open.num_faces(); ++f) {
+        const auto face = open.face(f);
+        std::vector<int32_t> reversed(face.rbegin(), face.rend());
+        inward.add_face(reversed);
+    }
+    scene.mesh = &inward;
+    scene.curves = {&outside};
+    EXPECT_EQ(count_red(render(scene, front, p)), 0) << "inward winding";
+}
+
 TEST(Render, NearerCurveWinsAtACrossing)
 {
     CurveSet near_curve = polyline({{-1, 0, 1}, {1, 0, 1}});

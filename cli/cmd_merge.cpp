@@ -50,6 +50,14 @@ std::vector<size_t> shard_order(const std::vector<std::string>& paths, const std
         ++tagged;
     }
     if (tagged == 0) return order;
+    // Parts of one run carry the same run key (parts written before it was kept carry none).
+    for (size_t k = 0; k < parts.size(); ++k) {
+        const std::string run = parts[k].detail_string(kShardRunDetail), first = parts[first_tagged].detail_string(kShardRunDetail);
+        if (!run.empty() && !first.empty() && run != first) {
+            throw InvalidParam("merge: " + paths[first_tagged] + " and " + paths[k] + " are shards of different runs (their commands differ in more " +
+                               "than the shard and the output, or they are of different frames): give the shards of one --shard run");
+        }
+    }
     if (tagged != parts.size()) {
         const size_t plain = size_t(std::find(index.begin(), index.end(), -1) - index.begin());
         throw InvalidParam("merge: " + paths[first_tagged] + " is shard " + std::to_string(index[first_tagged]) + "/" + std::to_string(count) +
@@ -98,6 +106,7 @@ void setup(CommandContext& ctx)
         CurveSet all = std::move(parts[order[0]]);
         for (size_t k = 1; k < order.size(); ++k) all = join(all, parts[order[k]]);
         all.attributes(Domain::Detail).remove(kShardDetail);
+        all.attributes(Domain::Detail).remove(kShardRunDetail);
         write_curves(all, args->output);
         note(common, "merge: " + std::to_string(all.num_curves()) + " curves, " + std::to_string(all.num_points()) + " points from " +
                          std::to_string(args->inputs.size()) + " files -> " + args->output);

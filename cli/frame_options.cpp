@@ -167,6 +167,35 @@ bool existing_curve_file(const std::string& path)
     return true;
 }
 
+/// kShardRunDetail's value: FNV-1a over the words that make the output (see frame_options.h), each
+/// ended by a zero byte, then the frame and the pose file.
+std::string shard_run_key(const std::vector<std::string>& words, std::optional<long> frame, const std::string& xform_path)
+{
+    std::set<size_t> skip;
+    for (const Slot& s : output_slots(words)) skip.insert(s.index);
+    uint64_t h = 1469598103934665603ull;
+    const auto add = [&h](const std::string& w) {
+        for (const char c : w) h = (h ^ uint8_t(c)) * 1099511628211ull;
+        h = (h ^ 0u) * 1099511628211ull;
+    };
+    for (size_t i = 0; i < words.size(); ++i) {
+        const std::string& w = words[i];
+        if (skip.count(i)) continue;
+        if (w == "-q" || w == "--quiet" || w == "-v" || w == "--verbose" || w == "--force") continue;
+        if (w == "--threads" || w == "--memory") {
+            ++i;  // and its value
+            continue;
+        }
+        if (w.rfind("--threads=", 0) == 0 || w.rfind("--memory=", 0) == 0) continue;
+        add(w);
+    }
+    add(frame ? std::to_string(*frame) : std::string("-"));
+    add(xform_path);
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
 /// One frame (or the one run of a shard without frames).
 int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform* pose,
               const std::function<int(std::vector<std::string>&)>& run_one)
@@ -214,6 +243,7 @@ int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform
             words[i] = memory;
         }
     }
+    const std::string run_key = plan.shards > 1 ? shard_run_key(words, frame, plan.xform_path) : std::string();
     std::vector<std::string> argv{"groom"};
     argv.insert(argv.end(), words.begin(), words.end());
     int rc = 0;
@@ -258,7 +288,10 @@ int run_frame(const FramePlan& plan, std::optional<long> frame, const RigidXform
         if (pose) transform_curves(cs, *pose, false);
         // Which part this is, for `groom merge` to put the parts in order and see one missing or
         // given twice (a shell's glob lists shard 10 before shard 2). Merge removes it again.
-        if (plan.shards > 1) cs.set_detail_string(kShardDetail, std::to_string(plan.shard) + "/" + std::to_string(plan.shards));
+        if (plan.shards > 1) {
+            cs.set_detail_string(kShardDetail, std::to_string(plan.shard) + "/" + std::to_string(plan.shards));
+            cs.set_detail_string(kShardRunDetail, run_key);
+        }
         write_curves(cs, outs[k].path, batch);
     }
     batch.commit();
@@ -322,6 +355,31 @@ int run_frames(const std::vector<std::string>& args, const std::function<int(std
                                        " makes " + std::to_string(last - first + 1) +
                                        " frames, and every one would write over this file: name it with a frame pattern (out.####.usda)");
                 }
+            }
+        }
+        // And every frame's input files are there: a missing one was found at its frame, with the
+        // frames before it written (a trial: guides.0003.usda missing, out.0001-0002 left behind).
+        std::set<size_t> out_words;
+        for (const Slot& s : output_slots(plan.words)) out_words.insert(s.index);
+        for (size_t i = 1; i < plan.words.size(); ++i) {
+            std::string pattern = plan.words[i];
+            if (out_words.count(i) || pattern.find('#') == std::string::npos) continue;
+            if (pattern[0] == '-') {
+                const size_t eq = pattern.find('=');
+                if (pattern.rfind("--", 0) != 0 || eq == std::string::npos) continue;
+                pattern = pattern.substr(eq + 1);  // --option=FILE
+            }
+            std::string missing;
+            long n_missing = 0;
+            for (long f = first; f <= last; ++f) {
+                const std::string path = fill_pattern(pattern, f);
+                std::error_code ec;
+                if (std::filesystem::exists(path, ec)) continue;
+                if (++n_missing <= 5) missing += (missing.empty() ? "" : ", ") + path;
+            }
+            if (n_missing > 0) {
+                throw IoError(pattern + ": " + std::to_string(n_missing) + " of the " + std::to_string(last - first + 1) + " frames' files are missing (" +
+                              missing + (n_missing > 5 ? ", ..." : "") + "); no frame was run");
             }
         }
     }

@@ -47,5 +47,11 @@ ShardRequest& current_shard();
 /// order the parts and refuses a set with one missing or repeated, then drops it, so the merged
 /// file is the whole run's, byte for byte. Formats without detail values (.hair) lose it.
 inline constexpr const char* kShardDetail = "shard";
+/// Beside it, which run the part is of: 16 hex digits hashing the command's words (frame numbers
+/// filled in) without its outputs and the options that change no output byte (--threads, --quiet,
+/// --verbose, --force, --memory), with the frame and the pose file. `groom merge` refuses parts of
+/// different runs (a trial merged a part of a 4,000-hair run, one of another seed and one of
+/// another frame with a 5,000-hair run's, and got a groom of 4,666 hairs without a word).
+inline constexpr const char* kShardRunDetail = "shard_run";
 
 }  // namespace groom::cli

@@ -142,7 +142,11 @@ TEST(FramesCli, PatternsAreFilledPerFrameAndAnOutputWithoutOneIsRefused)
     const auto missing = run_groom({"generate", dir.file("guides.####.usda"), "--scalp", scalp, "--count", "50", "--frames", "3:6", "-o",
                                     dir.file("m.####.usda"), "--quiet"});
     EXPECT_NE(missing.exit_code, 0);
+    EXPECT_NE(missing.err.find("1 of the 4 frames' files are missing"), std::string::npos) << missing.err;
     EXPECT_NE(missing.err.find("guides.0006.usda"), std::string::npos) << missing.err;
+    // Found before any frame runs: frames 3-5, which have their guides, are not written either (a
+    // trial's farm job wrote the frames before the missing one, then stopped).
+    for (int f = 3; f <= 6; ++f) EXPECT_FALSE(std::filesystem::exists(frame_file(dir, "m", f, "usda"))) << f;
 
     // With --scalp-xform or --shard the command writes through memory; the real file is still
     // refused when it is an input.

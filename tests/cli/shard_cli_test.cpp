@@ -164,3 +164,39 @@ TEST(Shard, MergeOrdersShardsAndRefusesMissingOrRepeatedOnes)
     EXPECT_NE(mixed.err.find("whole.usda is not a shard"), std::string::npos) << mixed.err;
     EXPECT_FALSE(std::filesystem::exists(bad));
 }
+
+// Each part carries which run it is of: parts of another run (another --seed, --count or --type),
+// or of another frame, are refused by name; parts of one run written with other thread counts or
+// verbosity are the same run (a trial merged a 4,000-hair run's part into a 5,000-hair run's and
+// got 4,666 hairs, and a part of frame 2 into frame 1, without a word).
+TEST(Shard, MergeRefusesPartsOfAnotherRunOrFrame)
+{
+    test::TempDir dir;
+    write_guides(dir);
+    for (int f = 1; f <= 2; ++f) std::filesystem::copy_file(dir.file("guides.usda"), dir.file("g." + std::to_string(f) + ".usda"));
+    const auto part = [&](const std::string& name, int shard, const std::string& type, const std::string& seed, std::vector<std::string> extra) {
+        std::vector<std::string> args{"curl", dir.file("g.#.usda"), "--type", type, "--seed", seed, "--frames", "1:2", "-o", dir.file(name + ".#.usda"),
+                                      "--shard", std::to_string(shard) + "/2", "--quiet"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto r = run_groom(args);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+    };
+    part("a0", 0, "3b", "7", {"--threads", "1"});
+    part("a1", 1, "3b", "7", {"--threads", "2", "--verbose"});  // the same run
+    part("seed", 1, "3b", "8", {});
+    part("type", 1, "4a", "7", {});
+    const auto merge = [&](const std::string& first, const std::string& second) {
+        return run_groom({"merge", dir.file(first), dir.file(second), "-o", dir.file("m.usda"), "--force"});
+    };
+    const auto same = merge("a0.1.usda", "a1.1.usda");
+    EXPECT_EQ(same.exit_code, 0) << same.err;
+    EXPECT_TRUE(read_curves(dir.file("m.usda")).detail_string("shard_run").empty());
+    for (const auto& [second, why] : std::vector<std::pair<std::string, std::string>>{
+             {"seed.1.usda", "another seed"}, {"type.1.usda", "another type"}, {"a1.2.usda", "another frame"}}) {
+        std::filesystem::remove(dir.file("m.usda"));
+        const auto r = merge("a0.1.usda", second);
+        EXPECT_EQ(r.exit_code, 2) << why;
+        EXPECT_NE(r.err.find("are shards of different runs"), std::string::npos) << why << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir.file("m.usda"))) << why;
+    }
+}

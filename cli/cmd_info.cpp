@@ -131,7 +131,7 @@ void info_curves(const Args& a, const CommonOptions& common)
     std::cout << o.str();
 }
 
-void info_mesh(const Args& a)
+void info_mesh(const Args& a, const CommonOptions& common)
 {
     const PolygonSoup soup = read_mesh(a.input, a.group);
     const std::vector<MeshGroup> groups = read_mesh_groups(a.input);
@@ -176,6 +176,12 @@ void info_mesh(const Args& a)
         for (const MeshGroup& g : groups) o << "  group " << (g.name) << "  " << g.faces << " faces\n";
     }
     std::cout << o.str();
+    if (s.vertices == 0) {
+        // Described as it is, and said: Blender 3.4 writes such a file for a hair Curves object (a
+        // trial exported the add-on's results and got a header alone, which info reported silently).
+        warn(common, "info: warning: " + a.input + " holds no geometry (no vertices): did its exporter write nothing? (Blender 3.4's OBJ and PLY " +
+                         "exporters write an empty file for a hair Curves object)");
+    }
 }
 
 /// A .vdb scalp: what every --scalp query of it will use. Read as any command reads it (the same
@@ -265,7 +271,7 @@ void setup(CommandContext& ctx)
         }
         if (curves && !args->group.empty()) throw InvalidParam("info: --group applies to meshes; " + args->input + " holds curves");
         if (curves) info_curves(*args, common);
-        else info_mesh(*args);
+        else info_mesh(*args, common);
     };
 }
 

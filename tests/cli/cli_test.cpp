@@ -163,6 +163,20 @@ TEST(Cli, DashMeansStdinAndStdout)
     EXPECT_NE(info.out.find("\"curves\": 2"), std::string::npos) << info.out;
 }
 
+// A mesh file with nothing in it (Blender 3.4's exporters write one for a hair Curves object) is
+// described, and said to hold no geometry; a trial's info reported "vertices 0" without a word.
+TEST(CliInfo, AFileWithNoGeometryIsSaidToHoldNone)
+{
+    TempDir dir;
+    write_text(dir.file("empty.obj"), "# Blender v3.4.1 OBJ File: ''\n# www.blender.org\n");
+    const auto r = run_groom({"info", dir.file("empty.obj")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("vertices            0"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("holds no geometry"), std::string::npos) << r.err;
+    write_text(dir.file("tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_EQ(run_groom({"info", dir.file("tri.obj")}).err.find("no geometry"), std::string::npos);
+}
+
 TEST(CliInfo, CurvesTextAndJson)
 {
     TempDir dir;

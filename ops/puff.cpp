@@ -112,6 +112,15 @@ CurveSet puff_guides(const Surface& scalp, const PuffParams& params, Progress* p
     // The region: a disc in the tangent plane at c0; the cap: around the axis from c0 to the centre.
     const float3 c0 = scalp.closest_point(params.center);
     const float3 n0 = scalp.normal(c0);
+    // The region is centred where `center` lands on the scalp. Far off the scalp that is anywhere (a
+    // centre 125 units off Sintel's head landed on her chest and the guides were refused as "two
+    // guides touch", a trial): say what is wrong with it instead.
+    const float off = std::fabs(scalp.distance(params.center));
+    if (off > 2.0f * params.radius) {
+        throw InvalidParam("puff: `center` " + str(params.center) + " is " + str(off) + " from the scalp, more than twice the region's `radius` " +
+                           str(params.radius) + ": the puff's base would be where it lands on the scalp, " + str(c0) +
+                           "; give a centre on the scalp where the puff should sit");
+    }
     if (!(dot(params.sphere_center - c0, n0) > 0.0f)) {
         throw InvalidParam("puff: `sphere_center` " + str(params.sphere_center) + " must lie above the region, on the outer side of the scalp at " +
                            str(c0) + " (normal " + str(n0) + ")");

@@ -270,6 +270,25 @@ TEST(Puff, TipInsideTheHeadIsRefused)
     }
 }
 
+// The region is centred where `center` lands on the scalp; a centre far off the scalp (a trial's
+// was 125 units off Sintel's head, and the puff was refused as "two guides touch") is refused as
+// what it is, naming the centre and where it would land. Twice the region's radius off is the limit.
+TEST(Puff, ACentreFarOffTheScalpIsRefusedAsSuch)
+{
+    const AnalyticSphere head(kHeadC, kHeadR);
+    PuffParams p = top_puff();
+    p.center = kHeadC + float3(0, kHeadR + 1.9f * p.radius, 0);  // off, but within twice the radius: on the pole
+    EXPECT_NO_THROW(puff_guides(head, p));
+    p.center = kHeadC + float3(0, kHeadR + 2.1f * p.radius, 0);
+    try {
+        puff_guides(head, p);
+        FAIL() << "expected InvalidParam";
+    }
+    catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("from the scalp, more than twice the region's `radius`"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Puff, RejectsInvalidParams)
 {
     auto message = [](const PuffParams& p) {

@@ -45,6 +45,15 @@ void setup(CommandContext& ctx)
         std::snprintf(buf, sizeof buf, "project (%s): %lld curves, %lld points moved (at most %.4g) -> %s", a.mode.c_str(),
                       static_cast<long long>(stats.curves), static_cast<long long>(stats.points_moved), stats.max_move, a.output.c_str());
         note(common, buf);
+        // Curves in other units than the scalp (a trial's guides in cm on a body in metres moved by
+        // up to 91 onto a body 0.9 across, without a word): a move larger than half the scalp is
+        // no projection.
+        const Bounds3 box = scalp->bounds();
+        const float size = box.empty() ? 0.0f : length(box.size());
+        if (size > 0.0f && stats.max_move > 0.5 * double(size)) {
+            warn(common, "project: warning: curves moved by up to " + format_number(float(stats.max_move)) + ", more than half the scalp's size (" +
+                             format_number(size) + " across): are the curves and the scalp in the same units and place? (groom transform --units, --translate)");
+        }
     };
 }
 

@@ -81,6 +81,15 @@ GatherResult gather(const Surface& scalp, const RootSampler& sample, const std::
         if (!(p.base_radius > 0.0f) || !(p.sphere_radius > 0.0f) || !isfinite(p.base) || !isfinite(p.sphere_center)) {
             throw InvalidGeometry("gather: puff " + std::to_string(k) + " has no valid base or sphere (puff_radius and puff_sphere_radius must be > 0)");
         }
+        // A puff made on another head (groom puff puts the base on the scalp, so within the level
+        // set's error of it): its hair would run from this scalp to a base elsewhere (a
+        // trial gathered Sintel's hair, over her face, into a puff made on ICT's head, exit 0).
+        const float off = std::fabs(scalp.distance(p.base));
+        if (!(off <= 0.25f * p.base_radius)) {
+            throw InvalidGeometry("gather: puff " + std::to_string(k) + "'s base (puff_base " + format_xyz(p.base) + ") is " + format_number(off) +
+                                  " from this scalp, more than a quarter of its radius " + format_number(p.base_radius) +
+                                  ": was it made on another scalp? Run groom puff on this one");
+        }
         if (!(p.cap_angle >= 0.0f && p.cap_angle < 180.0f)) {
             throw InvalidGeometry("gather: puff " + std::to_string(k) + "'s puff_cap_angle must be in (0, 180) degrees, or absent (got " +
                                   format_number(p.cap_angle) + ")");

@@ -211,6 +211,19 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
     double rate = 1.0;
     for (uint64_t batch = 0; int64_t(out.size()) < params.count; ++batch) {
         if (batch == 64) {
+            // Guides in other units or another place than the scalp leave no root within reach: say
+            // so rather than point at `max_angle` (a trial's guides in cm on a body in metres).
+            std::vector<float> off(roots.size());
+            for (size_t g = 0; g < roots.size(); ++g) off[g] = std::fabs(scalp.distance(roots[g]));
+            std::nth_element(off.begin(), off.begin() + std::ptrdiff_t(off.size() / 2), off.end());
+            const float median = off[off.size() / 2];
+            const double reach = use_footprint ? footprint : double(radius);
+            if (double(median) > reach) {
+                throw LimitExceeded("generate: found only " + std::to_string(out.size()) + " of " + std::to_string(params.count) +
+                                    " roots: the guides' roots lie a median " + format_number(median) + " from the scalp, farther than roots are " +
+                                    "looked for around them (" + format_number(float(reach)) + "): are the guides and the scalp in the same " +
+                                    "units and place? (groom transform --units, --translate)");
+            }
             throw LimitExceeded("generate: found only " + std::to_string(out.size()) + " of " +
                                 std::to_string(params.count) + " roots on the scalp inside the " +
                                 (use_footprint ? std::string("guides' footprint") : std::string("`region` ball")) +

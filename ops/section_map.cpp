@@ -416,8 +416,10 @@ float3 SectionMap::hit(const float3& dir) const
 {
     float3 x;
     if (!scalp_.first_intersection(c_ + dir * reach_, c_, x, 1e-5f * reach_)) {
-        throw InvalidGeometry("sections: no scalp along the ray from the hairline's centroid " + format_xyz(c_) + " toward " + format_xyz(dir) +
-                              " (is the centroid inside the head?)");
+        // Begins "sections: the hairline" so the command names the file (a trial's hairline was
+        // made on another head, and the message did not say which file or why).
+        throw InvalidGeometry("sections: the hairline's centroid " + format_xyz(c_) + " is not inside the head: no scalp along the ray toward " +
+                              format_xyz(dir) + " (was the hairline made on another head, or in other units?)");
     }
     return x;
 }

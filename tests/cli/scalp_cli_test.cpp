@@ -69,6 +69,13 @@ TEST(ScalpCli, ProjectAndCullCurves)
     CurveSet p = read_curves(dir.file("p.obj"));
     EXPECT_NEAR(p.positions()[0].y, 1.1f, 0.01f);
     EXPECT_NEAR(p.positions()[2].y, 1.7f, 0.01f);
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+    // Curves in other units (100 times the sphere's size: cm on a scalp in metres) are moved, and
+    // said to have moved by more than half the scalp (a trial's moved by 91 onto a body 0.9 across).
+    write_text(dir.file("far.obj"), "v 0 120 0\nv 0 150 0\nv 0 180 0\nl 1 2 3\n");
+    r = run_groom({"project", dir.file("far.obj"), "--scalp", dir.file("s.vdb"), "-o", dir.file("far_p.obj")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("more than half the scalp's size"), std::string::npos) << r.err;
     r = run_groom({"cull", dir.file("c.obj"), "--scalp", dir.file("s.vdb"), "-o", dir.file("k.obj"), "--mode", "delete"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("1 of 2 curves affected"), std::string::npos) << r.err;

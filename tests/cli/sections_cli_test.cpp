@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 using namespace groom;
@@ -126,6 +127,20 @@ TEST(SectionsCli, BadOptionsAreUsageErrorsNamingTheOption)
     const auto bad = run_groom({"sections", "--scalp", head, "-o", out, "--hairline", dir.file("two.obj")});
     EXPECT_EQ(bad.exit_code, 1) << bad.err;
     EXPECT_NE(bad.err.find("hairline"), std::string::npos) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    // A hairline made on another head (a small one below this one's chin): named, with why.
+    std::string other_obj;
+    for (int i = 0; i < 16; ++i) {
+        const double a = 6.283185307179586 * i / 16.0;
+        other_obj += "v " + std::to_string(std::cos(a)) + " -30 " + std::to_string(std::sin(a)) + "\n";
+    }
+    other_obj += "l";
+    for (int i = 1; i <= 16; ++i) other_obj += " " + std::to_string(i);
+    test::write_text(dir.file("other.obj"), other_obj + " 1\n");
+    const auto other = run_groom({"sections", "--scalp", head, "-o", out, "--hairline", dir.file("other.obj")});
+    EXPECT_EQ(other.exit_code, 1) << other.err;
+    EXPECT_NE(other.err.find("other.obj: sections: the hairline's centroid"), std::string::npos) << other.err;
+    EXPECT_NE(other.err.find("made on another head"), std::string::npos) << other.err;
     EXPECT_FALSE(std::filesystem::exists(out));
     // Two outputs on one file.
     const auto same = run_groom({"sections", "--scalp", head, "-o", out, "--partings-out", out});

@@ -293,6 +293,30 @@ TEST(Gather, RejectsBadParamsAndMissingPuffs)
     }
 }
 
+// A puff made on another head: its base (groom puff puts it on the scalp) is off this scalp. Moved
+// out by a quarter of its radius or less (the level set's error, and more) it still gathers; farther,
+// it is refused naming the puff and the distance (a trial gathered Sintel's hair over her face into
+// a puff made on ICT's head).
+TEST(Gather, APuffWhoseBaseIsOffThisScalpIsRefused)
+{
+    TwoPuffs t;
+    GatherParams p = small_params();
+    p.hairs = 200;
+    std::vector<GatherPuff> moved = t.puffs;
+    const float3 out = normalize(moved[1].base - kC);
+    moved[1].base = moved[1].base + out * (0.2f * moved[1].base_radius);
+    EXPECT_NO_THROW(gather(t.head, whole_sphere(), moved, t.region, p));
+    moved[1].base = t.puffs[1].base + out * (0.3f * moved[1].base_radius);
+    try {
+        gather(t.head, whole_sphere(), moved, t.region, p);
+        FAIL() << "expected InvalidGeometry";
+    }
+    catch (const InvalidGeometry& e) {
+        EXPECT_NE(std::string(e.what()).find("puff 1's base"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("another scalp"), std::string::npos) << e.what();
+    }
+}
+
 // A puff written before `puff_cap_angle` was kept still gathers: each tip goes straight out onto the
 // sphere, as it did. A cap angle outside (0, 180) is refused, naming the attribute.
 TEST(Gather, PuffWithoutItsCapAngleAndABadOne)

@@ -518,6 +518,25 @@ TEST(Generate, RegionOffTheScalpIsRefused)
     }
 }
 
+// Guides in other units or place than the scalp (a trial's in cm on a body in metres): no root is
+// found around them, and the message says where the guides are rather than point at `max_angle`.
+TEST(Generate, GuidesFarFromTheScalpAreNamedAsSuch)
+{
+    const AnalyticSphere head(kC, kR);
+    CurveSet far = pole_guides();
+    for (float3& p : far.positions_for_write()) p = p * 100.0f;  // the sphere's guides, 100 times too big
+    GenerateParams params;
+    params.count = 10;
+    try {
+        scatter_roots(far, head, test::sphere_cap_sampler(kC, kR), params);
+        FAIL() << "expected LimitExceeded";
+    }
+    catch (const LimitExceeded& e) {
+        EXPECT_NE(std::string(e.what()).find("the guides' roots lie a median"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("same units"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Generate, RootsOnlyInsideTheHairlineAndOffThePartings)
 {
     // A level circular hairline 0.95 R up the sphere and a parting along the x = 0 great circle: the

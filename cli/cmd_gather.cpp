@@ -118,6 +118,7 @@ void setup(CommandContext& ctx)
         for (const std::string& f : args->puffs) puffs.push_back(read_puff(f));
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        warn_scene_scale(common, "gather", scalp->bounds(), u, "the defaults (the curl's radius, the widths, --lift, --step, the band)");
         // Without --hairline, the head's default one (as edges and sections take it): the whole
         // scalp laid hair over Sintel's face, neck and chest into the puff without a word (a trial,
         // on the command line and from Blender, whose panel says "none: groom's default hairline").

@@ -3,6 +3,7 @@
 #include "cli/command.h"
 #include "cli/curl_options.h"
 #include "cli/scalp_options.h"
+#include "cli/scene_scale.h"
 #include "fields/scalp_field.h"
 #include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
@@ -61,6 +62,9 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
+        // As generate, curl and sections warn (a trial's puff on the Lee Perry-Smith scan, in other
+        // units, said nothing; its curls stood 0.32 off the sphere against 0.056 at the right units).
+        if (params.hairs > 0) warn_scene_scale(common, "puff", scalp->bounds(), params.curl.units_per_cm, "the curl's default radius and the widths");
         const PuffResult r = puff(*scalp, scalp_root_sampler(*scalp), params, progress.get());
         // Everything is computed before anything is written.
         if (args->guides_out.empty()) {

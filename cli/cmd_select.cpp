@@ -77,6 +77,13 @@ void setup(CommandContext& ctx)
         write_curves(out, a.output);
         note(common, "select: " + std::to_string(stats.matched) + " of " + std::to_string(curves.num_curves()) + " curves match, " +
                          std::to_string(stats.kept) + " kept -> " + a.output);
+        if (stats.kept == 0 && curves.num_curves() > 0) {
+            // An empty file was written without a word (a trial's --ids past the input's last id).
+            const std::vector<int64_t> ids = curves.curve_ids(0, curves.num_curves());
+            const auto [lo, hi] = std::minmax_element(ids.begin(), ids.end());
+            warn(common, "select: warning: no curve kept, " + a.output + " holds none (the input's ids run from " + std::to_string(*lo) + " to " +
+                             std::to_string(*hi) + ")");
+        }
     };
 }
 

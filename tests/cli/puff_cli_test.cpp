@@ -50,6 +50,13 @@ TEST(PuffCli, WritesGuidesOnTheSphereAndCurledHairs)
     const auto r = run_groom(puff_args(scalp, out));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("puff: 20 guides, 300 hairs"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // a head 20 cm across: the defaults fit
+    // The same scalp read as metres (--units-per-cm 0.01: a head 2,000 cm across) is warned of, as
+    // generate and curl warn (a trial's puff on a scan in other units said nothing).
+    std::vector<std::string> metres = puff_args(scalp, dir.file("m.usda"));
+    metres.insert(metres.end(), {"--units-per-cm", "0.01"});
+    const auto m = run_groom(metres);
+    EXPECT_NE(m.err.find("puff: warning: the scalp is"), std::string::npos) << m.err;
     const CurveSet cs = read_curves(out);
     ASSERT_EQ(cs.num_curves(), 320u);
     const auto kind = cs.find<int32_t>(Domain::Curve, "kind");

@@ -50,6 +50,12 @@ TEST(SelectCli, KeepsIdsAndComparisonsAndInverts)
     r = run_groom({"select", in, "--where", "width>0.035", "--where", "kind!=1", "--invert", "-o", out, "--force"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(read_curves(out).curve_ids(), (std::vector<int64_t>{0, 10, 20, 30, 50}));
+    EXPECT_EQ(r.err.find("no curve kept"), std::string::npos) << r.err;
+    // Ids past the input's: an empty file, said so with the ids there are (a trial's went unremarked).
+    r = run_groom({"select", in, "--ids", "100-200", "-o", out, "--force"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("no curve kept"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the input's ids run from 0 to 50"), std::string::npos) << r.err;
 }
 
 TEST(SelectCli, BadExpressionNamesTheOptionAndWhatWasExpected)

@@ -271,7 +271,7 @@ class GROOM_OT_gather(_GroomOperator, bpy.types.Operator):
         chosen = [ob for ob in bpy.context.selected_objects if ob.type == 'CURVES' and "groom_puff_base" in ob]
         if not chosen:
             raise ValueError("gather: select the puffs (hair objects made by Groom Puff) to gather the hair into")
-        kw.update(_head(s, forward=False))
+        kw.update(_head(s))  # forward too: with no Hairline object, gather makes the head's default one
         kw.update(_region(s))
         kw.update(_given(s, ("gather_hairs", "lift", "type", "seed"), {"gather_hairs": "hairs"}))
         return groom.gather([convert.curveset_from_object(ob) for ob in chosen], scalp=scalp, **kw)

@@ -176,6 +176,15 @@ if hairline_ob is not None:
             same_as("gather", gathered, expected)
             kind = np.asarray(expected.curve_attributes["kind"])
             check("gather: hairs and bands", (kind == 1).sum() == 200 and (kind == 2).sum() > 0)
+            # No Hairline object: the head's default hairline, oriented by Up and Forward (before,
+            # the whole bust was gathered, face included; a trial).
+            settings.hairline = None
+            for ob in bpy.context.view_layer.objects:
+                ob.select_set(ob in puffs)
+            unbounded = run_op("gather")
+            if unbounded is not None:
+                same_as("gather without a hairline", unbounded, groom.gather(puff_sets, scalp=head_field, up=up, forward=forward, hairs=200))
+            settings.hairline = hairline_ob
     for ob in bpy.context.view_layer.objects:
         ob.select_set(False)
     r = None

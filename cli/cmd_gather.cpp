@@ -127,6 +127,12 @@ void setup(CommandContext& ctx)
             HairlineParams hp;
             hp.up = parse_float3("--up", region_options.up);
             hp.forward = parse_float3("--forward", args->forward);
+            if (!(length(cross(hp.up, hp.forward)) > 1e-3f * length(hp.up) * length(hp.forward))) {
+                // A Z-up scene with the default forward (+Z): said as gather's, not as the hairline's.
+                throw InvalidParam("gather: without --hairline, hair grows inside the head's default hairline, which needs --forward (the " +
+                                   std::string("direction the face looks) not parallel to --up; got --up ") + region_options.up + " and --forward " +
+                                   args->forward + ": pass --forward, or --hairline");
+            }
             HairlineReport report;
             try {
                 default_hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);

@@ -164,6 +164,14 @@ TEST(GatherCli, WithoutAHairlineHairGrowsInsideTheDefaultOne)
         EXPECT_GE(g.positions()[size_t(g.points_of(c).begin)].y, lowest_hairline - 1e-3f) << "hair " << c << " roots below the hairline";
     }
     EXPECT_GT(hairs, 100);
+    // A Z-up scene with the default --forward (+Z, its up): the default hairline cannot be oriented;
+    // said as gather's, naming both options, nothing written.
+    std::vector<std::string> zup = base;
+    zup.insert(zup.end(), {"-o", dir.file("zup.usda"), "--up", "0,0,1"});
+    const auto z = run_groom(zup);
+    EXPECT_EQ(z.exit_code, 2) << z.err;
+    EXPECT_NE(z.err.find("needs --forward"), std::string::npos) << z.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("zup.usda")));
 }
 
 TEST(GatherCli, RefusesHairlinesAndPartingsThatCannotBeRead)

@@ -161,7 +161,9 @@ void setup(CommandContext& ctx)
         std::snprintf(line, sizeof line, "gather: %zu hairs (%zu points) into %zu puffs, %zu band curves, %.2f s -> ", r.hairs.num_curves(),
                       r.hairs.num_points(), puffs.size(), r.bands.num_curves(), secs);
         if (r.roots_without_puff > 0) {
-            note(common, "gather: " + std::to_string(r.roots_without_puff) + " roots lay in sections with no puff and grew no hair");
+            note(common, "gather: " + std::to_string(r.roots_without_puff) + " roots lay in sections with no puff and grew no hair " +
+                             "(a puff serves the section its base's centre lies in: a base on a parting serves one side of it; move the puff " +
+                             "or the parting to give each section its puff)");
         }
         note(common, line + args->output + (args->bands_out.empty() ? "" : " + " + args->bands_out));
     };

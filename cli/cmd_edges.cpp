@@ -113,9 +113,7 @@ void setup(CommandContext& ctx)
             HairlineParams hp;
             hp.up = params.up;
             hp.forward = params.forward;
-            HairlineReport report;
-            hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);
-            for (const auto& [is_warning, m] : report.messages("edges", hp.forward)) is_warning ? warn(common, m) : note(common, m);
+            hairline = reported_hairline("edges", *scalp, scalp->bounds(), hp, common);
         }
         std::optional<HairRegion> region;
         if (partings.num_curves() > 0) region.emplace(*scalp, hairline, partings, region_params);

@@ -133,10 +133,8 @@ void setup(CommandContext& ctx)
                                    std::string("direction the face looks) not parallel to --up; got --up ") + region_options.up + " and --forward " +
                                    args->forward + ": pass --forward, or --hairline");
             }
-            HairlineReport report;
             try {
-                default_hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);
-                for (const auto& [is_warning, m] : report.messages("gather", hp.forward)) is_warning ? warn(common, m) : note(common, m);
+                default_hairline = reported_hairline("gather", *scalp, scalp->bounds(), hp, common);
                 note(common, "gather: no --hairline: hair grows inside the head's default hairline (`groom hairline`); pass --hairline to draw your own");
             }
             catch (const InvalidGeometry& e) {

@@ -2,6 +2,7 @@
 // options of other commands read. Artists may draw their own in a DCC instead: any curve going once
 // around the head is accepted.
 #include "cli/command.h"
+#include "cli/region_options.h"
 #include "cli/scalp_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/io/curve_io.h"
@@ -51,9 +52,7 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
-        HairlineReport report;
-        const CurveSet hairline = make_hairline(*scalp, scalp->bounds(), params, &report);
-        for (const auto& [is_warning, m] : report.messages("hairline", params.forward)) is_warning ? warn(common, m) : note(common, m);
+        const CurveSet hairline = reported_hairline("hairline", *scalp, scalp->bounds(), params, common);
         // Written closed (.usda wrap "periodic", .obj's record back to its first vertex): written
         // open, a DCC showed the hairline with a gap between its last point and its first.
         CurveWriteOptions closed;

@@ -98,9 +98,7 @@ void setup(CommandContext& ctx)
             HairlineParams hp;
             hp.up = params.up;
             hp.forward = params.forward;
-            HairlineReport report;
-            hairline = make_hairline(*scalp, scalp->bounds(), hp, &report);
-            for (const auto& [is_warning, m] : report.messages("sections", hp.forward)) is_warning ? warn(common, m) : note(common, m);
+            hairline = reported_hairline("sections", *scalp, scalp->bounds(), hp, common);
         }
         else {
             hairline = read_hairline(args->hairline, &common);

@@ -22,6 +22,15 @@ CurveSet read_hairline(const std::string& path, const CommonOptions* common)
     return read_curves(path, ro);
 }
 
+CurveSet reported_hairline(const std::string& command, const Surface& scalp, const Bounds3& bounds, const HairlineParams& params,
+                           const CommonOptions& common)
+{
+    HairlineReport report;
+    CurveSet hairline = make_hairline(scalp, bounds, params, &report);
+    for (const auto& [is_warning, m] : report.messages(command, params.forward)) is_warning ? warn(common, m) : note(common, m);
+    return hairline;
+}
+
 std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp, const CurveSet* hairline_if_none)
 {
     HairRegionParams params = o.params;

@@ -4,6 +4,7 @@
 
 #include "fields/surface.h"
 #include "ops/hair_region.h"
+#include "ops/hairline.h"
 
 #include <CLI/CLI.hpp>
 
@@ -31,6 +32,12 @@ struct CommonOptions;
 /// point). Only here is a loop of edges a curve: hairs and guides are open. `common`: the reader's
 /// warnings go through warn(); null = dropped. Throws ParseError / IoError naming the file.
 CurveSet read_hairline(const std::string& path, const CommonOptions* common = nullptr);
+
+/// make_hairline on the scalp, with what it reports (an axis moved to the head's middle, a head that
+/// seems to face away from `forward`) printed as `command`'s notes and warnings: `groom hairline`,
+/// and the commands that make the default hairline when given no --hairline (edges, sections, gather).
+CurveSet reported_hairline(const std::string& command, const Surface& scalp, const Bounds3& bounds, const HairlineParams& params,
+                           const CommonOptions& common);
 
 /// The region the options describe, or null when neither --hairline nor --parting is given.
 /// `hairline_if_none`: the hairline to use when no --hairline is given (gather's default one).

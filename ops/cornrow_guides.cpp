@@ -140,6 +140,67 @@ std::pair<float, float> inside_arc(const HairRegion& region, float lo, float hi,
     return {a0, a1};
 }
 
+/// Cuts each row to the run through its highest point (along `up`) where every point stays `want`
+/// or more from both neighbouring rows' polylines, recording the length cut in `rows`. Neighbours
+/// are measured as they were before any cut. A segment within `want` of a point has an end within
+/// want + half its length of it: the rows' points in kd-trees, walked outward to that reach, and
+/// their segments tested.
+void trim_crowded_rows(std::vector<std::vector<float3>>& paths, const float3& up, double want, std::vector<CornrowGuides::Row>& rows)
+{
+    const int64_t n = int64_t(paths.size());
+    std::vector<PointIndex> index;
+    std::vector<double> longest(paths.size(), 0.0);
+    for (size_t i = 0; i < paths.size(); ++i) {
+        index.emplace_back(paths[i]);
+        for (size_t k = 0; k + 1 < paths[i].size(); ++k) longest[i] = std::max(longest[i], double(distance(paths[i][k], paths[i][k + 1])));
+    }
+    std::vector<std::vector<float3>> kept(paths.size());
+    parallel_for(n, 1, [&](int64_t b, int64_t e) {
+        std::vector<PointIndex::Neighbour> nearest;
+        for (int64_t i = b; i < e; ++i) {
+            const std::vector<float3>& path = paths[size_t(i)];
+            const size_t m = path.size();
+            std::vector<char> crowded(m, 0);
+            for (const int64_t j : {i - 1, i + 1}) {
+                if (j < 0 || j >= n) continue;
+                const std::vector<float3>& other = paths[size_t(j)];
+                const double reach = want + 0.5 * longest[size_t(j)];
+                const auto near_segment = [&](size_t k, uint32_t q) {  // a segment on either side of point q (none before 0)
+                    for (const size_t a : {size_t(q) - 1, size_t(q)}) {
+                        if (a < other.size() && a + 1 < other.size() && segment_distance_sq(path[k], path[k], other[a], other[a + 1]) < want * want) return true;
+                    }
+                    return false;
+                };
+                for (size_t k = 0; k < m; ++k) {
+                    if (crowded[k]) continue;
+                    // Most points are farther than the reach: one nearest-point query says so, where the
+                    // incremental walk costs its set-up on every point.
+                    index[size_t(j)].nearest(path[k], 1, nearest);
+                    if (nearest.empty() || nearest[0].distance > reach) continue;
+                    index[size_t(j)].walk(path[k], [&](uint32_t q, double d2) {
+                        if (d2 > reach * reach) return false;
+                        crowded[k] = near_segment(k, q);
+                        return !crowded[k];
+                    });
+                }
+            }
+            size_t top = 0;
+            for (size_t k = 1; k < m; ++k) {
+                if (dot(path[k], up) > dot(path[top], up)) top = k;
+            }
+            size_t first = top, last = top;
+            while (first > 0 && !crowded[first - 1]) --first;
+            while (last + 1 < m && !crowded[last + 1]) ++last;
+            if (crowded[top] || last - first + 1 < 2 || (first == 0 && last + 1 == m)) continue;  // nothing to keep, or all of it
+            kept[size_t(i)].assign(path.begin() + std::ptrdiff_t(first), path.begin() + std::ptrdiff_t(last) + 1);
+            rows[size_t(i)].trimmed = float(polyline_length(path) - polyline_length(kept[size_t(i)]));
+        }
+    });
+    for (size_t i = 0; i < paths.size(); ++i) {
+        if (!kept[i].empty()) paths[i] = std::move(kept[i]);
+    }
+}
+
 }  // namespace
 
 CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params, const HairRegion* region)
@@ -252,53 +313,7 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
         // highest point where it stays min_spacing (R + h) sin(dphi) from both neighbours.
         const float dphi = 2.0f * params.spread * kDeg / float(n - 1);
         const double want = double(params.min_spacing) * double(params.radius + params.pivot) * std::sin(double(dphi));
-        // A segment within `want` of a point has an end within want + half its length of it: the
-        // rows' points in kd-trees, walked outward to that reach, and their segments tested.
-        std::vector<PointIndex> index;
-        std::vector<double> longest(static_cast<size_t>(n), 0.0);
-        for (int64_t i = 0; i < n; ++i) {
-            index.emplace_back(paths[size_t(i)]);
-            for (size_t k = 0; k + 1 < paths[size_t(i)].size(); ++k) longest[size_t(i)] = std::max(longest[size_t(i)], double(distance(paths[size_t(i)][k], paths[size_t(i)][k + 1])));
-        }
-        std::vector<std::vector<float3>> kept(static_cast<size_t>(n));
-        parallel_for(n, 1, [&](int64_t b, int64_t e) {
-            for (int64_t i = b; i < e; ++i) {
-                const std::vector<float3>& path = paths[size_t(i)];
-                const size_t m = path.size();
-                std::vector<char> crowded(m, 0);
-                for (const int64_t j : {i - 1, i + 1}) {
-                    if (j < 0 || j >= n) continue;
-                    const std::vector<float3>& other = paths[size_t(j)];
-                    const double reach = want + 0.5 * longest[size_t(j)];
-                    std::vector<PointIndex::Neighbour> nearest;
-                    for (size_t k = 0; k < m; ++k) {
-                        if (crowded[k]) continue;
-                        index[size_t(j)].nearest(path[k], 1, nearest);  // most points: farther than the reach
-                        if (nearest.empty() || nearest[0].distance > reach) continue;
-                        index[size_t(j)].walk(path[k], [&](uint32_t q, double d2) {
-                            if (d2 > reach * reach) return false;
-                            for (const size_t a : {size_t(q) - 1, size_t(q)}) {  // the segments on either side (q - 1 wraps at 0: skipped)
-                                if (a < other.size() && a + 1 < other.size() && segment_distance_sq(path[k], path[k], other[a], other[a + 1]) < want * want) crowded[k] = 1;
-                            }
-                            return !crowded[k];
-                        });
-                    }
-                }
-                size_t top = 0;
-                for (size_t k = 1; k < m; ++k) {
-                    if (dot(path[k], Y) > dot(path[top], Y)) top = k;
-                }
-                size_t first = top, last = top;
-                while (first > 0 && !crowded[first - 1]) --first;
-                while (last + 1 < m && !crowded[last + 1]) ++last;
-                if (crowded[top] || last - first + 1 < 2 || (first == 0 && last + 1 == m)) continue;  // nothing to keep, or all of it
-                kept[size_t(i)].assign(path.begin() + std::ptrdiff_t(first), path.begin() + std::ptrdiff_t(last) + 1);
-                out.rows[size_t(i)].trimmed = float(polyline_length(path) - polyline_length(kept[size_t(i)]));
-            }
-        });
-        for (int64_t i = 0; i < n; ++i) {
-            if (!kept[size_t(i)].empty()) paths[size_t(i)] = std::move(kept[size_t(i)]);
-        }
+        trim_crowded_rows(paths, Y, want, out.rows);
     }
     parallel_for(n, 1, [&](int64_t b, int64_t e) {
         for (int64_t i = b; i < e; ++i) {

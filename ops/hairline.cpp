@@ -176,14 +176,19 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
     // ponytail bust); MakeHuman's body's is 0.26 in front of it (the feet stand forward), and the
     // rays from there crossed the face (a trial). Without --center, the axis moves to the middle when
     // it is over 0.15 lengths off; a --center that far off is kept, and reported.
+    // The scalp's reach ahead of and behind the axis along `d`, `depth` below the top (false where
+    // a ray misses); the axis is moved, so this reads the current `c` and `top`.
+    const auto reach_along = [&](double depth, const float3& d, float& ahead, float& behind) {
+        const float3 a = top - up * float(depth);
+        float3 front, back;
+        if (!outermost_hit(scalp, a + d * reach, a, front) || !outermost_hit(scalp, a - d * reach, a, back)) return false;
+        ahead = dot(front - a, d);
+        behind = dot(a - back, d);
+        return true;
+    };
     float3 middle_offset(0.0f, 0.0f, 0.0f);
-    {
-        const float3 a = top - up * float(0.36 * length_fb);
-        float3 front, back, left, right;
-        if (outermost_hit(scalp, a + fwd * reach, a, front) && outermost_hit(scalp, a - fwd * reach, a, back) &&
-            outermost_hit(scalp, a + side * reach, a, left) && outermost_hit(scalp, a - side * reach, a, right)) {
-            middle_offset = fwd * (0.5f * (dot(front - a, fwd) + dot(back - a, fwd))) + side * (0.5f * (dot(left - a, side) + dot(right - a, side)));
-        }
+    if (float f, b, l, r; reach_along(0.36 * length_fb, fwd, f, b) && reach_along(0.36 * length_fb, side, l, r)) {
+        middle_offset = fwd * (0.5f * (f - b)) + side * (0.5f * (l - r));
     }
     const bool off_middle = length(middle_offset) > 0.15f * length_fb;
     if (report) {
@@ -197,21 +202,12 @@ CurveSet make_hairline(const Surface& scalp, const Bounds3& bounds, const Hairli
         find_top_and_length();
         if (report) report->moved_axis = true;
     }
-    if (report) report->axis = c;
-
     if (report) {
+        report->axis = c;
         // The head's middle front to back at the measuring depth, then the scalp's reach in front of
         // and behind it lower down, where a face and chin stand out and a neck is set back.
-        const auto reach_along = [&](double depth, float& ahead, float& behind) {
-            const float3 a = top - up * float(depth);
-            float3 front, back;
-            if (!outermost_hit(scalp, a + fwd * reach, a, front) || !outermost_hit(scalp, a - fwd * reach, a, back)) return false;
-            ahead = dot(front - a, fwd);
-            behind = dot(a - back, fwd);
-            return true;
-        };
         float f0, b0, f1, b1, f2, b2;
-        if (reach_along(0.36 * length_fb, f0, b0) && reach_along(0.8 * length_fb, f1, b1) && reach_along(0.9 * length_fb, f2, b2)) {
+        if (reach_along(0.36 * length_fb, fwd, f0, b0) && reach_along(0.8 * length_fb, fwd, f1, b1) && reach_along(0.9 * length_fb, fwd, f2, b2)) {
             const float middle = 0.5f * (f0 - b0);  // ahead of the axis
             report->measured = true;
             report->front = f1 + f2 - 2.0f * middle;

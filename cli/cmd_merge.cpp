@@ -51,9 +51,10 @@ std::vector<size_t> shard_order(const std::vector<std::string>& paths, const std
     }
     if (tagged == 0) return order;
     // Parts of one run carry the same run key (parts written before it was kept carry none).
+    const std::string first_run = parts[first_tagged].detail_string(kShardRunDetail);
     for (size_t k = 0; k < parts.size(); ++k) {
-        const std::string run = parts[k].detail_string(kShardRunDetail), first = parts[first_tagged].detail_string(kShardRunDetail);
-        if (!run.empty() && !first.empty() && run != first) {
+        const std::string run = parts[k].detail_string(kShardRunDetail);
+        if (!run.empty() && !first_run.empty() && run != first_run) {
             throw InvalidParam("merge: " + paths[first_tagged] + " and " + paths[k] + " are shards of different runs (their commands differ in more " +
                                "than the shard and the output, or they are of different frames): give the shards of one --shard run");
         }

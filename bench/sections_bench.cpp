@@ -1,9 +1,9 @@
 // `groom sections` on the demo's head (the synthetic head, centimetres, with groom hairline's default
-// hairline): the box-braid grid the demo makes, with and without 20,000 roots, and the rows and
-// radial layouts; the chart alone (SectionMap: rays onto the scalp and the cuts) shows how much of
-// the cost is charting. The scalp field and the hairline are built once, outside the timings.
-// BM_SectionsScan repeats the grid on the real head scan (../shared/datasets/lee_perry_smith) when
-// it is there.
+// hairline): the box-braid grid the demo makes, with and without 20,000 roots, with floor-length
+// guides, and the rows and radial layouts; the chart alone (SectionMap: rays onto the scalp and the
+// cuts) shows how much of the cost is charting. The scalp field and the hairline are built once,
+// outside the timings. BM_SectionsScan repeats the grid on the real head scan
+// (../shared/datasets/lee_perry_smith) when it is there.
 #include "fields/scalp_field.h"
 #include "kernel/io/mesh_io.h"
 #include "ops/hair_region.h"
@@ -86,6 +86,17 @@ void BM_SectionsGridWithRoots(benchmark::State& state)
     state.SetItemsProcessed(int64_t(state.iterations()) * p.roots);
 }
 
+/// Floor-length braids: guides 150 cm long, a point every 0.25 cm, most of their march far below the
+/// head, where a step needs only a bound of the distance (a closest-point search on the mesh there
+/// made a fuzz input of 100,000-point guides take 32 s).
+void BM_SectionsLongGuides(benchmark::State& state)
+{
+    SectionsParams p = box_braids();
+    p.length = 150.0f;
+    p.points = 600;
+    run(state, head(), p);
+}
+
 void BM_SectionsRows(benchmark::State& state)
 {
     SectionsParams p = box_braids();
@@ -137,6 +148,7 @@ void BM_SectionsScan(benchmark::State& state)
 
 BENCHMARK(BM_SectionsGrid)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SectionsGridWithRoots)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SectionsLongGuides)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SectionsRows)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SectionsRadial)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SectionMapOnly)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -9,7 +9,7 @@
 //     at ingest: that refusal is a clean error);
 //   - the scalp: the default head (16 bands) at three scales (cm, m, 1e4), or a small mesh from the
 //     bytes (degenerate, tiny, huge and far-away triangles; the head plus one stray triangle),
-//     converted with build_scalp under a 64 MiB budget, as `--scalp mesh` does;
+//     converted with build_scalp under a 16 MiB budget, as `--scalp mesh` does;
 //   - 0..10 options of the command, each with a value drawn from the numbers its help text gives
 //     (the documented range's ends, the default, and their float neighbours), from a pool of
 //     extremes (0, -1, 1e-30, 1e30, 3e38, nan, inf, 2^31, 2^63 ...), from the words of its help
@@ -81,6 +81,15 @@ struct Command {
         std::vector<std::string> unless = {};
     };
     std::vector<Light> light = {};
+    /// Options whose valid values reach far beyond what a fuzz run may take: a value drawn above
+    /// `most` but valid is given as `most` (values past the range's end are still given, to be
+    /// refused). `groom head --resolution 1024` takes 51 s in a Release build on one thread (2 M
+    /// quads, each vertex marched in from outside); sections' `--points 99999` on 30-unit guides 5 s.
+    struct Costly {
+        std::string option;
+        double most = 0.0, valid_to = 0.0;
+    };
+    std::vector<Costly> costly = {};
 };
 
 /// The commands whose work is an op in ops/, and what they take.
@@ -99,10 +108,10 @@ std::vector<Command> commands = {
     {"gather", InputKind::Puffs, true, "mem:out", {}, {{"--hairs", "200"}}},
     // The default 30-unit guides hang 30 m below a head in metres, where every query is exact (slow
     // far from the scalp: README "Not yet"), 10 s a run under ASan.
-    {"sections", InputKind::None, true, "mem:out", {}, {{"--length", "@30"}}},
+    {"sections", InputKind::None, true, "mem:out", {}, {{"--length", "@30"}}, {{"--points", 2000, 100000}}},
     {"edges", InputKind::None, true},
     {"render", InputKind::Curves, false, "out.png"},
-    {"head", InputKind::None, false, "head.obj"},
+    {"head", InputKind::None, false, "head.obj", {}, {}, {{"--resolution", 128, 1024}}},
 };
 
 /// Options the harness sets itself, or that only matter for a mesh read from a file.
@@ -177,7 +186,12 @@ std::string help_of(const std::string& command)
 // --- scalps --------------------------------------------------------------------------------------
 
 const float kHeadScales[] = {1.0f, 0.01f, 1e4f};
-constexpr uint64_t kScalpBudget = 64ull << 20;
+// 16 MiB: the conversion is most of a run's time, and under ASan and coverage its cost follows the
+// grid's size. At 64 MiB a fuzzed head with a stray triangle far away (`hairline` on it) took 3.3 s
+// to convert, twice in one input (libFuzzer runs an input again when it left memory allocated, to
+// look for a leak), 11.5 s with the other core busy: on CI's slower cores, past the 30 s timeout
+// the fuzz stage then had. A grid that would exceed the budget is refused, itself a path to fuzz.
+constexpr uint64_t kScalpBudget = 16ull << 20;
 
 ScalpBuildParams scalp_params()
 {
@@ -607,7 +621,17 @@ int run_one(const uint8_t* data, size_t size, const Command* forced)
             outputs.push_back(args.back());
         }
         else if (o.name == "--write-adjacent") args.push_back("adjacent.txt");
-        else args.push_back(pick_value(fdp, o, scale));
+        else {
+            std::string value = pick_value(fdp, o, scale);
+            for (const Command::Costly& c : cmd.costly) {
+                if (c.option != o.name) continue;
+                // Plain decimal digits only: "1e3" and "010" stay, to be refused or read as given.
+                const bool digits = !value.empty() && value.size() < 10 && std::all_of(value.begin(), value.end(), ::isdigit);
+                const double v = digits ? std::stod(value) : 0.0;
+                if (digits && v > c.most && v <= c.valid_to) value = std::to_string(int64_t(c.most));
+            }
+            args.push_back(value);
+        }
     }
     auto clean_up = [] {
         for (const std::string& p : scratch) erase_memory_curves(p);

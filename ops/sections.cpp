@@ -81,12 +81,16 @@ void march(const Surface& scalp, float3 p, float3 d, double length, double h, do
     for (int k = 0; k < steps; ++k) {
         float3 away = p - fall.face;
         away = normalize(away - fall.up * dot(away, fall.up), -fall.up);
-        float3 n, c;
-        const float dist = scalp.query(p, n, c);
         const float ramp = std::min(1.0f, float(walked / fall.ramp));
         const float clear = fall.clearance + fall.layer * ramp * ramp * (3.0f - 2.0f * ramp);
+        // Only a guide within reach of the scalp needs its normal: farther out a bound of the
+        // distance answers (no closest-point search on the mesh, which each step far from a level
+        // set's band took: 32 s for 48 guides of 100,000 points hanging 30 units, a fuzz input).
+        const float near = clear + fall.reach;
+        float3 n, c;
+        const bool steered = scalp.distance_within(p, near) < near && scalp.query(p, n, c) < near;
         float3 target = fall.gravity;
-        if (dist < clear + fall.reach && dot(fall.gravity, n) < 0.0f) {
+        if (steered && dot(fall.gravity, n) < 0.0f) {
             // On scalp that bears it (gravity presses the guide onto it; under a chin or the cut of a
             // neck it falls free): down the scalp's fall line, combed back only where that line runs
             // toward the face.

@@ -1,6 +1,7 @@
 #include "ops/generate.h"
 #include "ops/root_uv.h"
 
+#include "fields/drape_runs.h"
 #include "fields/keep_outside.h"
 #include "fields/point_index.h"
 #include "kernel/curve_blocks.h"
@@ -373,7 +374,11 @@ CurveSet grow(const GrowRun& run, const CurveSet& guides, const Surface& scalp, 
     // surface, either side, and on Sintel left 5,500 of 640,000 points reading up to 0.2 inside. In
     // a crease the band's gradient is about half a unit long, so each step gains half of what is
     // missing: 8 steps left 191 of 100,000 hairs' points at Sintel's ear up to 0.05 inside.
-    keep_outside(dst, scalp, KeepOutside{params.clearance, run.margin, 16});
+    const KeepOutside rule{params.clearance, run.margin, 16};
+    const std::vector<float3> blended(P.begin(), P.end());
+    keep_outside(dst, scalp, rule);
+    // A run pushed out of a thin part of the scalp point by point can fold the hair back (fields/drape_runs.h).
+    drape_runs(dst, blended, scalp, rule);
     apply_hair_widths(dst, params.widths, params.units_per_cm);
     add_root_uvs(dst, scalp);
     return dst;

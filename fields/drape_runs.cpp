@@ -1,0 +1,148 @@
+#include "fields/drape_runs.h"
+
+#include "kernel/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace groom {
+
+namespace {
+
+/// The least cosine of the turn between consecutive segments of p[lo..hi] that have a length
+/// (a run gathered at one rim point has segments of none: the turn is taken across them); 1 where
+/// there is no such pair.
+float least_turn_cosine(std::span<const float3> p, int64_t lo, int64_t hi)
+{
+    float least = 1.0f;
+    float3 last;
+    bool have = false;
+    for (int64_t i = lo; i < hi; ++i) {
+        const float3 s = p[size_t(i + 1)] - p[size_t(i)];
+        const float len = length(s);
+        if (!(len > 0.0f)) continue;
+        const float3 u = s / len;
+        if (have) least = std::min(least, dot(last, u));
+        last = u, have = true;
+    }
+    return least;
+}
+
+bool same(const float3& a, const float3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+/// The least lift along `d` (unit) that takes `q` clear by the rule (its distance need = clearance
+/// or more), plus rule.margin: stepping out by what is missing (a point short of need by m has no
+/// scalp nearer than m beyond need, so such a step crosses none unseen), at least most / 64 a step
+/// (grazing a wall, steps of what is missing stall), then halving the last step back to the way
+/// out to within the margin (or 2^-20 of the step). -1 where none is found within `most`.
+float exit_along(const Surface& scalp, const float3& q, const float3& d, const KeepOutside& rule, float most)
+{
+    const float need = rule.clearance;
+    const auto clear = [&](float lift) { return !(scalp.distance_within(q + d * lift, need) < need); };
+    const float least = std::max(rule.margin, most / 64.0f);
+    float lo = 0.0f, hi = -1.0f;
+    for (int step = 0; step < 128; ++step) {
+        const float dist = scalp.distance_within(q + d * lo, need);
+        if (!(dist < need)) {
+            hi = lo;
+            break;
+        }
+        const float next = lo + std::max(need - dist, least);
+        if (!(next <= most)) return -1.0f;
+        if (clear(next)) {
+            hi = next;
+            break;
+        }
+        lo = next;
+    }
+    if (hi < 0.0f) return -1.0f;
+    const float tol = std::max(rule.margin, (hi - lo) * 0x1p-20f);
+    for (int it = 0; it < 40 && hi - lo > tol; ++it) {
+        const float mid = 0.5f * (lo + hi);
+        (clear(mid) ? hi : lo) = mid;
+    }
+    const float out = hi + rule.margin;
+    return out <= most && clear(out) ? out : -1.0f;
+}
+
+}  // namespace
+
+DrapeCount drape_runs(CurveSet& curves, std::span<const float3> before, const Surface& scalp, const KeepOutside& rule)
+{
+    auto P = curves.positions_for_write();
+    const int64_t nc = int64_t(curves.num_curves());
+    std::vector<int64_t> runs(size_t(nc), 0);
+    parallel_for(nc, 256, [&](int64_t b, int64_t e) {
+        std::vector<float3> lifted, trial;
+        for (int64_t c = b; c < e; ++c) {
+            const IndexRange r = curves.points_of(c);
+            for (int64_t s = r.begin + 1; s < r.end;) {
+                if (same(P[size_t(s)], before[size_t(s)])) {
+                    ++s;
+                    continue;
+                }
+                int64_t t = s;
+                while (t < r.end && !same(P[size_t(t)], before[size_t(t)])) ++t;
+                // The run [s, t) moved; the turns around it: from the segment into its clear point
+                // before to the one out of its clear point after.
+                const int64_t lo = std::max(r.begin, s - 2), hi = std::min(r.end - 1, t + 1);
+                trial.assign(P.begin() + lo, P.begin() + hi + 1);
+                const float after_turn = least_turn_cosine(P, lo, hi);
+                if (!(after_turn < 0.0f) || least_turn_cosine(before, lo, hi) < 0.0f) {
+                    s = t;
+                    continue;
+                }
+                // Directions to lay the run out along, each less its part along the chord between
+                // the clear points either end: the mean of the moves keep_outside made, the mean of
+                // the scalp's normals at those points (either can point into the head: beside an
+                // open rim the normal does, and in an ear flap the moves go to whichever side is
+                // nearer), and both reversed (the far side of a flap). The one whose drape turns
+                // least is kept.
+                const float3 a = P[size_t(s - 1)];
+                float3 push, normal = scalp.normal(a);
+                float reach = 0.0f;  // the farthest move: a drape may lift by a few times that
+                for (int64_t i = s; i < t; ++i) {
+                    push = push + (P[size_t(i)] - before[size_t(i)]);
+                    reach = std::max(reach, distance(P[size_t(i)], before[size_t(i)]));
+                }
+                float3 chord;
+                float span = 0.0f;
+                if (t < r.end) {
+                    chord = P[size_t(t)] - a;
+                    span = length(chord);
+                    normal = normal + scalp.normal(P[size_t(t)]);
+                }
+                const float most = std::max(span, 4.0f * reach);
+                float best = after_turn;
+                for (const float3& way : {push, normal, -push, -normal}) {
+                    float3 d = span > 0.0f ? way - chord * (dot(way, chord) / (span * span)) : way;
+                    if (!(length(d) > 0.0f)) continue;
+                    d = normalize(d, d);
+                    bool ok = true;
+                    for (int64_t i = s; i < t && ok; ++i) {
+                        const float lift = exit_along(scalp, before[size_t(i)], d, rule, most);
+                        ok = lift >= 0.0f;
+                        trial[size_t(i - lo)] = before[size_t(i)] + d * lift;
+                    }
+                    if (!ok) continue;
+                    const float turn = least_turn_cosine(trial, 0, hi - lo);
+                    if (turn > best) best = turn, lifted.assign(trial.begin() + (s - lo), trial.begin() + (t - lo));
+                }
+                if (best > after_turn) {
+                    std::copy(lifted.begin(), lifted.end(), P.begin() + s);
+                    ++runs[size_t(c)];
+                }
+                s = t;
+            }
+        }
+    });
+    DrapeCount count;
+    for (const int64_t n : runs) {
+        count.runs += n;
+        count.curves += n > 0;
+    }
+    return count;
+}
+
+}  // namespace groom

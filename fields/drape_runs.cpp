@@ -29,8 +29,6 @@ float least_turn_cosine(std::span<const float3> p, int64_t lo, int64_t hi)
     return least;
 }
 
-bool same(const float3& a, const float3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
-
 /// The least lift along `d` (unit) that takes `q` clear by the rule (its distance need = clearance
 /// or more), plus rule.margin: stepping out by what is missing (a point short of need by m has no
 /// scalp nearer than m beyond need, so such a step crosses none unseen), at least most / 64 a step
@@ -68,25 +66,36 @@ float exit_along(const Surface& scalp, const float3& q, const float3& d, const K
 
 }  // namespace
 
-DrapeCount drape_runs(CurveSet& curves, std::span<const float3> before, const Surface& scalp, const KeepOutside& rule)
+DrapeCount drape_runs(CurveSet& curves, std::span<const MovedPoint> moved, const Surface& scalp, const KeepOutside& rule)
 {
-    auto P = curves.positions_for_write();
+    auto all = curves.positions_for_write();
     const int64_t nc = int64_t(curves.num_curves());
     std::vector<int64_t> runs(size_t(nc), 0);
+    const auto by_index = [](const MovedPoint& m, int64_t i) { return m.index < i; };
     parallel_for(nc, 256, [&](int64_t b, int64_t e) {
-        std::vector<float3> lifted, trial;
+        std::vector<float3> before, lifted, trial;
+        std::vector<uint8_t> was_moved;
         for (int64_t c = b; c < e; ++c) {
             const IndexRange r = curves.points_of(c);
-            for (int64_t s = r.begin + 1; s < r.end;) {
-                if (same(P[size_t(s)], before[size_t(s)])) {
+            const auto first = std::lower_bound(moved.begin(), moved.end(), r.begin, by_index);
+            const auto last = std::lower_bound(first, moved.end(), r.end, by_index);
+            if (first == last) continue;
+            // The curve's points (P) and where they were before keep_outside (before), from 0.
+            const std::span<float3> P = all.subspan(size_t(r.begin), size_t(r.size()));
+            const int64_t n = int64_t(P.size());
+            before.assign(P.begin(), P.end());
+            was_moved.assign(size_t(n), 0);
+            for (auto m = first; m != last; ++m) before[size_t(m->index - r.begin)] = m->before, was_moved[size_t(m->index - r.begin)] = 1;
+            for (int64_t s = 1; s < n;) {
+                if (!was_moved[size_t(s)]) {
                     ++s;
                     continue;
                 }
                 int64_t t = s;
-                while (t < r.end && !same(P[size_t(t)], before[size_t(t)])) ++t;
+                while (t < n && was_moved[size_t(t)]) ++t;
                 // The run [s, t) moved; the turns around it: from the segment into its clear point
                 // before to the one out of its clear point after.
-                const int64_t lo = std::max(r.begin, s - 2), hi = std::min(r.end - 1, t + 1);
+                const int64_t lo = std::max<int64_t>(0, s - 2), hi = std::min(n - 1, t + 1);
                 trial.assign(P.begin() + lo, P.begin() + hi + 1);
                 const float after_turn = least_turn_cosine(P, lo, hi);
                 if (!(after_turn < 0.0f) || least_turn_cosine(before, lo, hi) < 0.0f) {
@@ -108,7 +117,7 @@ DrapeCount drape_runs(CurveSet& curves, std::span<const float3> before, const Su
                 }
                 float3 chord;
                 float span = 0.0f;
-                if (t < r.end) {
+                if (t < n) {
                     chord = P[size_t(t)] - a;
                     span = length(chord);
                     normal = normal + scalp.normal(P[size_t(t)]);

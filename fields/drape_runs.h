@@ -31,10 +31,10 @@ struct DrapeCount {
 };
 
 /// @brief Lays again, along one direction each, the runs of points of `curves` that keep_outside
-/// moved (their positions differ from `before`, the same curves before the move) where the move
-/// folded the curve back (a turn of more than 90 degrees at a point where `before` turned by 90 or
-/// less). `rule` is the one keep_outside applied. Parallel over the curves; the result does not
-/// depend on the thread count. Writes point P only.
-DrapeCount drape_runs(CurveSet& curves, std::span<const float3> before, const Surface& scalp, const KeepOutside& rule);
+/// moved (`moved`: its record, sorted by index) where the move folded the curve back (a turn of more
+/// than 90 degrees at a point where the curve before the move turned by 90 or less). `rule` is the
+/// one keep_outside applied. Parallel over the curves; the result does not depend on the thread
+/// count. Writes point P only.
+DrapeCount drape_runs(CurveSet& curves, std::span<const MovedPoint> moved, const Surface& scalp, const KeepOutside& rule);
 
 }  // namespace groom

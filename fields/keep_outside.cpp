@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <vector>
 
 namespace groom {
@@ -154,7 +155,7 @@ int64_t keep_outside(std::span<float3> points, const Surface& scalp, const KeepO
     return count;
 }
 
-KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const KeepOutside& rule)
+KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const KeepOutside& rule, std::vector<MovedPoint>* moved_points)
 {
     auto P = curves.positions_for_write();
     const int64_t nc = int64_t(curves.num_curves());
@@ -163,7 +164,10 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
     // sign jumps, and hair that went in through Sintel's eye sockets was left inside, skipped.
     const bool bounded = scalp.lipschitz();
     std::vector<int64_t> moved(size_t(nc), 0);
+    std::mutex record;
+    if (moved_points) moved_points->clear();
     parallel_for(nc, 256, [&](int64_t b, int64_t e) {
+        std::vector<MovedPoint> mine;
         for (int64_t c = b; c < e; ++c) {
             const IndexRange r = curves.points_of(c);
             float lower = -std::numeric_limits<float>::infinity();  // nothing known of the root
@@ -177,12 +181,20 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
                 // A bound where the point is clear by more than `need`: still a lower bound for the walk.
                 const float d = distance_for(scalp, P[q], need);
                 lower = d;
+                const float3 was = P[q];
                 if (!settle(P[q], d, need, scalp, rule)) continue;
                 lower = need;
                 ++moved[c];
+                if (moved_points) mine.push_back({q, was});
             }
         }
+        if (moved_points && !mine.empty()) {
+            const std::lock_guard<std::mutex> lock(record);
+            moved_points->insert(moved_points->end(), mine.begin(), mine.end());
+        }
     });
+    // The workers' records come in any order: by index, the same for any thread count.
+    if (moved_points) std::sort(moved_points->begin(), moved_points->end(), [](const MovedPoint& a, const MovedPoint& b) { return a.index < b.index; });
     KeepOutsideCount count;
     for (const int64_t m : moved) {
         count.points += m;

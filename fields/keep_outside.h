@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace groom {
 
@@ -80,12 +81,19 @@ struct KeepOutsideCount {
     int64_t curves = 0;  ///< curves with at least one point moved
 };
 
+/// A point keep_outside(curves) moved: its index among the curves' points, and where it was.
+struct MovedPoint {
+    int64_t index = 0;
+    float3 before;
+};
+
 /// @brief The rule on every point of every curve but its root: a root is where the hair grows, on
 /// the scalp, and stays there (a root inside the scalp stays inside). Walking from the root, a point
 /// whose predecessor's distance less the segment between them is above `need` is clear without a
 /// query (far from a level set's narrow band each query is an exact mesh search); a moved point
 /// counts as being at `need`. That bound is used only where scalp.lipschitz(). Writes point P only. Parallel over the curves.
-KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const KeepOutside& rule);
+/// @param moved  optional: every point moved and where it was, by index (for drape_runs)
+KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const KeepOutside& rule, std::vector<MovedPoint>* moved = nullptr);
 
 /// What lift_outside found besides the lift.
 struct LiftOutcome {

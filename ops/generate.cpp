@@ -375,10 +375,10 @@ CurveSet grow(const GrowRun& run, const CurveSet& guides, const Surface& scalp, 
     // a crease the band's gradient is about half a unit long, so each step gains half of what is
     // missing: 8 steps left 191 of 100,000 hairs' points at Sintel's ear up to 0.05 inside.
     const KeepOutside rule{params.clearance, run.margin, 16};
-    const std::vector<float3> blended(P.begin(), P.end());
-    keep_outside(dst, scalp, rule);
+    std::vector<MovedPoint> moved;
+    keep_outside(dst, scalp, rule, &moved);
     // A run pushed out of a thin part of the scalp point by point can fold the hair back (fields/drape_runs.h).
-    drape_runs(dst, blended, scalp, rule);
+    drape_runs(dst, moved, scalp, rule);
     apply_hair_widths(dst, params.widths, params.units_per_cm);
     add_root_uvs(dst, scalp);
     return dst;

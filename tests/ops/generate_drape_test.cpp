@@ -55,6 +55,15 @@ const ScalpField& sphere()
     return s;
 }
 
+/// The record keep_outside would make of the points of `cs` that differ from `before`.
+std::vector<MovedPoint> moves(const CurveSet& cs, const std::vector<float3>& before)
+{
+    std::vector<MovedPoint> m;
+    for (size_t i = 0; i < before.size(); ++i)
+        if (!(cs.positions()[i] == before[i])) m.push_back({int64_t(i), before[i]});
+    return m;
+}
+
 /// 13 points along y = 9.5 from x = -6 to 6: x in [-3, 3] lie under the sphere's cap.
 CurveSet chord_under_the_cap()
 {
@@ -79,7 +88,7 @@ TEST(DrapeRuns, AFoldedRunIsLaidOverTheSphereAlongOneDirection)
     for (int i = 3; i <= 9; ++i) P[size_t(i)] = {i == 9 ? -0.5f : 0.0f, kR, 0.0f};
     ASSERT_GT(largest_turns(cs)[0].degrees, 90.0);
     const KeepOutside rule{0.0f, 1e-4f, 16};
-    const DrapeCount d = drape_runs(cs, before, s, rule);
+    const DrapeCount d = drape_runs(cs, moves(cs, before), s, rule);
     EXPECT_EQ(d.runs, 1);
     EXPECT_EQ(d.curves, 1);
     for (int i = 0; i < 13; ++i) {
@@ -107,11 +116,14 @@ TEST(DrapeRuns, RunsMovedWithoutAFoldAreLeftAsTheyAre)
     CurveSet cs = chord_under_the_cap();
     const std::vector<float3> before(cs.positions().begin(), cs.positions().end());
     const KeepOutside rule{0.0f, 1e-4f, 16};
-    keep_outside(cs, s, rule);
+    std::vector<MovedPoint> record;
+    keep_outside(cs, s, rule, &record);
     const std::vector<float3> pushed(cs.positions().begin(), cs.positions().end());
     ASSERT_NE(pushed[6], before[6]);
-    EXPECT_EQ(drape_runs(cs, before, s, rule).runs, 0);
-    EXPECT_EQ(drape_runs(cs, pushed, s, rule).runs, 0);
+    ASSERT_EQ(record.size(), 7u);  // x = -3 .. 3
+    for (size_t k = 0; k < record.size(); ++k) EXPECT_EQ(record[k].before, before[size_t(record[k].index)]);
+    EXPECT_EQ(drape_runs(cs, record, s, rule).runs, 0);
+    EXPECT_EQ(drape_runs(cs, {}, s, rule).runs, 0);
     for (size_t i = 0; i < pushed.size(); ++i) EXPECT_EQ(cs.positions()[i], pushed[i]) << i;
 }
 
@@ -127,7 +139,7 @@ TEST(DrapeRuns, AFoldTheCurveAlreadyHadIsNotTheMovesToMend)
     const std::vector<float3> before(P.begin(), P.end());
     P[1] = {0, kR, 0}, P[3] = {0.1f, kR, 0};
     const std::vector<float3> moved(P.begin(), P.end());
-    EXPECT_EQ(drape_runs(cs, before, s, KeepOutside{0.0f, 1e-4f, 16}).runs, 0);
+    EXPECT_EQ(drape_runs(cs, moves(cs, before), s, KeepOutside{0.0f, 1e-4f, 16}).runs, 0);
     for (size_t i = 0; i < moved.size(); ++i) EXPECT_EQ(cs.positions()[i], moved[i]) << i;
 }
 

@@ -33,7 +33,7 @@ float least_turn_cosine(std::span<const float3> p, int64_t lo, int64_t hi)
 /// or more), plus rule.margin: stepping out by what is missing (a point short of need by m has no
 /// scalp nearer than m beyond need, so such a step crosses none unseen), at least most / 64 a step
 /// (grazing a wall, steps of what is missing stall), then halving the last step back to the way
-/// out to within the margin (or 2^-20 of the step). -1 where none is found within `most`.
+/// out to within the margin (or 1/32 of the step). -1 where none is found within `most`.
 float exit_along(const Surface& scalp, const float3& q, const float3& d, const KeepOutside& rule, float most)
 {
     const float need = rule.clearance;
@@ -55,7 +55,7 @@ float exit_along(const Surface& scalp, const float3& q, const float3& d, const K
         lo = next;
     }
     if (hi < 0.0f) return -1.0f;
-    const float tol = std::max(rule.margin, (hi - lo) * 0x1p-20f);
+    const float tol = std::max(rule.margin, (hi - lo) * 0x1p-5f);
     for (int it = 0; it < 40 && hi - lo > tol; ++it) {
         const float mid = 0.5f * (lo + hi);
         (clear(mid) ? hi : lo) = mid;
@@ -106,8 +106,8 @@ DrapeCount drape_runs(CurveSet& curves, std::span<const MovedPoint> moved, const
                 // the clear points either end: the mean of the moves keep_outside made, the mean of
                 // the scalp's normals at those points (either can point into the head: beside an
                 // open rim the normal does, and in an ear flap the moves go to whichever side is
-                // nearer), and both reversed (the far side of a flap). The one whose drape turns
-                // least is kept.
+                // nearer), and both reversed (the far side of a flap). The first whose drape turns
+                // by no more than 90 degrees is kept, else the one that turns least.
                 const float3 a = P[size_t(s - 1)];
                 float3 push, normal = scalp.normal(a);
                 float reach = 0.0f;  // the farthest move: a drape may lift by a few times that
@@ -137,6 +137,7 @@ DrapeCount drape_runs(CurveSet& curves, std::span<const MovedPoint> moved, const
                     if (!ok) continue;
                     const float turn = least_turn_cosine(trial, 0, hi - lo);
                     if (turn > best) best = turn, lifted.assign(trial.begin() + (s - lo), trial.begin() + (t - lo));
+                    if (best >= 0.0f) break;  // no fold left: the later directions are for runs this one cannot mend
                 }
                 if (best > after_turn) {
                     std::copy(lifted.begin(), lifted.end(), P.begin() + s);

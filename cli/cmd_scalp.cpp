@@ -86,6 +86,14 @@ void setup(CommandContext& ctx)
     ctx.run = [args, voxel, &common] {
         Args& a = *args;
         check_outputs({{"-o", a.output}, {"--report", a.report}}, std::span<const std::string>(a.inputs), common);
+        for (size_t k = 1; k < a.inputs.size(); ++k) {
+            for (size_t j = 0; j < k; ++j) {
+                if (names_one_file(a.inputs[j], a.inputs[k])) {
+                    throw InvalidParam("scalp: " + a.inputs[k] + " is given twice (as MESH " + std::to_string(j + 1) + " and " +
+                                       std::to_string(k + 1) + "): joined with itself it would be two coincident surfaces");
+                }
+            }
+        }
         if (std::filesystem::path(a.output).extension() != ".vdb") {
             throw InvalidParam("scalp: -o must name a .vdb file (got '" + a.output + "')");
         }

@@ -101,7 +101,10 @@ struct NamedOutput {
 /// given), and InvalidParam when two of them name one file, which --force does not allow: one
 /// would silently replace the other.
 void check_outputs(std::initializer_list<NamedOutput> outputs, std::initializer_list<std::string> inputs, const CommonOptions& o);
-/// The same, for a command whose inputs are a list (`groom scalp HEAD EYES`).
+/// Whether two paths name one file: the same file where both exist, else the same place once
+/// resolved (links, `.` and `..`).
+bool names_one_file(const std::string& a, const std::string& b);
+/// check_outputs for a command whose inputs are a list (`groom scalp HEAD EYES`).
 void check_outputs(std::initializer_list<NamedOutput> outputs, std::span<const std::string> inputs, const CommonOptions& o);
 
 /// A progress bar on stderr when it is a terminal, line-based when not (only with --verbose),

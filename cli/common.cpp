@@ -125,10 +125,14 @@ std::string resolved(const std::string& path)
     return ec ? path : p.string();
 }
 
+}  // namespace
+
 bool names_one_file(const std::string& a, const std::string& b)
 {
     return same_file(a, b) || resolved(a) == resolved(b);
 }
+
+namespace {
 
 void check_one_output(const std::string& option, const std::string& output, std::span<const std::string> inputs, const CommonOptions& o)
 {

@@ -1,9 +1,11 @@
 #include "fields/drape_runs.h"
 
+#include "kernel/error.h"
 #include "kernel/parallel.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace groom {
@@ -29,39 +31,41 @@ float least_turn_cosine(std::span<const float3> p, int64_t lo, int64_t hi)
     return least;
 }
 
-/// The least lift along `d` (unit) that takes `q` clear by the rule (its distance need = clearance
-/// or more), plus rule.margin: stepping out by what is missing (a point short of need by m has no
-/// scalp nearer than m beyond need, so such a step crosses none unseen), at least most / 64 a step
-/// (grazing a wall, steps of what is missing stall), then halving the last step back to the way
-/// out to within the margin (or 1/32 of the step). -1 where none is found within `most`.
+/// A lift along `d` (unit) that takes `q` clear by the rule (its distance need = clearance or
+/// more), plus rule.margin: stepping out by what is missing (a point short of need by m has no
+/// scalp within m of it, so a step that long crosses none), at least most / 64 a step (grazing a
+/// wall, steps of what is missing stall; such a step may cross a wall thinner than itself), then
+/// halving the last step back to the way out to within the margin (or 1/32 of the step). -1 where
+/// none is found within `most`.
 float exit_along(const Surface& scalp, const float3& q, const float3& d, const KeepOutside& rule, float most)
 {
     const float need = rule.clearance;
-    const auto clear = [&](float lift) { return !(scalp.distance_within(q + d * lift, need) < need); };
+    const auto at = [&](float lift) { return scalp.distance_within(q + d * lift, need); };
     const float least = std::max(rule.margin, most / 64.0f);
     float lo = 0.0f, hi = -1.0f;
+    float dist = at(lo);
     for (int step = 0; step < 128; ++step) {
-        const float dist = scalp.distance_within(q + d * lo, need);
         if (!(dist < need)) {
             hi = lo;
             break;
         }
         const float next = lo + std::max(need - dist, least);
         if (!(next <= most)) return -1.0f;
-        if (clear(next)) {
+        const float there = at(next);
+        if (!(there < need)) {
             hi = next;
             break;
         }
-        lo = next;
+        lo = next, dist = there;
     }
     if (hi < 0.0f) return -1.0f;
     const float tol = std::max(rule.margin, (hi - lo) * 0x1p-5f);
     for (int it = 0; it < 40 && hi - lo > tol; ++it) {
         const float mid = 0.5f * (lo + hi);
-        (clear(mid) ? hi : lo) = mid;
+        (!(at(mid) < need) ? hi : lo) = mid;
     }
     const float out = hi + rule.margin;
-    return out <= most && clear(out) ? out : -1.0f;
+    return out <= most && !(at(out) < need) ? out : -1.0f;
 }
 
 }  // namespace
@@ -80,6 +84,10 @@ DrapeCount drape_runs(CurveSet& curves, std::span<const MovedPoint> moved, const
             const auto first = std::lower_bound(moved.begin(), moved.end(), r.begin, by_index);
             const auto last = std::lower_bound(first, moved.end(), r.end, by_index);
             if (first == last) continue;
+            // A record out of order would name points of other curves here: refused, not written.
+            if (!std::all_of(first, last, [&](const MovedPoint& m) { return m.index >= r.begin && m.index < r.end; })) {
+                throw InvalidParam("drape_runs: the record of moved points is not sorted by index (point " + std::to_string(first->index) + ")");
+            }
             // The curve's points (P) and where they were before keep_outside (before), from 0.
             const std::span<float3> P = all.subspan(size_t(r.begin), size_t(r.size()));
             const int64_t n = int64_t(P.size());
@@ -126,8 +134,9 @@ DrapeCount drape_runs(CurveSet& curves, std::span<const MovedPoint> moved, const
                 float best = after_turn;
                 for (const float3& way : {push, normal, -push, -normal}) {
                     float3 d = span > 0.0f ? way - chord * (dot(way, chord) / (span * span)) : way;
-                    if (!(length(d) > 0.0f)) continue;
-                    d = normalize(d, d);
+                    const float dl = length(d);
+                    if (!(dl > 1e-30f)) continue;
+                    d = d / dl;
                     bool ok = true;
                     for (int64_t i = s; i < t && ok; ++i) {
                         const float lift = exit_along(scalp, before[size_t(i)], d, rule, most);

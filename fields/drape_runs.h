@@ -9,13 +9,16 @@
 // consecutive segments (up to 177), where no guide turns by more than 53.
 //
 // What. For each run of moved points next to a turn of more than 90 degrees that the curve did not
-// have before the move: the direction `d` the run is laid out along is the mean of the scalp's
-// normals at the clear points either end (the one before it, and the one after it where the curve
-// goes on), less its part along the chord between them; each point of the run, where it was before
-// the move, is lifted along `d` by the least amount that clears it (lift_outside, never through the
-// scalp). Points lifted along one direction keep their order and spacing across it, so the run drapes
-// over the ear's outer side instead of gathering at its rim. The drape is kept only where it turns
-// less than keep_outside's result did at its worst, and every point it moves is clear by the rule.
+// have before the move, each point of the run, where it was before the move, is lifted along one
+// direction `d` to a clear place (the first found stepping out along d, at least 1/64 of the run's
+// reach a step, so a wall thinner than that may be stepped over; every place taken is clear by the
+// rule). Four directions are tried, each less its part along the chord between the clear points
+// either end of the run: the mean of the moves keep_outside made, the mean of the scalp's normals
+// at those ends, and both reversed (the moves go to whichever side of a flap is nearer; beside an
+// open rim the normal can point into the head). The first that leaves no turn over 90 degrees is
+// kept, else the one that turns least, and only where it turns less than keep_outside's result.
+// Points lifted along one direction keep their order and spacing across it, so the run drapes
+// over the ear's outer side instead of gathering at its rim.
 #pragma once
 
 #include "fields/keep_outside.h"

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <vector>
 
 namespace groom {
@@ -164,37 +163,39 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
     // sign jumps, and hair that went in through Sintel's eye sockets was left inside, skipped.
     const bool bounded = scalp.lipschitz();
     std::vector<int64_t> moved(size_t(nc), 0);
-    std::mutex record;
-    if (moved_points) moved_points->clear();
-    parallel_for(nc, 256, [&](int64_t b, int64_t e) {
-        std::vector<MovedPoint> mine;
-        for (int64_t c = b; c < e; ++c) {
-            const IndexRange r = curves.points_of(c);
-            float lower = -std::numeric_limits<float>::infinity();  // nothing known of the root
-            for (int64_t q = r.begin + 1; q < r.end; ++q) {
-                lower -= distance(P[q], P[q - 1]);
-                if (bounded && lower > need) continue;
-                if (scalp.known_clear(P[q], need)) {
-                    lower = need;  // at least
-                    continue;
+    // Blocks of 256 curves, each with its own record of the points it moved: joined in block order
+    // they are in index order, with no lock and no sort.
+    constexpr int64_t kBlock = 256;
+    const int64_t blocks = (nc + kBlock - 1) / kBlock;
+    std::vector<std::vector<MovedPoint>> records(moved_points ? size_t(blocks) : 0);
+    parallel_for(blocks, 1, [&](int64_t b0, int64_t b1) {
+        for (int64_t blk = b0; blk < b1; ++blk) {
+            for (int64_t c = blk * kBlock; c < std::min(nc, (blk + 1) * kBlock); ++c) {
+                const IndexRange r = curves.points_of(c);
+                float lower = -std::numeric_limits<float>::infinity();  // nothing known of the root
+                for (int64_t q = r.begin + 1; q < r.end; ++q) {
+                    lower -= distance(P[q], P[q - 1]);
+                    if (bounded && lower > need) continue;
+                    if (scalp.known_clear(P[q], need)) {
+                        lower = need;  // at least
+                        continue;
+                    }
+                    // A bound where the point is clear by more than `need`: still a lower bound for the walk.
+                    const float d = distance_for(scalp, P[q], need);
+                    lower = d;
+                    const float3 was = P[q];
+                    if (!settle(P[q], d, need, scalp, rule)) continue;
+                    lower = need;
+                    ++moved[c];
+                    if (moved_points) records[size_t(blk)].push_back({q, was});
                 }
-                // A bound where the point is clear by more than `need`: still a lower bound for the walk.
-                const float d = distance_for(scalp, P[q], need);
-                lower = d;
-                const float3 was = P[q];
-                if (!settle(P[q], d, need, scalp, rule)) continue;
-                lower = need;
-                ++moved[c];
-                if (moved_points) mine.push_back({q, was});
             }
         }
-        if (moved_points && !mine.empty()) {
-            const std::lock_guard<std::mutex> lock(record);
-            moved_points->insert(moved_points->end(), mine.begin(), mine.end());
-        }
     });
-    // The workers' records come in any order: by index, the same for any thread count.
-    if (moved_points) std::sort(moved_points->begin(), moved_points->end(), [](const MovedPoint& a, const MovedPoint& b) { return a.index < b.index; });
+    if (moved_points) {
+        moved_points->clear();
+        for (const auto& r : records) moved_points->insert(moved_points->end(), r.begin(), r.end());
+    }
     KeepOutsideCount count;
     for (const int64_t m : moved) {
         count.points += m;

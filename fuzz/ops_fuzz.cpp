@@ -36,6 +36,7 @@
 #include <fuzzer/FuzzedDataProvider.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -626,7 +627,7 @@ int run_one(const uint8_t* data, size_t size, const Command* forced)
             for (const Command::Costly& c : cmd.costly) {
                 if (c.option != o.name) continue;
                 // Plain decimal digits only: "1e3" and "010" stay, to be refused or read as given.
-                const bool digits = !value.empty() && value.size() < 10 && std::all_of(value.begin(), value.end(), ::isdigit);
+                const bool digits = !value.empty() && value.size() < 10 && std::all_of(value.begin(), value.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; });
                 const double v = digits ? std::stod(value) : 0.0;
                 if (digits && v > c.most && v <= c.valid_to) value = std::to_string(int64_t(c.most));
             }

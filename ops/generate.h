@@ -117,7 +117,9 @@ std::vector<SurfaceSample> scatter_roots(const CurveSet& guides, const Surface& 
 /// out, so a guide's weight falls to zero as it leaves the K nearest and shapes vary continuously).
 /// A root exactly on a guide's root (distance 0) takes that guide alone, copied bit for bit. Points
 /// (all but the root) closer to the scalp than params.clearance are moved out to it by keep_outside
-/// (fields/keep_outside.h: one move each, no margin).
+/// (fields/keep_outside.h: up to 16 moves each, the margin a millionth of the groom's extent,
+/// doubling), and a run of them that the moves folded back is laid again over the scalp as a whole
+/// (fields/drape_runs.h).
 /// With `blend_at` (#roots, or empty): hair i takes its guides and weights at blend_at[i] instead of
 /// at its root, and their shapes are carried to its root and normal as above (gather: a hair entering
 /// a puff at its base's rim follows the guides of a point inside the base, so the gathered hair fills

@@ -104,13 +104,15 @@ for t in "${targets[@]}"; do
   printf '%-18s %10s %8s %8s  %s\n' "$t" "${execs:-0}" "${rate:-0}" "$corpus" "$result"
   # CI keeps only this script's output, not the log or the input: print why, and the input's bytes,
   # so a crash seen once on CI's machine can be made a regression test here.
+  # (Each in braces with `|| true`: under pipefail a head that stops reading, or a grep that finds
+  # nothing, would end the script before the other targets run.)
   if ((rc != 0)); then
-    grep -E '^ops_fuzz: |ERROR|SUMMARY|^    #[0-9]+ .* in |deadly signal|Test unit written|out-of-memory|timeout' "$log" |
-      grep -v -E ' (NEW|REDUCE|pulse) ' | head -60 | sed 's/^/  | /' >&2
+    { grep -E '^ops_fuzz: |ERROR|SUMMARY|^    #[0-9]+ .* in |deadly signal|Test unit written|out-of-memory|timeout' "$log" |
+      grep -v -E ' (NEW|REDUCE|pulse) ' | head -60 | sed 's/^/  | /' >&2; } || true
     for a in "$sbuild/fuzz-artifacts/$t-"*; do
       [[ -f $a && $a -nt $started ]] || continue
-      echo "  | $a (base64):" >&2
-      base64 -w 100 "$a" | head -40 | sed 's/^/  | /' >&2
+      echo "  | $a (base64, whole: at most 64 KiB of input):" >&2
+      { base64 -w 100 "$a" | sed 's/^/  | /' >&2; } || true
     done
   fi
   rm -f "$started"

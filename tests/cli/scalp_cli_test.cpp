@@ -114,6 +114,51 @@ TEST(ScalpCli, SeveralMeshesAreOneSurface)
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("t.vdb")));
+    // The same file twice would be two coincident surfaces: refused, naming it.
+    r = run_groom({"scalp", dir.file("a.obj"), dir.file("b.ply"), (dir.path() / "." / "a.obj").string(), "-o", dir.file("t.vdb")});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("is given twice (as MESH 1 and 3)"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("t.vdb")));
+}
+
+TEST(ScalpCliReal, SintelsEyeballsFillHerOpenSockets)
+{
+    GROOM_REQUIRE_SHARED(head, "sintel_tressfx_opengl/sintel.obj");
+    GROOM_REQUIRE_SHARED(eyes, "sintel_tressfx_opengl/sintel_eyeballs.obj");
+    // The eyeballs sit in open sockets, inside no shell: kept (3 shells, none removed), and the
+    // middle of each eyeball reads inside the joined scalp. Without them, in front of the socket's
+    // back wall a point at the eyeball's middle is outside (the socket is empty).
+    TempDir dir;
+    auto r = run_groom({"scalp", head, eyes, "-o", dir.file("s.vdb"), "--report", dir.file("r.json")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(read_bytes(dir.file("r.json")).find("\"enclosed_shells_removed\": 0"), std::string::npos);
+    EXPECT_NE(r.err.find("3 shells"), std::string::npos) << r.err;
+    const PolygonSoup ball = read_mesh(eyes);
+    float3 left, right;
+    int nl = 0, nr = 0;
+    for (const float3& p : ball.points) (p.x > 0.0f ? (++nr, right) : (++nl, left)) += p;
+    ASSERT_GT(nl, 0);
+    ASSERT_GT(nr, 0);
+    left = left / float(nl), right = right / float(nr);
+    std::ostringstream pts;
+    pts << left.x << " " << left.y << " " << left.z << "\n" << right.x << " " << right.y << " " << right.z << "\n";
+    write_text(dir.file("p.txt"), pts.str());
+    ASSERT_EQ(run_groom({"scalp", head, "-o", dir.file("h.vdb"), "-q"}).exit_code, 0);
+    for (const auto& [scalp, inside] : {std::pair<std::string, bool>{dir.file("s.vdb"), true}, {dir.file("h.vdb"), false}}) {
+        r = run_groom({"probe", "--scalp", scalp, dir.file("p.txt"), "-o", dir.file("p.csv")});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        std::istringstream csv(read_bytes(dir.file("p.csv")));
+        std::string line;
+        std::getline(csv, line);
+        for (int k = 0; k < 2; ++k) {
+            ASSERT_TRUE(std::getline(csv, line));
+            std::vector<double> v;
+            std::stringstream ss(line);
+            for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::stod(cell));
+            ASSERT_EQ(v.size(), 10u);
+            EXPECT_EQ(v[3] < 0.0, inside) << scalp << ": " << line;
+        }
+    }
 }
 
 TEST(ScalpCli, BadInputFailsCleanlyWithoutOutput)

@@ -26,8 +26,9 @@ struct CullStats {
 
 /// @brief Enforce distance(p) >= clearance for every non-root point.
 /// Reads point P. Writes point P. Push: keep_outside on the curves (fields/keep_outside.h: a point
-/// closer than the clearance goes to closest_point(p) + n(p) * clearance, one move, roots stay),
-/// topology unchanged. Trim: a
+/// closer than the clearance goes to closest_point(p) + n(p) * clearance, re-checked up to 16
+/// times, roots stay), then a run of them the moves folded back laid again over the scalp as a
+/// whole (fields/drape_runs.h); topology unchanged. Trim: a
 /// curve ends at its first segment entering the clearance zone, the new tip placed where the
 /// distance, linear along the segment, equals the clearance (point attributes of the new tip come
 /// from the segment's outer point); a curve left with no length is deleted. Delete: curves with any

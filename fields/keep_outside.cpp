@@ -1,5 +1,6 @@
 #include "fields/keep_outside.h"
 
+#include "fields/drape_runs.h"
 #include "kernel/parallel.h"
 
 #include <algorithm>
@@ -167,7 +168,7 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
     // they are in index order, with no lock and no sort.
     constexpr int64_t kBlock = 256;
     const int64_t blocks = (nc + kBlock - 1) / kBlock;
-    std::vector<std::vector<MovedPoint>> records(moved_points ? size_t(blocks) : 0);
+    std::vector<std::vector<MovedPoint>> records(static_cast<size_t>(blocks));
     parallel_for(blocks, 1, [&](int64_t b0, int64_t b1) {
         for (int64_t blk = b0; blk < b1; ++blk) {
             for (int64_t c = blk * kBlock; c < std::min(nc, (blk + 1) * kBlock); ++c) {
@@ -187,20 +188,21 @@ KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const Keep
                     if (!settle(P[q], d, need, scalp, rule)) continue;
                     lower = need;
                     ++moved[c];
-                    if (moved_points) records[size_t(blk)].push_back({q, was});
+                    records[size_t(blk)].push_back({q, was});
                 }
             }
         }
     });
-    if (moved_points) {
-        moved_points->clear();
-        for (const auto& r : records) moved_points->insert(moved_points->end(), r.begin(), r.end());
-    }
+    std::vector<MovedPoint> own;
+    std::vector<MovedPoint>& record = moved_points ? *moved_points : own;
+    record.clear();
+    for (const auto& r : records) record.insert(record.end(), r.begin(), r.end());
     KeepOutsideCount count;
     for (const int64_t m : moved) {
         count.points += m;
         count.curves += m > 0;
     }
+    count.draped = drape_runs(curves, record, scalp, rule).runs;
     return count;
 }
 

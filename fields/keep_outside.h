@@ -79,6 +79,7 @@ int64_t keep_outside(std::span<float3> points, const Surface& scalp, const KeepO
 struct KeepOutsideCount {
     int64_t points = 0;  ///< points moved
     int64_t curves = 0;  ///< curves with at least one point moved
+    int64_t draped = 0;  ///< runs of moved points laid again as a whole (fields/drape_runs.h)
 };
 
 /// A point keep_outside(curves) moved: its index among the curves' points, and where it was.
@@ -91,8 +92,11 @@ struct MovedPoint {
 /// the scalp, and stays there (a root inside the scalp stays inside). Walking from the root, a point
 /// whose predecessor's distance less the segment between them is above `need` is clear without a
 /// query (far from a level set's narrow band each query is an exact mesh search); a moved point
-/// counts as being at `need`. That bound is used only where scalp.lipschitz(). Writes point P only. Parallel over the curves.
-/// @param moved  optional: every point moved and where it was, by index (for drape_runs)
+/// counts as being at `need`. That bound is used only where scalp.lipschitz(). A run of moved
+/// points that the moves folded back (a thin part of the scalp: an ear flap) is then laid again
+/// over the scalp as a whole (drape_runs, fields/drape_runs.h). Writes point P only. Parallel over
+/// the curves.
+/// @param moved  optional: every point moved and where it was before the move, by index
 KeepOutsideCount keep_outside(CurveSet& curves, const Surface& scalp, const KeepOutside& rule, std::vector<MovedPoint>* moved = nullptr);
 
 /// What lift_outside found besides the lift.

@@ -1,6 +1,5 @@
 #include "ops/cull.h"
 
-#include "fields/drape_runs.h"
 #include "fields/keep_outside.h"
 #include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
@@ -78,12 +77,8 @@ CurveSet cull(const CurveSet& src, const Surface& scalp, const CullParams& param
         // Re-checked and retried like generate's hairs: one trusted move along the band's normal
         // left 14,329 of 160,000 points on Sintel short of a 0.5 clearance (in creases each move
         // gains about half of what is missing), 1,521 of them inside. The margin is generate's.
-        const KeepOutside rule{D, scene_margin(src.bounds()), 16};
-        std::vector<MovedPoint> record;
-        const KeepOutsideCount moved = keep_outside(dst, scalp, rule, &record);
-        // A run pushed out of a thin part of the scalp point by point can fold the hair back, as
-        // generate's could (fields/drape_runs.h): 2 of Sintel's 228 guides at a 0.1 clearance.
-        drape_runs(dst, record, scalp, rule);
+        // A run the push folds back is laid over the scalp as a whole (fields/drape_runs.h).
+        const KeepOutsideCount moved = keep_outside(dst, scalp, KeepOutside{D, scene_margin(src.bounds()), 16});
         if (stats) {
             *stats = CullStats{};
             stats->points_pushed = moved.points;

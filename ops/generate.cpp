@@ -1,7 +1,6 @@
 #include "ops/generate.h"
 #include "ops/root_uv.h"
 
-#include "fields/drape_runs.h"
 #include "fields/keep_outside.h"
 #include "fields/point_index.h"
 #include "kernel/curve_blocks.h"
@@ -373,12 +372,9 @@ CurveSet grow(const GrowRun& run, const CurveSet& guides, const Surface& scalp, 
     // step along a level set's interpolated normal lands within about a tenth of a voxel of the
     // surface, either side, and on Sintel left 5,500 of 640,000 points reading up to 0.2 inside. In
     // a crease the band's gradient is about half a unit long, so each step gains half of what is
-    // missing: 8 steps left 191 of 100,000 hairs' points at Sintel's ear up to 0.05 inside.
-    const KeepOutside rule{params.clearance, run.margin, 16};
-    std::vector<MovedPoint> moved;
-    keep_outside(dst, scalp, rule, &moved);
-    // A run pushed out of a thin part of the scalp point by point can fold the hair back (fields/drape_runs.h).
-    drape_runs(dst, moved, scalp, rule);
+    // missing: 8 steps left 191 of 100,000 hairs' points at Sintel's ear up to 0.05 inside. A run
+    // pushed out of an ear flap that folds back is laid over it (fields/drape_runs.h).
+    keep_outside(dst, scalp, KeepOutside{params.clearance, run.margin, 16});
     apply_hair_widths(dst, params.widths, params.units_per_cm);
     add_root_uvs(dst, scalp);
     return dst;

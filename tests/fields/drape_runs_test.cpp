@@ -4,6 +4,7 @@
 #include "fields/drape_runs.h"
 #include "fields/scalp_field.h"
 #include "kernel/parallel.h"
+#include "support/curve_turns.h"
 #include "support/sphere_mesh.h"
 
 #include <gtest/gtest.h>
@@ -13,36 +14,10 @@
 #include <vector>
 
 using namespace groom;
+using groom::test::largest_turns;
+using groom::test::Turn;
 
 namespace {
-
-/// Each curve's largest turn between consecutive segments that have a length, degrees (points
-/// gathered at one place make segments of none: the turn is taken across them), and where it is.
-struct Turn {
-    double degrees = 0.0;
-    float3 at;
-};
-std::vector<Turn> largest_turns(const CurveSet& cs)
-{
-    std::vector<Turn> turns;
-    const auto P = cs.positions();
-    for (size_t c = 0; c < cs.num_curves(); ++c) {
-        const IndexRange r = cs.points_of(c);
-        Turn worst;
-        float3 last;
-        bool have = false;
-        for (int64_t i = r.begin; i + 1 < r.end; ++i) {
-            const float3 s = P[size_t(i + 1)] - P[size_t(i)];
-            if (!(length(s) > 0.0f)) continue;
-            const float3 u = s / length(s);
-            const double t = have ? std::acos(std::clamp(double(dot(last, u)), -1.0, 1.0)) * 180.0 / 3.141592653589793 : 0.0;
-            if (t > worst.degrees) worst = {t, P[size_t(i)]};
-            last = u, have = true;
-        }
-        turns.push_back(worst);
-    }
-    return turns;
-}
 
 constexpr float kR = 10.0f;
 

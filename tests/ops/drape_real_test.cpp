@@ -7,43 +7,30 @@
 #include "kernel/io/mesh_io.h"
 #include "ops/cull.h"
 #include "ops/generate.h"
+#include "support/curve_turns.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 using namespace groom;
+using groom::test::largest_turns;
+using groom::test::Turn;
 
 namespace {
 
-/// Each curve's largest turn between consecutive segments that have a length, degrees (points
-/// gathered at one place make segments of none: the turn is taken across them), and where it is.
-struct Turn {
-    double degrees = 0.0;
-    float3 at;
+/// Sintel's head as a field and her 228 guides, read once for the tests here.
+struct Sintel {
+    ScalpField field;
+    CurveSet guides;
 };
-std::vector<Turn> largest_turns(const CurveSet& cs)
+const Sintel& sintel(const std::string& head, const std::string& guides)
 {
-    std::vector<Turn> turns;
-    const auto P = cs.positions();
-    for (size_t c = 0; c < cs.num_curves(); ++c) {
-        const IndexRange r = cs.points_of(c);
-        Turn worst;
-        float3 last;
-        bool have = false;
-        for (int64_t i = r.begin; i + 1 < r.end; ++i) {
-            const float3 s = P[size_t(i + 1)] - P[size_t(i)];
-            if (!(length(s) > 0.0f)) continue;
-            const float3 u = s / length(s);
-            const double t = have ? std::acos(std::clamp(double(dot(last, u)), -1.0, 1.0)) * 180.0 / 3.141592653589793 : 0.0;
-            if (t > worst.degrees) worst = {t, P[size_t(i)]};
-            last = u, have = true;
-        }
-        turns.push_back(worst);
-    }
-    return turns;
+    static const Sintel s{build_scalp(read_mesh(head)), read_curves(guides)};
+    return s;
 }
 
 }  // namespace
@@ -57,8 +44,7 @@ TEST(GenerateReal, HairAtSintelsEarsDoesNotFoldBack)
     // none of Sintel's guides turns by more than 53. Laid over the ear, 8 are left (runs whose every
     // way out turns as much). The eye sockets (open: the field's sign is not settled inside them)
     // and a blend of opposite guides at the crown keep theirs: at most 40 more in all.
-    const ScalpField field = build_scalp(read_mesh(head));
-    const CurveSet guides = read_curves(guides_path);
+    const auto& [field, guides] = sintel(head, guides_path);
     for (const Turn& t : largest_turns(guides)) ASSERT_LT(t.degrees, 60.0);
     GenerateParams params;
     params.count = 15000;
@@ -80,8 +66,7 @@ TEST(CullReal, PushingSintelsGuidesOutFoldsNone)
     GROOM_REQUIRE_SHARED(guides_path, "sintel_tressfx_opengl/sintel_guides.obj");
     // Her guides dip into the head in places (0.9% of their points); pushed out to a 0.1 clearance
     // point by point, 2 of the 228 folded back by more than 90 degrees (none does before).
-    const ScalpField field = build_scalp(read_mesh(head));
-    const CurveSet guides = read_curves(guides_path);
+    const auto& [field, guides] = sintel(head, guides_path);
     for (const Turn& t : largest_turns(guides)) ASSERT_LT(t.degrees, 60.0);
     CullParams params;
     params.mode = CullMode::Push;

@@ -17,7 +17,8 @@
 //   keep_outside(p, ...)       one point, optionally pulled back toward an anchor first (curl; the
 //                              cornrow tails and partition segments, point by point as they are built);
 //   keep_outside(points, ...)  every point of a span on its own (braid's hair, puff's guide interiors);
-//   keep_outside(curves, ...)  every point but each curve's root (generate, puff's hairs, cull);
+//   keep_outside(curves, ...)  every point but each curve's root, then folded runs draped over the
+//                              scalp (fields/drape_runs.h) (generate, puff's hairs, cull);
 //   lift_outside(group, ...)   a group that must keep its shape (a braid's cross-section) moves as one
 //                              along one direction, and may rest on the scalp; never through it.
 #pragma once

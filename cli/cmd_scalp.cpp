@@ -37,6 +37,8 @@ std::string repair_report_json(const RepairReport& r)
         {"shells_flipped", r.shells_flipped},
         {"enclosed_shells_removed", r.enclosed_shells_removed},
         {"faces_in_removed_shells", r.faces_in_removed_shells},
+        {"buried_faces_removed", r.buried_faces_removed},
+        {"shells_with_buried_faces", r.shells_with_buried_faces},
         {"boundary_loops", r.boundary_loops},
         {"output_vertices", r.output_vertices},
         {"output_faces", r.output_faces},
@@ -52,6 +54,7 @@ std::string repair_report_json(const RepairReport& r)
                                    {"flipped", sh.flipped},
                                    {"removed", sh.removed},
                                    {"winding", sh.winding},
+                                   {"buried_faces", sh.buried_faces},
                                    {"bbox", {sh.lo[0], sh.lo[1], sh.lo[2], sh.hi[0], sh.hi[1], sh.hi[2]}}});
     }
     return j.dump(2) + "\n";
@@ -76,7 +79,7 @@ void setup(CommandContext& ctx)
     app->add_option("--report", args->report, "Write the repair report as JSON to this file");
     app->add_option("--group", args->params.group,
                     "OBJ mesh: only the faces of this object ('o') or group ('g'), e.g. the head without eyes, teeth and hair proxies");
-    app->add_flag("--keep-enclosed", args->keep_enclosed, "Keep shells that lie inside another (eyes, teeth); removed by default");
+    app->add_flag("--keep-enclosed", args->keep_enclosed, "Keep shells that lie inside another (eyes, teeth) and the faces of overlapping shells that lie inside another (an eyeball's back); removed by default");
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, voxel, &common] {
         Args& a = *args;

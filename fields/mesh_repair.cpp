@@ -1,10 +1,11 @@
 // Soup -> oriented manifold triangle mesh with CGAL Polygon Mesh Processing, then into OpenMesh
-// through CGAL's graph traits (one mesh type). Shell orientation and enclosed-shell removal are ours:
-// PMP orients each component consistently but picks its side arbitrarily, and knows nothing of
-// eyes inside heads.
+// through CGAL's graph traits (one mesh type). Shell orientation, enclosed-shell removal and buried
+// faces are ours: PMP orients each component consistently but picks its side arbitrarily, and knows
+// nothing of eyes inside heads.
 #include "fields/scalp_impl.h"
 
 #include "kernel/error.h"
+#include "kernel/parallel.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -270,6 +271,7 @@ struct Shell {
     CGAL::Bbox_3 box;
     bool flip = false, removed = false;
     double winding = 0.0;
+    size_t buried_faces = 0;
 };
 
 /// The shells: shell[t] for each triangle, and per shell its area, signed volume about its
@@ -492,6 +494,87 @@ void remove_enclosed(const std::vector<Point>& pts, const std::vector<Polygon>& 
     }
 }
 
+/// Buried faces: where shells overlap without one enclosing the other (eyeballs through the eyelids
+/// of a head with open sockets, a jacket collar through the neck), the faces of each that lie inside
+/// another are not on the solid's surface. Kept, they give points inside the head between them a
+/// false outside: the closest face is an eyeball's back, whose normal points away from the eye. The
+/// field of the union needs only the faces outside every other shell; the faces crossing another
+/// shell are kept, and the open rims left where a buried part went are signed by the generalized
+/// winding number like any other rim. A face is buried when all three of its vertices have
+/// |winding number| > 1/2 with respect to one other shell (a threshold of 0.6, 0.75 or 0.9 left
+/// more points of Sintel's head and eyeballs with the wrong sign: 19, 19, 190 of 200,000 against
+/// 12). Marks buried[t].
+void remove_buried_faces(const std::vector<Point>& pts, const std::vector<Polygon>& tris, const std::vector<int32_t>& shell,
+                         std::vector<Shell>& shells, std::vector<char>& buried, RepairReport& report)
+{
+    const size_t nshells = shells.size();
+    buried.assign(tris.size(), 0);
+    std::vector<std::vector<size_t>> tris_of_shell(nshells);
+    for (size_t t = 0; t < tris.size(); ++t) tris_of_shell[shell[t]].push_back(t);
+    std::vector<float3> points;
+    // inside[v] with respect to the host shell in hand: 0 outside (or not asked), 1 inside.
+    std::vector<char> inside(pts.size(), 0), asked(pts.size(), 0);
+    std::vector<int32_t> candidates;
+    for (size_t b = 0; b < nshells; ++b) {
+        if (shells[b].removed) continue;
+        const Point cb = CGAL::ORIGIN + shells[b].centroid;
+        const double rb2 = shells[b].scale * shells[b].scale * (1.0 + 1e-9);
+        // The guests: shells whose bounding spheres meet b's; their vertices inside b's sphere are asked.
+        std::vector<size_t> guests;
+        candidates.clear();
+        for (size_t a = 0; a < nshells; ++a) {
+            if (a == b || shells[a].removed) continue;
+            const double gap = std::sqrt(CGAL::squared_distance(cb, CGAL::ORIGIN + shells[a].centroid));
+            if (gap > shells[b].scale + shells[a].scale) continue;
+            guests.push_back(a);
+            for (size_t t : tris_of_shell[a]) {
+                for (size_t v : tris[t]) {
+                    if (asked[v] || CGAL::squared_distance(pts[v], cb) > rb2) continue;
+                    asked[v] = 1;
+                    candidates.push_back(int32_t(v));
+                }
+            }
+        }
+        if (candidates.empty()) continue;
+        if (points.empty()) {
+            points.resize(pts.size());
+            for (size_t i = 0; i < pts.size(); ++i) points[i] = float3(float(pts[i].x()), float(pts[i].y()), float(pts[i].z()));
+        }
+        const auto& host = tris_of_shell[b];
+        std::vector<std::array<int32_t, 3>> faces(host.size());
+        for (size_t i = 0; i < host.size(); ++i) faces[i] = {int32_t(tris[host[i]][0]), int32_t(tris[host[i]][1]), int32_t(tris[host[i]][2])};
+        const WindingNumber winding(points, faces);
+        // Each vertex on its own (the same answer for any thread count): the estimate at 4 radii
+        // (error about 0.02), at 8 (0.005) within 0.05 of the threshold, exact within 0.02. On ICT's
+        // 52 shells the 57,000 estimates at 8 radii alone took 0.6 s of one core.
+        parallel_for(int64_t(candidates.size()), 64, [&](int64_t begin, int64_t end) {
+            for (int64_t i = begin; i < end; ++i) {
+                const float3& p = points[size_t(candidates[size_t(i)])];
+                double w = std::fabs(winding(p, 4.0));
+                if (std::fabs(w - 0.5) <= 0.05) w = std::fabs(winding(p, 8.0));
+                if (std::fabs(w - 0.5) <= 0.02) w = std::fabs(winding.exact(p));
+                inside[size_t(candidates[size_t(i)])] = w > 0.5;
+            }
+        });
+        for (size_t a : guests) {
+            for (size_t t : tris_of_shell[a]) {
+                if (buried[t] || !inside[tris[t][0]] || !inside[tris[t][1]] || !inside[tris[t][2]]) continue;
+                buried[t] = 1;
+                ++shells[a].buried_faces;
+                ++report.buried_faces_removed;
+            }
+        }
+        for (int32_t v : candidates) inside[size_t(v)] = asked[size_t(v)] = 0;
+    }
+    for (const Shell& s : shells) report.shells_with_buried_faces += s.buried_faces > 0;
+    if (report.buried_faces_removed > 0) {
+        report.notes.push_back("removed " + std::to_string(report.buried_faces_removed) + " faces of " +
+                               std::to_string(report.shells_with_buried_faces) +
+                               " overlapping shells that lie inside another shell (e.g. an eyeball's back inside the "
+                               "head): the scalp is the shells' union, and those faces would make its inside read as outside");
+    }
+}
+
 /// The shells into the report, largest first.
 void list_shells(const std::vector<Shell>& shells, RepairReport& report)
 {
@@ -509,6 +592,7 @@ void list_shells(const std::vector<Shell>& shells, RepairReport& report)
         out.flipped = s.flip;
         out.removed = s.removed;
         out.winding = s.winding;
+        out.buried_faces = static_cast<int64_t>(s.buried_faces);
         report.shell_list.push_back(out);
     }
 }
@@ -517,13 +601,13 @@ void list_shells(const std::vector<Shell>& shells, RepairReport& report)
 /// options.flip); counts the faces whose winding ends up other than in the file.
 std::vector<Polygon> kept_triangles(const std::vector<Polygon>& tris, const std::vector<int32_t>& shell,
                                     const std::vector<char>& reversed, const std::vector<Shell>& shells,
-                                    const RepairOptions& options, RepairReport& report)
+                                    const std::vector<char>& buried, const RepairOptions& options, RepairReport& report)
 {
     std::vector<Polygon> kept;
     kept.reserve(tris.size());
     for (size_t t = 0; t < tris.size(); ++t) {
         const Shell& s = shells[shell[t]];
-        if (s.removed) continue;
+        if (s.removed || (!buried.empty() && buried[t])) continue;
         Polygon tri = tris[t];
         const bool net = (reversed[t] != 0) != s.flip;
         report.faces_flipped += net;
@@ -561,18 +645,29 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
     std::vector<int32_t> shell;
     std::vector<Shell> shells = find_shells(pts, tris, shell, report);
     if (options.orient_outward) orient_outward(pts, tris, shell, reversed, size2, shells, report);
-    if (options.remove_enclosed && shells.size() > 1) remove_enclosed(pts, tris, shell, shells, report);
+    std::vector<char> buried;
+    if (options.remove_enclosed && shells.size() > 1) {
+        remove_enclosed(pts, tris, shell, shells, report);
+        remove_buried_faces(pts, tris, shell, shells, buried, report);
+    }
     step.advance(1);
 
     list_shells(shells, report);
-    std::vector<Polygon> kept = kept_triangles(tris, shell, reversed, shells, options, report);
+    std::vector<Polygon> kept = kept_triangles(tris, shell, reversed, shells, buried, options, report);
     PMP::remove_isolated_points_in_polygon_soup(pts, kept);
-    // Whole shells were removed or turned, which keeps an oriented manifold one.
-    if (!manifold_in && !is_oriented_manifold(kept, pts.size())) {
+    // Whole shells removed or turned keep an oriented manifold one; buried faces gone can leave two
+    // fans meeting at one vertex, which CGAL splits (the windings are already right).
+    if (report.buried_faces_removed > 0 && !is_oriented_manifold(kept, pts.size())) {
+        const size_t before = pts.size();
+        PMP::orient_polygon_soup(pts, kept);
+        report.non_manifold_vertices += static_cast<int64_t>(pts.size() - before);
+        report.vertices_added_by_split += static_cast<int64_t>(pts.size() - before);
+    }
+    if ((!manifold_in || report.buried_faces_removed > 0) && !is_oriented_manifold(kept, pts.size())) {
         throw InvalidGeometry(options.what + ": repair could not make a manifold mesh (CGAL orient_polygon_soup left a "
                               "non-manifold configuration); please report this mesh");
     }
-    if (manifold_in || report.enclosed_shells_removed > 0) report_triangles(options, pts, kept);
+    if (manifold_in || report.enclosed_shells_removed > 0 || report.buried_faces_removed > 0) report_triangles(options, pts, kept);
     TriMesh mesh;  // vertices and faces in the soup's order
     PMP::polygon_soup_to_polygon_mesh(pts, kept, mesh);
     report.output_vertices = static_cast<int64_t>(mesh.n_vertices());

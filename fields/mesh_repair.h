@@ -27,6 +27,8 @@ struct RepairReport {
     int64_t shells_flipped = 0;              ///< shells turned so their normals face outwards
     int64_t enclosed_shells_removed = 0;     ///< shells entirely inside a larger shell (eyes, teeth, helpers)
     int64_t faces_in_removed_shells = 0;
+    int64_t buried_faces_removed = 0;        ///< faces of overlapping shells lying inside another shell
+    int64_t shells_with_buried_faces = 0;
     int64_t boundary_loops = 0;              ///< holes / open rims left in the result
     int64_t output_vertices = 0, output_faces = 0;
     bool flipped_by_user = false;            ///< --flip was given
@@ -39,6 +41,7 @@ struct RepairReport {
         float lo[3]{}, hi[3]{};      ///< bounding box
         bool closed = false, flipped = false, removed = false;
         double winding = 0.0;        ///< largest |winding number| of its samples w.r.t. a larger shell
+        int64_t buried_faces = 0;    ///< faces removed as lying inside another shell
     };
     std::vector<Shell> shell_list;
 

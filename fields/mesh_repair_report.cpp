@@ -25,6 +25,7 @@ std::string RepairReport::summary() const
     s << "  " << shells << " shells (" << closed_shells << " closed), " << boundary_loops << " boundary loops\n";
     line(shells_flipped, "shells turned outward");
     line(enclosed_shells_removed, "enclosed shells removed");
+    line(buried_faces_removed, "faces inside another shell removed");
     if (flipped_by_user) s << "  all faces flipped (--flip)\n";
     for (const std::string& n : notes) s << "  note: " << n << "\n";
     std::string out = s.str();

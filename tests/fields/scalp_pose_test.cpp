@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <ostream>
 #include <vector>
 
@@ -50,17 +51,24 @@ PoseDifference compare(const ScalpField& base, const ScalpField& moved, const Si
     return out;
 }
 
-/// The repair's decisions, which must not depend on the pose.
+/// The repair's decisions, which must not depend on the pose. All but one are exact: a buried face
+/// (all three vertices inside another shell, |winding number| > 1/2) whose vertex lies on the other
+/// shell's surface to within float rounding can go either way. ICT's 52 overlapping shells have
+/// about 35 vertices within 0.001 of the threshold, and a pose moved one of them across it (one face
+/// of 11,124). Such a face lies on the union's surface either way, so the field does not change
+/// (the distances are compared below). At most 1 in 2,000 faces may differ, and only those.
 void expect_same_repair(const RepairReport& a, const RepairReport& b)
 {
     EXPECT_EQ(a.degenerate_faces_removed, b.degenerate_faces_removed);
     EXPECT_EQ(a.non_manifold_edges, b.non_manifold_edges);
-    EXPECT_EQ(a.faces_flipped, b.faces_flipped);
     EXPECT_EQ(a.shells_flipped, b.shells_flipped);
     EXPECT_EQ(a.enclosed_shells_removed, b.enclosed_shells_removed);
     EXPECT_EQ(a.faces_in_removed_shells, b.faces_in_removed_shells);
     EXPECT_EQ(a.boundary_loops, b.boundary_loops);
-    EXPECT_EQ(a.output_faces, b.output_faces);
+    const int64_t buried = std::abs(a.buried_faces_removed - b.buried_faces_removed);
+    EXPECT_LE(buried, a.input_faces / 2000) << "buried faces " << a.buried_faces_removed << " and " << b.buried_faces_removed;
+    EXPECT_LE(std::abs(a.faces_flipped - b.faces_flipped), buried);
+    EXPECT_EQ(a.output_faces + a.buried_faces_removed, b.output_faces + b.buried_faces_removed);
 }
 
 /// Builds `soup` as it is (voxel h, 0 = automatic) and moved by each of `poses` random
@@ -110,12 +118,14 @@ void PrintTo(const Head& head, std::ostream* os) { *os << head.path; }
 class ScalpPoseReal : public testing::TestWithParam<Head> {};
 
 // Every real head at its default voxel, in one random pose. The aim (p99 <= 0.25 voxel, no sign
-// change farther than h/2) holds on all but makehuman, whose helper surfaces (tights, skirt) lie
-// within a voxel of the body with their inside on the other side: three sheets in 1.6 voxels,
-// which no grid of that voxel resolves, so what it reads between them depends on where the voxels
-// fall. Measured p99 (voxels): ponytail 0.12, demosthenes 0.077, ICT 0.20, Lee Perry-Smith 0.066,
-// makehuman 0.39 (one sign change, 2.2 voxels largest), nefertiti 0.076, Ratboy 0.067, Sintel 0.080,
-// Sintel's collider 0.040; before this work ponytail 0.25, ICT 0.37, makehuman 0.6 with 104 or 105
+// change farther than h/2) holds on all; makehuman has a looser limit, as its helper surfaces
+// (tights, skirt) lie within a voxel of the body: sheets closer than a voxel, which no grid of that
+// voxel resolves, so what it reads between them depends on where the voxels fall. Measured p99
+// (voxels), since the faces of overlapping shells buried inside another are removed: ponytail 0.10,
+// demosthenes 0.077, ICT 0.21, Lee Perry-Smith 0.066, makehuman 0.24 (0.89 largest, no sign
+// change), nefertiti 0.076, Ratboy 0.067, Sintel 0.080, Sintel's collider 0.040. Before that,
+// ponytail 0.12 and makehuman 0.39 with one sign change (the body's faces inside the tights made a
+// third sheet); before the shell work, ponytail 0.25, ICT 0.37, makehuman 0.6 with 104 or 105
 // shells removed by pose.
 //
 // The sign-change limits are not all 0 because a pose moved by float rounding (scale x (1 +- 1e-6),
@@ -140,7 +150,7 @@ INSTANTIATE_TEST_SUITE_P(Heads, ScalpPoseReal,
                                          Head{"demosthenes_scan/demosthenes-low-res.obj", 0.25, 0, false},
                                          Head{"ict_facekit/generic_neutral_mesh.obj", 0.25, 3, false},
                                          Head{"lee_perry_smith/LeePerrySmith.obj", 0.25, 1, false},
-                                         Head{"makehuman/base.obj", 0.6, 2, false},
+                                         Head{"makehuman/base.obj", 0.35, 2, false},
                                          Head{"nefertiti_scan/nefertiti-lowres.obj", 0.25, 0, true},
                                          Head{"ratboy_mohawk_tressfx/Ratboy_body.obj", 0.25, 0, true},
                                          Head{"sintel_tressfx_opengl/sintel.obj", 0.25, 1, false},

@@ -61,7 +61,8 @@ std::string repair_report_json(const RepairReport& r)
 }
 
 struct Args {
-    std::string input, output, report;
+    std::vector<std::string> inputs;
+    std::string output, report;
     float voxel = 0.0f;
     bool keep_enclosed = false;
     ScalpBuildParams params;
@@ -71,19 +72,31 @@ void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
     CLI::App* app = ctx.app;
-    app->add_option("MESH", args->input, "Head or scalp mesh (" + mesh_formats() + "); any units, any mess")->required();
+    app->add_option("MESH", args->inputs,
+                    "Head or scalp mesh (" + mesh_formats() + "); any units, any mess. Several are joined into one surface: "
+                    "a head with open eye sockets and its eyeballs, so hair does not fall into the sockets")
+        ->required();
     app->add_option("-o,--output", args->output, "Output level set (.vdb, grid 'scalp')")->required();
     CLI::Option* voxel = app->add_option("--voxel", args->voxel, "Voxel size, scene units (> 0; default: bounding-box diagonal / 256)");
     app->add_option("--band", args->params.band_voxels, "Narrow-band half width in voxels (1..64)")->capture_default_str();
     app->add_flag("--flip", args->params.flip, "The mesh is inside out: swap inside and outside");
     app->add_option("--report", args->report, "Write the repair report as JSON to this file");
     app->add_option("--group", args->params.group,
-                    "OBJ mesh: only the faces of this object ('o') or group ('g'), e.g. the head without eyes, teeth and hair proxies");
+                    "OBJ mesh: only the faces of this object ('o') or group ('g'), e.g. the head without eyes, teeth and hair proxies "
+                    "(of the first MESH where there are several)");
     app->add_flag("--keep-enclosed", args->keep_enclosed, "Keep shells that lie inside another (eyes, teeth) and the faces of overlapping shells that lie inside another (an eyeball's back); removed by default");
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, voxel, &common] {
         Args& a = *args;
-        check_outputs({{"-o", a.output}, {"--report", a.report}}, {a.input}, common);
+        check_outputs({{"-o", a.output}, {"--report", a.report}}, std::span<const std::string>(a.inputs), common);
+        for (size_t k = 1; k < a.inputs.size(); ++k) {
+            for (size_t j = 0; j < k; ++j) {
+                if (names_one_file(a.inputs[j], a.inputs[k])) {
+                    throw InvalidParam("scalp: " + a.inputs[k] + " is given twice (as MESH " + std::to_string(j + 1) + " and " +
+                                       std::to_string(k + 1) + "): joined with itself it would be two coincident surfaces");
+                }
+            }
+        }
         if (std::filesystem::path(a.output).extension() != ".vdb") {
             throw InvalidParam("scalp: -o must name a .vdb file (got '" + a.output + "')");
         }
@@ -93,11 +106,14 @@ void setup(CommandContext& ctx)
         a.params.voxel_size = a.voxel;
         a.params.for_queries = false;  // written, never queried: no query bricks in the estimate
         a.params.remove_enclosed_shells = !a.keep_enclosed;
-        a.params.source = a.input;
+        a.params.source.clear();
+        for (const std::string& in : a.inputs) a.params.source += (a.params.source.empty() ? "" : " + ") + in;
         a.params.validate();
 
         const auto start = std::chrono::steady_clock::now();
-        const PolygonSoup soup = read_mesh(a.input, a.params.group);
+        // --group picks the head's faces out of the first mesh; the others (its eyeballs) are whole.
+        PolygonSoup soup;
+        for (size_t k = 0; k < a.inputs.size(); ++k) append(soup, read_mesh(a.inputs[k], k == 0 ? a.params.group : std::string()), a.params.source);
         auto progress = make_progress(common);
         RepairReport report;
         const ScalpField scalp = build_scalp(soup, a.params, &report, progress.get());

@@ -12,6 +12,7 @@
 #include <functional>
 #include <initializer_list>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,11 @@ struct NamedOutput {
 /// given), and InvalidParam when two of them name one file, which --force does not allow: one
 /// would silently replace the other.
 void check_outputs(std::initializer_list<NamedOutput> outputs, std::initializer_list<std::string> inputs, const CommonOptions& o);
+/// Whether two paths name one file: the same file where both exist, else the same place once
+/// resolved (links, `.` and `..`).
+bool names_one_file(const std::string& a, const std::string& b);
+/// check_outputs for a command whose inputs are a list (`groom scalp HEAD EYES`).
+void check_outputs(std::initializer_list<NamedOutput> outputs, std::span<const std::string> inputs, const CommonOptions& o);
 
 /// A progress bar on stderr when it is a terminal, line-based when not (only with --verbose),
 /// nothing with --quiet.

@@ -125,13 +125,16 @@ std::string resolved(const std::string& path)
     return ec ? path : p.string();
 }
 
+}  // namespace
+
 bool names_one_file(const std::string& a, const std::string& b)
 {
     return same_file(a, b) || resolved(a) == resolved(b);
 }
 
-void check_one_output(const std::string& option, const std::string& output, std::initializer_list<std::string> inputs,
-                      const CommonOptions& o)
+namespace {
+
+void check_one_output(const std::string& option, const std::string& output, std::span<const std::string> inputs, const CommonOptions& o)
 {
     if (output.empty()) throw InvalidParam(option + ": an output path is required");
     if (output == "-" || o.force) return;
@@ -155,10 +158,15 @@ void check_one_output(const std::string& option, const std::string& output, std:
 
 void check_output(const std::string& output, std::initializer_list<std::string> inputs, const CommonOptions& o)
 {
-    check_one_output("-o", output, inputs, o);
+    check_one_output("-o", output, std::span<const std::string>(inputs.begin(), inputs.size()), o);
 }
 
 void check_outputs(std::initializer_list<NamedOutput> outputs, std::initializer_list<std::string> inputs, const CommonOptions& o)
+{
+    check_outputs(outputs, std::span<const std::string>(inputs.begin(), inputs.size()), o);
+}
+
+void check_outputs(std::initializer_list<NamedOutput> outputs, std::span<const std::string> inputs, const CommonOptions& o)
 {
     std::vector<const NamedOutput*> given;
     for (const NamedOutput& out : outputs) {

@@ -1,6 +1,10 @@
 #include "kernel/polygon_soup.h"
 
+#include "kernel/error.h"
+
 #include <algorithm>
+#include <limits>
+#include <string>
 #include <cstring>
 #include <numeric>
 #include <unordered_map>
@@ -40,6 +44,31 @@ int64_t find_root(std::vector<int64_t>& parent, int64_t i)
 }
 
 }  // namespace
+
+void append(PolygonSoup& to, const PolygonSoup& more, const std::string& what)
+{
+    constexpr size_t kMost = size_t(std::numeric_limits<int32_t>::max());
+    if (to.points.size() + more.points.size() > kMost || (to.uvs.size() + more.uvs.size()) / 2 > kMost) {
+        throw LimitExceeded(what + ": " + std::to_string(to.points.size() + more.points.size()) +
+                            " vertices together, more than a face index holds (2^31 - 1): convert the meshes one by one, or fewer at once");
+    }
+    const auto base = int32_t(to.points.size()), uv_base = int32_t(to.uvs.size() / 2);
+    const bool uvs = to.has_uvs() || more.has_uvs();
+    if (uvs) to.face_uv_indices.resize(to.face_indices.size(), -1);  // the first mesh's corners without one
+    to.points.insert(to.points.end(), more.points.begin(), more.points.end());
+    to.uvs.insert(to.uvs.end(), more.uvs.begin(), more.uvs.end());
+    const int64_t index_base = int64_t(to.face_indices.size());
+    for (const int32_t i : more.face_indices) to.face_indices.push_back(i + base);
+    for (size_t f = 1; f < more.face_offsets.size(); ++f) to.face_offsets.push_back(index_base + more.face_offsets[f]);
+    if (uvs) {
+        if (more.has_uvs()) {
+            for (const int32_t t : more.face_uv_indices) to.face_uv_indices.push_back(t < 0 ? -1 : t + uv_base);
+        }
+        else {
+            to.face_uv_indices.resize(to.face_indices.size(), -1);
+        }
+    }
+}
 
 MeshStats mesh_stats(const PolygonSoup& soup)
 {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace groom {
@@ -42,6 +43,12 @@ struct PolygonSoup {
         add_face(idx);
     }
 };
+
+/// Appends `more` to `to`: its vertices after `to`'s, its faces (and texture coordinates, where
+/// either has them) renumbered to match. Several meshes become one surface this way (a head and
+/// its eyeballs). Throws LimitExceeded when the vertices (or texture coordinates) together pass
+/// 2^31 - 1, the most a face index holds; `what` names the meshes in that message.
+void append(PolygonSoup& to, const PolygonSoup& more, const std::string& what);
 
 /// Topology statistics of a soup, for `groom info` and repair reports.
 struct MeshStats {

@@ -95,11 +95,8 @@ def curveset_from_object(ob):
     return curves
 
 
-def scalp_from_object(ob, voxel=0.0):
-    """groom.Scalp from a mesh object's evaluated triangles, in world space."""
-    if ob is None or ob.type != 'MESH':
-        raise ValueError(f"scalp: expected a mesh object, got {ob.name + ' (' + ob.type + ')' if ob else 'none'}")
-    depsgraph = bpy.context.evaluated_depsgraph_get()
+def _world_triangles(ob, depsgraph):
+    """A mesh object's evaluated triangles: (n, 3) world positions and (m, 3) vertex indices."""
     mesh = ob.evaluated_get(depsgraph).to_mesh()
     try:
         mesh.calc_loop_triangles()
@@ -109,7 +106,24 @@ def scalp_from_object(ob, voxel=0.0):
         mesh.loop_triangles.foreach_get('vertices', tris)
     finally:
         ob.evaluated_get(depsgraph).to_mesh_clear()
-    return groom.Scalp.from_mesh(_world(verts.reshape(-1, 3), ob.matrix_world), tris.reshape(-1, 3), voxel=voxel)
+    return _world(verts.reshape(-1, 3), ob.matrix_world), tris.reshape(-1, 3)
+
+
+def scalp_from_object(ob, voxel=0.0, extras=()):
+    """groom.Scalp from a mesh object's evaluated triangles, in world space, joined with those of the
+    mesh objects in `extras` (eyeballs in open sockets, teeth): the scalp is the solid they make
+    together, as `groom scalp head.obj eyes.obj` makes it."""
+    if ob is None or ob.type != 'MESH':
+        raise ValueError(f"scalp: expected a mesh object, got {ob.name + ' (' + ob.type + ')' if ob else 'none'}")
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    points, triangles = [], []
+    base = 0
+    for part in [ob] + [e for e in extras if e.type == 'MESH' and e != ob]:
+        verts, tris = _world_triangles(part, depsgraph)
+        points.append(verts)
+        triangles.append(tris + base)
+        base += len(verts)
+    return groom.Scalp.from_mesh(np.concatenate(points), np.concatenate(triangles), voxel=voxel)
 
 
 def curves_object(curves, name, collection):

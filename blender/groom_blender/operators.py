@@ -44,6 +44,9 @@ def _curves_poll(self, ob):
 
 class GroomSettings(bpy.types.PropertyGroup):
     scalp: PointerProperty(name="Scalp", type=bpy.types.Object, poll=_mesh_poll, description="Mesh the hair grows on")
+    scalp_extras: PointerProperty(name="Joined", type=bpy.types.Collection,
+                                  description="Meshes joined to the scalp (eyeballs in open eye sockets, teeth): hair keeps "
+                                              "outside the solid they make together, and roots may grow on them too")
     scalp_voxel: FloatProperty(name="Scalp voxel", default=0.0, min=0.0, description="Voxel size of the scalp's field (0 = automatic)")
     threads: IntProperty(name="Threads", default=0, min=0, description="Worker threads (0 = all cores); results are identical for any count")
     seed: IntProperty(name="Seed", default=0, min=0)
@@ -144,7 +147,8 @@ class _GroomOperator:
                 guides = convert.guides_from_objects(chosen)
             scalp = None
             if settings.scalp is not None:
-                scalp = convert.scalp_from_object(settings.scalp, settings.scalp_voxel)
+                extras = settings.scalp_extras.all_objects if settings.scalp_extras else ()
+                scalp = convert.scalp_from_object(settings.scalp, settings.scalp_voxel, extras)
             elif self.needs_scalp:
                 raise ValueError("scalp: choose a scalp mesh in the Groom panel")
             kw = _given(settings, ("threads",))

@@ -14,6 +14,7 @@ class GROOM_PT_panel(bpy.types.Panel):
         s = context.scene.groom
         col = self.layout.column()
         col.prop(s, "scalp")
+        col.prop(s, "scalp_extras")
         col.prop(s, "scalp_voxel")
         col.prop(s, "units_per_cm")
         col.prop(s, "seed")

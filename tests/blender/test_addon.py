@@ -63,6 +63,36 @@ field = convert.scalp_from_object(scalp, 0.02)
 d = field.distance(np.array([[0, 0, 0], [0, 0, 2]], np.float32))
 check("scalp from the sphere mesh", abs(d[0] + 1) < 0.01 and abs(d[1] - 1) < 0.01, str(d))
 
+# Meshes joined to the scalp (the panel's "Joined" collection): an eyeball half through the sphere.
+# The scalp is their union: inside the sphere beside the eyeball's back reads inside (the eyeball's
+# back, buried in the sphere, is not part of the surface), inside the eyeball outside the sphere too.
+bpy.ops.mesh.primitive_uv_sphere_add(radius=0.3, segments=32, ring_count=16, location=(0.9, 0, 0))
+eye = bpy.context.active_object
+eye.name = "eye"
+joined = bpy.data.collections.new("joined")
+bpy.context.scene.collection.children.link(joined)
+joined.objects.link(eye)
+with_eye = convert.scalp_from_object(scalp, 0.02, joined.all_objects)
+d = with_eye.distance(np.array([[0.5, 0, 0], [1.1, 0, 0], [1.3, 0, 0]], np.float32))
+check("joined: inside the sphere beside the eyeball", d[0] < -0.3, str(d))
+check("joined: inside the eyeball out of the sphere", -0.15 < d[1] < -0.05, str(d))
+check("joined: outside both", abs(d[2] - 0.1) < 0.01, str(d))
+settings.scalp_extras = joined
+settings.property_unset("hairs")
+settings.hairs = 40
+select_guides()
+result = bpy.ops.groom.generate()
+ob = bpy.context.view_layer.objects.active
+expected = groom.generate(guides, scalp=with_eye, count=40)
+pos = np.empty(len(ob.data.points) * 3, np.float32)
+ob.data.attributes['position'].data.foreach_get('vector', pos)
+check("joined: the operator grows on the joined scalp",
+      result == {'FINISHED'} and pos.size == expected.points.size and np.array_equal(pos.reshape(-1, 3), expected.points), str(result))
+settings.scalp_extras = None
+bpy.data.objects.remove(ob)
+bpy.data.objects.remove(eye)
+bpy.data.collections.remove(joined)
+
 cases = [
     ("braid", lambda: groom.braid(guides, scalp=field, fibers=4, knot_length=0.6), dict(fibers=4, knot_length=0.6)),
     ("partition", lambda: groom.partition(guides, scalp=field, count=6), dict(count=6)),

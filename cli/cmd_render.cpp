@@ -143,7 +143,8 @@ void setup(CommandContext& ctx)
             }
         }
         std::optional<PolygonSoup> mesh;
-        // A mesh is drawn as it is; a .vdb from `groom scalp` is drawn as the surface extracted from it.
+        // A mesh is drawn as it is; a .vdb as its scalp's mesh: the repaired mesh `groom scalp` stored
+        // in it, else (another program's file) the surface extracted from its level set.
         ScalpBuildParams scalp_params;
         scalp_params.group = a.scalp_group;  // a .vdb with a group is refused by load_scalp
         scalp_params.grid = a.scalp_grid;    // and a mesh with a grid

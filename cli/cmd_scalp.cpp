@@ -60,6 +60,12 @@ std::string repair_report_json(const RepairReport& r)
     return j.dump(2) + "\n";
 }
 
+std::string box_text(const Bounds3& b)
+{
+    return "(" + format_number(b.lo.x) + ", " + format_number(b.lo.y) + ", " + format_number(b.lo.z) + ") to (" + format_number(b.hi.x) +
+           ", " + format_number(b.hi.y) + ", " + format_number(b.hi.z) + ")";
+}
+
 struct Args {
     std::vector<std::string> inputs;
     std::string output, report;
@@ -67,6 +73,61 @@ struct Args {
     bool keep_enclosed = false;
     ScalpBuildParams params;
 };
+
+/// The meshes read and joined into one soup. --group picks the head's faces out of the first mesh;
+/// the others (its eyeballs, teeth, a body) are whole, and each must come within half the first
+/// one's size of its box and be within 200x of its size: a mesh in other units or from another
+/// scene's placement would otherwise be accepted without a word (a trial joined Sintel's head in
+/// metres to her eyeballs in centimetres, 80 head-sizes away, and the voxel, sized to fit both,
+/// left the head 3 voxels across; her head in centimetres with her eyes in metres put 5 mm eyes
+/// under the bust, 450x smaller than the head). With several meshes and no --voxel,
+/// the first one sets the automatic voxel (its own diagonal / 256): a body joined to a head does
+/// not make the head coarser.
+constexpr float kMaxSizeRatio = 200.0f;  // centimetres against metres is 100x the head's size ratio to its eyes
+
+PolygonSoup joined_meshes(Args& a, bool voxel_given, const CommonOptions& common)
+{
+    PolygonSoup soup;
+    Bounds3 first;
+    std::string sizes;
+    for (size_t k = 0; k < a.inputs.size(); ++k) {
+        PolygonSoup mesh;
+        try {
+            mesh = read_mesh(a.inputs[k], k == 0 ? a.params.group : std::string());
+        } catch (const ParseError& e) {
+            if (a.inputs.size() < 2 || a.params.group.empty()) throw;
+            throw ParseError(std::string(e.what()) + " (--group picks faces of the first MESH only; the others are joined whole)");
+        }
+        Bounds3 box;
+        for (const float3& p : mesh.points) box.extend(p);
+        if (k == 0) {
+            first = box;
+        } else {
+            const float across = length(first.size()), its = length(box.size());
+            const float3 grow(0.5f * across, 0.5f * across, 0.5f * across);
+            const float3 lo = max(first.lo - grow, box.lo), hi = min(first.hi + grow, box.hi);
+            const bool apart = !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z);
+            const bool scale = its > kMaxSizeRatio * across || across > kMaxSizeRatio * its;
+            if (apart || scale) {
+                throw InvalidGeometry("scalp: " + a.inputs[k] + " (bounds " + box_text(box) + ", " + format_number(its) + " units across) " +
+                                      (apart ? "lies away from " : "is of another scale than ") + a.inputs[0] + " (" + box_text(first) +
+                                      ", " + format_number(across) + " units across" +
+                                      (apart ? "): a mesh joined to the head must touch it, or come within half its size"
+                                             : "): a mesh joined to the head is within " + format_number(kMaxSizeRatio) + "x of its size") +
+                                      " (eyeballs, teeth, a body). Other units or another scene's placement? Scale or move it to "
+                                      "the head in the program that made it, or, if it really is so, join the two in one file");
+            }
+        }
+        sizes += (sizes.empty() ? "" : ", ") + a.inputs[k] + " " + std::to_string(mesh.num_faces()) + " faces";
+        append(soup, mesh, a.params.source);
+    }
+    if (a.inputs.size() > 1) {
+        if (!voxel_given) a.params.voxel_size = length(first.size()) / 256.0f;
+        note(common, "scalp: " + std::to_string(a.inputs.size()) + " meshes joined (" + sizes + ")" +
+                         (voxel_given ? "" : "; voxel from the first one's diagonal / 256"));
+    }
+    return soup;
+}
 
 void setup(CommandContext& ctx)
 {
@@ -88,6 +149,12 @@ void setup(CommandContext& ctx)
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, voxel, &common] {
         Args& a = *args;
+        for (const std::string& in : a.inputs) {
+            if (std::filesystem::path(in).extension() == ".vdb") {
+                throw InvalidParam("scalp: " + in + " is a .vdb, a scalp field already (expected a mesh, " + mesh_formats() +
+                                   "): give it to the other commands as --scalp " + in);
+            }
+        }
         check_outputs({{"-o", a.output}, {"--report", a.report}}, std::span<const std::string>(a.inputs), common);
         for (size_t k = 1; k < a.inputs.size(); ++k) {
             for (size_t j = 0; j < k; ++j) {
@@ -111,9 +178,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
 
         const auto start = std::chrono::steady_clock::now();
-        // --group picks the head's faces out of the first mesh; the others (its eyeballs) are whole.
-        PolygonSoup soup;
-        for (size_t k = 0; k < a.inputs.size(); ++k) append(soup, read_mesh(a.inputs[k], k == 0 ? a.params.group : std::string()), a.params.source);
+        const PolygonSoup soup = joined_meshes(a, voxel->count() > 0, common);
         auto progress = make_progress(common);
         RepairReport report;
         const ScalpField scalp = build_scalp(soup, a.params, &report, progress.get());

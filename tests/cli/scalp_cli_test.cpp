@@ -119,6 +119,32 @@ TEST(ScalpCli, SeveralMeshesAreOneSurface)
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("is given twice (as MESH 1 and 3)"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("t.vdb")));
+    // A mesh in other units or placed for another scene: one 100 head-sizes away, one 1,000x
+    // smaller (centimetres against metres is 100x), refused naming both meshes and the way on.
+    write_mesh(icosphere({300.0f, 0, 0}, 1.0f, 2), dir.file("far.obj"));
+    write_mesh(icosphere({-1.5f, 0, 0}, 0.001f, 2), dir.file("tiny.obj"));
+    for (const auto& [name, says] : {std::pair<std::string, std::string>{"far.obj", "lies away from"}, {"tiny.obj", "is of another scale than"}}) {
+        r = run_groom({"scalp", dir.file("a.obj"), dir.file(name), "-o", dir.file("t.vdb")});
+        EXPECT_EQ(r.exit_code, 1) << r.err;
+        EXPECT_NE(r.err.find(name + " (bounds"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(says + " " + dir.file("a.obj")), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("Other units"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir.file("t.vdb")));
+    }
+    // The first mesh sets the automatic voxel: its diagonal / 256 (2 sqrt(3) / 256), not the pair's.
+    r = run_groom({"scalp", dir.file("a.obj"), dir.file("b.ply"), "-o", dir.file("v.vdb")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("2 meshes joined"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("voxel " + format_number(float(2.0 * std::sqrt(3.0) * 1.0 / 256.0)).substr(0, 6)), std::string::npos) << r.err;
+    // A .vdb is a scalp already; --group names the mesh it was looked for in, and says it picks
+    // faces of the first mesh only.
+    r = run_groom({"scalp", dir.file("v.vdb"), "-o", dir.file("t.vdb")});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("is a .vdb, a scalp field already"), std::string::npos) << r.err;
+    r = run_groom({"scalp", dir.file("a.obj"), dir.file("b.ply"), "--group", "head", "-o", dir.file("t.vdb")});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("--group picks faces of the first MESH only"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("t.vdb")));
 }
 
 TEST(ScalpCliReal, SintelsEyeballsFillHerOpenSockets)

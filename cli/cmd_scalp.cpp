@@ -40,10 +40,13 @@ std::string repair_report_json(const RepairReport& r)
         {"buried_faces_removed", r.buried_faces_removed},
         {"shells_with_buried_faces", r.shells_with_buried_faces},
         {"boundary_loops", r.boundary_loops},
+        {"holes_filled", r.holes_filled},
+        {"faces_added_by_fill", r.faces_added_by_fill},
         {"output_vertices", r.output_vertices},
         {"output_faces", r.output_faces},
     };
     for (const auto& [key, value] : counts) j[key] = value;
+    j["rim_lengths"] = r.rim_lengths;
     j["flipped_by_user"] = r.flipped_by_user;
     j["notes"] = r.notes;
     j["shell_list"] = nlohmann::ordered_json::array();
@@ -145,6 +148,11 @@ void setup(CommandContext& ctx)
     app->add_option("--group", args->params.group,
                     "OBJ mesh: only the faces of this object ('o') or group ('g'), e.g. the head without eyes, teeth and hair proxies "
                     "(of the first MESH where there are several)");
+    app->add_option("--fill-holes", args->params.fill_holes,
+                    "Close the mesh's open rims up to this length, scene units (eye sockets and a mouth with no eyeballs or "
+                    "teeth to join, not the neck): hair then lies over them instead of falling in. The rims' lengths are "
+                    "printed; 0 = none")
+        ->capture_default_str();
     app->add_flag("--keep-enclosed", args->keep_enclosed, "Keep shells that lie inside another (eyes, teeth) and the faces of overlapping shells that lie inside another (an eyeball's back); removed by default");
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, voxel, &common] {

@@ -4,6 +4,8 @@
 // nothing of eyes inside heads.
 #include "fields/scalp_impl.h"
 
+#include "fields/rims.h"
+
 #include "kernel/error.h"
 #include "kernel/parallel.h"
 
@@ -683,7 +685,13 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
         throw InvalidGeometry(options.what + ": repair could not make a manifold mesh (CGAL orient_polygon_soup left a "
                               "non-manifold configuration); please report this mesh");
     }
-    if (manifold_in || report.enclosed_shells_removed > 0 || report.buried_faces_removed > 0) report_triangles(options, pts, kept);
+    // The rims left (their lengths go in the report, to choose --fill-holes by), and those asked for filled.
+    const std::vector<Rim> rims = find_rims(pts, kept);
+    for (const Rim& r : rims) report.rim_lengths.push_back(r.length);
+    if (options.fill_holes > 0.0) report.holes_filled = fill_rims(pts, kept, rims, options.fill_holes, report.faces_added_by_fill);
+    if (manifold_in || report.enclosed_shells_removed > 0 || report.buried_faces_removed > 0 || report.holes_filled > 0) {
+        report_triangles(options, pts, kept);
+    }
     TriMesh mesh;  // vertices and faces in the soup's order
     PMP::polygon_soup_to_polygon_mesh(pts, kept, mesh);
     report.output_vertices = static_cast<int64_t>(mesh.n_vertices());

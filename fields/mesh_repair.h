@@ -29,7 +29,10 @@ struct RepairReport {
     int64_t faces_in_removed_shells = 0;
     int64_t buried_faces_removed = 0;        ///< faces of overlapping shells lying inside another shell
     int64_t shells_with_buried_faces = 0;
-    int64_t boundary_loops = 0;              ///< holes / open rims left in the result
+    int64_t boundary_loops = 0;              ///< holes / open rims, counted before shells and buried faces go
+    std::vector<double> rim_lengths;         ///< every open rim of the repaired mesh (before filling), longest first
+    int64_t holes_filled = 0;                ///< rims closed by `fill_holes`
+    int64_t faces_added_by_fill = 0;
     int64_t output_vertices = 0, output_faces = 0;
     bool flipped_by_user = false;            ///< --flip was given
     std::vector<std::string> notes;          ///< sentences for the user (why a shell went, etc.)

@@ -1,6 +1,9 @@
 // RepairReport as text: the summary `groom scalp` prints and the JSON it writes with --report.
 #include "fields/mesh_repair.h"
 
+#include "kernel/error.h"
+
+#include <cmath>
 #include <sstream>
 
 namespace groom {
@@ -26,6 +29,13 @@ std::string RepairReport::summary() const
     line(shells_flipped, "shells turned outward");
     line(enclosed_shells_removed, "enclosed shells removed");
     line(buried_faces_removed, "faces inside another shell removed");
+    if (!rim_lengths.empty()) {
+        s << "  " << rim_lengths.size() << (rim_lengths.size() == 1 ? " open rim" : " open rims") << " after repair, length";
+        for (size_t i = 0; i < rim_lengths.size() && i < 8; ++i) s << (i ? ", " : " ") << format_number(std::round(rim_lengths[i] * 1000.0) / 1000.0);
+        if (rim_lengths.size() > 8) s << ", ... (" << rim_lengths.size() - 8 << " more)";
+        s << "\n";
+    }
+    if (holes_filled) s << "  " << holes_filled << (holes_filled == 1 ? " hole" : " holes") << " filled (" << faces_added_by_fill << " faces)\n";
     if (flipped_by_user) s << "  all faces flipped (--flip)\n";
     for (const std::string& n : notes) s << "  note: " << n << "\n";
     std::string out = s.str();

@@ -42,6 +42,10 @@ void ScalpBuildParams::validate() const
     if (!(band_voxels >= 1.0f && band_voxels <= 64.0f)) {
         throw InvalidParam("scalp: `band` must be in [1, 64] voxels (got " + format_number(band_voxels) + ")");
     }
+    if (!(fill_holes >= 0.0f) || !std::isfinite(fill_holes)) {
+        throw InvalidParam("scalp: `fill_holes` must be a length >= 0, scene units (got " + format_number(fill_holes) +
+                           "); 0 fills none");
+    }
 }
 
 void ScalpField::Impl::set_transform(const std::string& what)
@@ -335,6 +339,7 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
     detail::RepairOptions options;
     options.flip = params.flip;
     options.remove_enclosed = params.remove_enclosed_shells;
+    options.fill_holes = params.fill_holes;
     options.what = params.source;
 
     // meshToVolume needs only the final positions and faces: started as soon as the repair has them,

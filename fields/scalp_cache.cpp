@@ -28,7 +28,7 @@ Cache& cache()
 bool same(const ScalpBuildParams& a, const ScalpBuildParams& b)
 {
     return a.voxel_size == b.voxel_size && a.band_voxels == b.band_voxels && a.flip == b.flip && a.memory_budget == b.memory_budget &&
-           a.remove_enclosed_shells == b.remove_enclosed_shells && a.group == b.group && a.grid == b.grid;
+           a.remove_enclosed_shells == b.remove_enclosed_shells && a.fill_holes == b.fill_holes && a.group == b.group && a.grid == b.grid;
 }
 
 }  // namespace

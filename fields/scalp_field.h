@@ -33,6 +33,9 @@ struct ScalpBuildParams {
     /// (kernel/memory_budget.h: --memory, else half the machine's memory).
     uint64_t memory_budget = 0;
     bool remove_enclosed_shells = true;   ///< drop shells lying inside a larger one (eyes, teeth)
+    /// Close the mesh's open rims up to this length, scene units (eye sockets, a mouth; not the
+    /// neck): 0 = none. `groom scalp --fill-holes`.
+    float fill_holes = 0.0f;
     /// The field will be queried (every command but `groom scalp`, which only writes it): its query
     /// bricks, built on the first query, count in the memory estimate.
     bool for_queries = true;

@@ -139,11 +139,12 @@ struct RepairOptions {
     bool orient_outward = true;   ///< closed shells: normals outwards (signed volume)
     bool remove_enclosed = true;  ///< drop shells entirely inside another shell
     bool flip = false;            ///< reverse everything at the end
+    double fill_holes = 0.0;      ///< close open rims up to this length (scene units); 0 = none
     std::string what = "mesh";    ///< names the input in messages
     /// Called with the triangles' positions in the face order of the mesh returned, as soon as
     /// those are final: before CGAL's orientation when the soup needs it (that is slow, and only
     /// turns windings and duplicates vertices in place), else before the OpenMesh conversion; and
-    /// called again, with the remaining faces, if enclosed shells or buried faces are then removed (the earlier
+    /// called again, with the remaining faces, if enclosed shells or buried faces are then removed or holes filled (the earlier
     /// call's faces are void). Lets the distance field start while the repair runs. May throw,
     /// which aborts the repair.
     std::function<void(std::vector<float3> points, std::vector<std::array<int32_t, 3>> triangles)> on_triangles;

@@ -187,6 +187,28 @@ TEST(ScalpCliReal, SintelsEyeballsFillHerOpenSockets)
     }
 }
 
+TEST(ScalpCli, FillHolesClosesRimsUpToALength)
+{
+    // A unit sphere missing its cap within 20 degrees of +Y: one rim, a regular 64-gon of perimeter
+    // 2 x 64 sin(20 deg) sin(pi / 64) = 2.148. Its length is printed; a length above it fills it.
+    TempDir dir;
+    write_mesh(sphere_cap({0, 0, 0}, 1.0f, {0, -1, 0}, 160.0f, 48, 64), dir.file("open.obj"));
+    auto r = run_groom({"scalp", dir.file("open.obj"), "-o", dir.file("a.vdb"), "--voxel", "0.02"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("1 open rim after repair, length 2.148"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("filled"), std::string::npos) << r.err;
+    r = run_groom({"scalp", dir.file("open.obj"), "-o", dir.file("b.vdb"), "--voxel", "0.02", "--fill-holes", "2.2", "--report",
+                   dir.file("r.json")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("1 hole filled (62 faces)"), std::string::npos) << r.err;
+    EXPECT_NE(read_bytes(dir.file("r.json")).find("\"holes_filled\": 1"), std::string::npos);
+    // Above the filled hole the distance is to its plane, y - cos(20 deg) (0.2603 at y = 1.2).
+    write_text(dir.file("p.txt"), "0 1.2 0\n");
+    r = run_groom({"probe", "--scalp", dir.file("b.vdb"), dir.file("p.txt"), "-o", dir.file("p.csv")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(read_bytes(dir.file("p.csv")).find("0,1.2,0,0.2603"), std::string::npos) << read_bytes(dir.file("p.csv"));
+}
+
 TEST(ScalpCli, BadInputFailsCleanlyWithoutOutput)
 {
     TempDir dir;
@@ -220,6 +242,7 @@ TEST(ScalpCli, BadInputFailsCleanlyWithoutOutput)
         {{"scalp", obj, "-o", out, "--voxel", "-1"}, 2, "--voxel must be > 0"},
         {{"scalp", obj, "-o", out, "--voxel", "0.0001", "--memory", "0.01"}, 1, "use --voxel"},
         {{"scalp", obj, "-o", out, "--band", "0"}, 2, "--band"},
+        {{"scalp", obj, "-o", out, "--fill-holes", "-1"}, 2, "--fill-holes"},
         {{"probe", "--scalp", dir.file("other.vdb"), dir.file("p.txt"), "-o", dir.file("o.csv")}, 1,
          "other.vdb: no grid is named 'scalp' and none is a float level set (found: 'scalq' (float, staggered))"},
         {{"probe", "--scalp", dir.file("other.vdb"), dir.file("p.txt"), "-o", dir.file("o.csv"), "--scalp-grid", "scalp"}, 2,

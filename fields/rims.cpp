@@ -1,0 +1,116 @@
+// Open rims: boundary edges chained into loops, and their filling (see rims.h).
+#include "fields/rims.h"
+
+#include "fields/scalp_impl.h"
+
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <utility>
+
+namespace groom::detail {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+std::vector<Rim> find_rims(const std::vector<RimPoint>& points, const std::vector<std::vector<size_t>>& triangles)
+{
+    // The directed edges, sorted: a boundary edge a -> b is one whose twin b -> a is not there.
+    std::vector<std::pair<size_t, size_t>> edges;
+    edges.reserve(triangles.size() * 3);
+    for (const auto& t : triangles)
+        for (int k = 0; k < 3; ++k) edges.emplace_back(t[size_t(k)], t[size_t((k + 1) % 3)]);
+    std::sort(edges.begin(), edges.end());
+    constexpr size_t kNone = size_t(-1);
+    std::vector<size_t> next(points.size(), kNone);
+    std::vector<int> outgoing(points.size(), 0);
+    for (const auto& [a, b] : edges) {
+        if (std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a))) continue;
+        next[a] = b;
+        ++outgoing[a];
+    }
+    // Walked from each unvisited boundary vertex in index order, so the rims and their vertices come
+    // out the same for the same soup. A vertex with two boundary edges out (two rims touching, a
+    // pinch the repair left) ends its walk; the rim is kept but marked not simple.
+    std::vector<Rim> rims;
+    std::vector<char> seen(points.size(), 0);
+    for (size_t start = 0; start < points.size(); ++start) {
+        if (next[start] == kNone || seen[start]) continue;
+        Rim rim;
+        size_t v = start;
+        while (v != kNone && !seen[v]) {
+            seen[v] = 1;
+            rim.loop.push_back(v);
+            rim.simple = rim.simple && outgoing[v] == 1;
+            const size_t w = next[v];
+            if (w != kNone) rim.length += std::sqrt(CGAL::squared_distance(points[v], points[w]));
+            v = w;
+        }
+        rim.simple = rim.simple && v == start;
+        rims.push_back(std::move(rim));
+    }
+    std::stable_sort(rims.begin(), rims.end(), [](const Rim& a, const Rim& b) { return a.length > b.length; });
+    return rims;
+}
+
+int64_t fill_rims(const std::vector<RimPoint>& points, std::vector<std::vector<size_t>>& triangles, const std::vector<Rim>& rims,
+                  double max_length, int64_t& faces_added)
+{
+    int64_t filled = 0;
+    for (const Rim& rim : rims) {
+        const size_t n = rim.loop.size();
+        if (!rim.simple || n < 3 || !(rim.length <= max_length)) continue;
+        std::vector<RimPoint> polyline;
+        for (size_t v : rim.loop) polyline.push_back(points[v]);
+        std::vector<CGAL::Triple<int, int, int>> patch;
+        PMP::triangulate_hole_polyline(polyline, std::back_inserter(patch));
+        if (patch.size() != n - 2) continue;
+        // The mesh runs each rim edge a -> b; the patch must run it b -> a. A triangle with a rim
+        // edge is wound by it; one with none (inside the patch) by a neighbour already wound, which
+        // a patch of n - 2 triangles over n corners always has (it is a triangulated disc).
+        std::vector<std::vector<size_t>> tris(patch.size());
+        std::vector<int> wound(patch.size(), 0);  // 1 done
+        auto is_rim_edge = [&](int i, int j) { return (i + 1) % int(n) == j; };  // i -> j along the rim
+        for (size_t k = 0; k < patch.size(); ++k) {
+            const int c[3] = {patch[k].first, patch[k].second, patch[k].third};
+            tris[k] = {rim.loop[size_t(c[0])], rim.loop[size_t(c[1])], rim.loop[size_t(c[2])]};
+            for (int e = 0; e < 3 && !wound[k]; ++e) {
+                const int i = c[e], j = c[(e + 1) % 3];
+                if (is_rim_edge(i, j)) std::swap(tris[k][1], tris[k][2]), wound[k] = 1;  // it ran a -> b: turn it
+                else if (is_rim_edge(j, i)) wound[k] = 1;                               // it runs b -> a already
+            }
+        }
+        // Inner triangles: wound against a wound neighbour (a shared edge runs opposite ways).
+        for (bool changed = true; changed;) {
+            changed = false;
+            for (size_t k = 0; k < tris.size(); ++k) {
+                if (wound[k]) continue;
+                for (size_t m = 0; m < tris.size() && !wound[k]; ++m) {
+                    if (!wound[m]) continue;
+                    for (int e = 0; e < 3 && !wound[k]; ++e) {
+                        const size_t a = tris[m][size_t(e)], b = tris[m][size_t((e + 1) % 3)];
+                        for (int f = 0; f < 3; ++f) {
+                            const size_t x = tris[k][size_t(f)], y = tris[k][size_t((f + 1) % 3)];
+                            if (x == a && y == b) std::swap(tris[k][1], tris[k][2]), wound[k] = 1, changed = true;
+                            else if (x == b && y == a) wound[k] = 1, changed = true;
+                            if (wound[k]) break;
+                        }
+                    }
+                }
+            }
+        }
+        if (std::count(wound.begin(), wound.end(), 0) > 0) continue;
+        const size_t before = triangles.size();
+        triangles.insert(triangles.end(), tris.begin(), tris.end());
+        if (!is_oriented_manifold(triangles, points.size())) {  // a patch through another part's edge
+            triangles.resize(before);
+            continue;
+        }
+        ++filled;
+        faces_added += int64_t(tris.size());
+    }
+    return filled;
+}
+
+}  // namespace groom::detail

@@ -1,13 +1,12 @@
 // Open rims: boundary edges chained into loops, and their filling (see rims.h).
 #include "fields/rims.h"
 
-#include "fields/scalp_impl.h"
-
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <unordered_set>
 #include <utility>
 
 namespace groom::detail {
@@ -58,6 +57,8 @@ int64_t fill_rims(const std::vector<RimPoint>& points, std::vector<std::vector<s
                   double max_length, int64_t& faces_added)
 {
     int64_t filled = 0;
+    std::unordered_set<uint64_t> edges;  // the soup's directed edges, made on the first rim to fill
+    auto edge_key = [](size_t a, size_t b) { return (uint64_t(a) << 32) | uint64_t(b); };
     for (const Rim& rim : rims) {
         const size_t n = rim.loop.size();
         if (!rim.simple || n < 3 || !(rim.length <= max_length)) continue;
@@ -101,12 +102,20 @@ int64_t fill_rims(const std::vector<RimPoint>& points, std::vector<std::vector<s
             }
         }
         if (std::count(wound.begin(), wound.end(), 0) > 0) continue;
-        const size_t before = triangles.size();
-        triangles.insert(triangles.end(), tris.begin(), tris.end());
-        if (!is_oriented_manifold(triangles, points.size())) {  // a patch through another part's edge
-            triangles.resize(before);
-            continue;
+        // Each directed edge at most once keeps the soup an oriented manifold: a patch whose
+        // diagonal is an edge the mesh (or another patch) already has stays out. (Asking
+        // is_oriented_manifold of the whole soup per rim took 1.3 s for ICT's 134 rims.)
+        if (edges.empty()) {
+            for (const auto& t : triangles)
+                for (int k = 0; k < 3; ++k) edges.insert(edge_key(t[size_t(k)], t[size_t((k + 1) % 3)]));
         }
+        bool clash = false;
+        for (const auto& t : tris)
+            for (int k = 0; k < 3; ++k) clash = clash || edges.count(edge_key(t[size_t(k)], t[size_t((k + 1) % 3)])) > 0;
+        if (clash) continue;
+        for (const auto& t : tris)
+            for (int k = 0; k < 3; ++k) edges.insert(edge_key(t[size_t(k)], t[size_t((k + 1) % 3)]));
+        triangles.insert(triangles.end(), tris.begin(), tris.end());
         ++filled;
         faces_added += int64_t(tris.size());
     }

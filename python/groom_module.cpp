@@ -577,11 +577,12 @@ PYBIND11_MODULE(groom, m)
     py::class_<Scalp, std::shared_ptr<Scalp>>(m, "Scalp", "The scalp as a signed distance field (OpenVDB level set)")
         .def_static(
             "load",
-            [](const std::filesystem::path& path, float voxel, const std::string& grid, const std::string& group) {
+            [](const std::filesystem::path& path, float voxel, const std::string& grid, const std::string& group, float fill_holes) {
                 ScalpBuildParams p;
                 p.voxel_size = voxel;
                 p.grid = grid;
                 p.group = group;
+                p.fill_holes = fill_holes;
                 Scalp s = guarded([&] {
                     try {
                         p.validate();
@@ -604,14 +605,15 @@ PYBIND11_MODULE(groom, m)
                 }
                 return s;
             },
-            py::arg("path"), py::arg("voxel") = 0.0f, py::arg("grid") = "", py::arg("group") = "",
+            py::arg("path"), py::arg("voxel") = 0.0f, py::arg("grid") = "", py::arg("group") = "", py::arg("fill_holes") = 0.0f,
             "A .vdb from `groom scalp` (another program's too: grid= picks its level set by name, default the grid "
             "'scalp', else the file's only float level set), or a mesh converted with the given voxel size (0 = automatic; "
-            "group= keeps one OBJ object or group, e.g. the head without its eyes); a str or a pathlib.Path")
+            "group= keeps one OBJ object or group, e.g. the head without its eyes; fill_holes= closes open rims up to that "
+            "length, as `groom scalp --fill-holes`); a str or a pathlib.Path")
         .def_static(
             "from_mesh",
             [](py::array_t<float, py::array::c_style | py::array::forcecast> vertices,
-               py::array_t<int32_t, py::array::c_style | py::array::forcecast> faces, float voxel) {
+               py::array_t<int32_t, py::array::c_style | py::array::forcecast> faces, float voxel, float fill_holes) {
                 if (vertices.ndim() != 2 || vertices.shape(1) != 3) raise(true, "vertices: expected an array of shape (n, 3)");
                 if (faces.ndim() != 2 || faces.shape(1) < 3) raise(true, "faces: expected an array of shape (m, 3) or (m, 4)");
                 PolygonSoup soup;
@@ -635,13 +637,16 @@ PYBIND11_MODULE(groom, m)
                 }
                 ScalpBuildParams p;
                 p.voxel_size = voxel;
+                p.fill_holes = fill_holes;
                 return guarded([&] {
                     p.validate();
                     py::gil_scoped_release release;
                     return Scalp(std::make_shared<ScalpField>(build_scalp(soup, p)));
                 });
             },
-            py::arg("vertices"), py::arg("faces"), py::arg("voxel") = 0.0f)
+            py::arg("vertices"), py::arg("faces"), py::arg("voxel") = 0.0f, py::arg("fill_holes") = 0.0f,
+            "A scalp from a mesh's arrays (several meshes concatenated are joined: a head and its eyeballs); voxel= as "
+            "load(), fill_holes= closes open rims up to that length")
         .def_property_readonly("voxel_size", [](const std::shared_ptr<Scalp>& s) { return s->field->voxel_size(); })
         .def(
             "distance",

@@ -469,3 +469,25 @@ def test_ops_that_make_hairs_take_root_and_tip_widths(sphere):
     check(groom.edges(scalp=sphere, hairline=hairline, count=20, width=0.002), 0.002, 0.002)
     with pytest.raises(groom.ParamError, match="root_width must be a finite number > 0"):
         groom.curl(guides, root_width=-1)
+
+
+def test_scalp_fill_holes_and_joined_meshes():
+    # A sphere missing its top fan (a hole whose rim is the first ring, at y = cos(pi / rings)):
+    # fill_holes= closes it, so above it the distance is to the rim's plane, as `groom scalp
+    # --fill-holes`. And two meshes' arrays concatenated are one scalp, their union: inside the
+    # sphere beside a second sphere's buried back reads inside.
+    rings = 16
+    v, f = uv_sphere(rings=rings)
+    open_f = f[~np.any(f == 0, axis=1)]
+    plane = math.cos(math.pi / rings)
+    above = np.array([[0, 1.5, 0]], np.float32)
+    filled = groom.Scalp.from_mesh(v, open_f, voxel=0.02, fill_holes=10.0)
+    assert abs(filled.distance(above)[0] - (1.5 - plane)) < 1e-4
+    unfilled = groom.Scalp.from_mesh(v, open_f, voxel=0.02)
+    assert unfilled.distance(above)[0] > 1.5 - plane + 0.01  # to the rim, farther than the plane
+    with pytest.raises(groom.ParamError, match="fill_holes"):
+        groom.Scalp.from_mesh(v, open_f, voxel=0.02, fill_holes=-1.0)
+    eye_v = v * 0.3 + np.array([0.9, 0, 0], np.float32)
+    both = groom.Scalp.from_mesh(np.concatenate([v, eye_v]), np.concatenate([f, f + len(v)]), voxel=0.02)
+    d = both.distance(np.array([[0.5, 0, 0], [1.1, 0, 0]], np.float32))
+    assert d[0] < -0.45 and -0.12 < d[1] < -0.08, d

@@ -109,10 +109,11 @@ def _world_triangles(ob, depsgraph):
     return _world(verts.reshape(-1, 3), ob.matrix_world), tris.reshape(-1, 3)
 
 
-def scalp_from_object(ob, voxel=0.0, extras=()):
+def scalp_from_object(ob, voxel=0.0, extras=(), fill_holes=0.0):
     """groom.Scalp from a mesh object's evaluated triangles, in world space, joined with those of the
     mesh objects in `extras` (eyeballs in open sockets, teeth): the scalp is the solid they make
-    together, as `groom scalp head.obj eyes.obj` makes it."""
+    together, as `groom scalp head.obj eyes.obj` makes it. `fill_holes` closes open rims up to that
+    length, as `groom scalp --fill-holes`."""
     if ob is None or ob.type != 'MESH':
         raise ValueError(f"scalp: expected a mesh object, got {ob.name + ' (' + ob.type + ')' if ob else 'none'}")
     depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -123,7 +124,7 @@ def scalp_from_object(ob, voxel=0.0, extras=()):
         points.append(verts)
         triangles.append(tris + base)
         base += len(verts)
-    return groom.Scalp.from_mesh(np.concatenate(points), np.concatenate(triangles), voxel=voxel)
+    return groom.Scalp.from_mesh(np.concatenate(points), np.concatenate(triangles), voxel=voxel, fill_holes=fill_holes)
 
 
 def curves_object(curves, name, collection):

@@ -47,6 +47,9 @@ class GroomSettings(bpy.types.PropertyGroup):
     scalp_extras: PointerProperty(name="Joined", type=bpy.types.Collection,
                                   description="Meshes joined to the scalp (eyeballs in open eye sockets, teeth): hair keeps "
                                               "outside the solid they make together, and roots may grow on them too")
+    scalp_fill_holes: FloatProperty(name="Fill holes", default=0.0, min=0.0,
+                                    description="Close the scalp's open rims up to this length (eye sockets, a mouth; not "
+                                                "the neck), so hair lies over them: 0 = none")
     scalp_voxel: FloatProperty(name="Scalp voxel", default=0.0, min=0.0, description="Voxel size of the scalp's field (0 = automatic)")
     threads: IntProperty(name="Threads", default=0, min=0, description="Worker threads (0 = all cores); results are identical for any count")
     seed: IntProperty(name="Seed", default=0, min=0)
@@ -148,7 +151,7 @@ class _GroomOperator:
             scalp = None
             if settings.scalp is not None:
                 extras = settings.scalp_extras.all_objects if settings.scalp_extras else ()
-                scalp = convert.scalp_from_object(settings.scalp, settings.scalp_voxel, extras)
+                scalp = convert.scalp_from_object(settings.scalp, settings.scalp_voxel, extras, settings.scalp_fill_holes)
             elif self.needs_scalp:
                 raise ValueError("scalp: choose a scalp mesh in the Groom panel")
             kw = _given(settings, ("threads",))

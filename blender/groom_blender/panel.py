@@ -15,6 +15,7 @@ class GROOM_PT_panel(bpy.types.Panel):
         col = self.layout.column()
         col.prop(s, "scalp")
         col.prop(s, "scalp_extras")
+        col.prop(s, "scalp_fill_holes")
         col.prop(s, "scalp_voxel")
         col.prop(s, "units_per_cm")
         col.prop(s, "seed")

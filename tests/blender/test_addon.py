@@ -93,6 +93,42 @@ bpy.data.objects.remove(ob)
 bpy.data.objects.remove(eye)
 bpy.data.collections.remove(joined)
 
+# Fill holes: a sphere missing its top fan (the rim is its first ring, at z = cos(pi / 16)); filled,
+# above it the distance is to the rim's plane, and the Generate operator grows on the filled scalp.
+rings, segs = 16, 32
+verts = [(0.0, 0.0, 1.0)] + [(math.sin(math.pi * r / rings) * math.cos(2 * math.pi * s / segs),
+                              math.sin(math.pi * r / rings) * math.sin(2 * math.pi * s / segs),
+                              math.cos(math.pi * r / rings)) for r in range(1, rings) for s in range(segs)] + [(0.0, 0.0, -1.0)]
+ring_at = lambda r, s: 1 + (r - 1) * segs + s % segs
+faces = [(len(verts) - 1, ring_at(rings - 1, s + 1), ring_at(rings - 1, s)) for s in range(segs)]
+faces += [q for r in range(1, rings - 1) for s in range(segs)
+          for q in [(ring_at(r, s), ring_at(r + 1, s), ring_at(r + 1, s + 1), ring_at(r, s + 1))]]
+open_mesh = bpy.data.meshes.new("open")
+open_mesh.from_pydata(verts, [], faces)
+open_ob = bpy.data.objects.new("open", open_mesh)
+bpy.context.scene.collection.objects.link(open_ob)
+plane = math.cos(math.pi / rings)
+above = np.array([[0, 0, 1.5]], np.float32)
+filled = convert.scalp_from_object(open_ob, 0.02, (), 10.0)
+unfilled = convert.scalp_from_object(open_ob, 0.02)
+check("fill holes: above the filled hole, the rim's plane", abs(filled.distance(above)[0] - (1.5 - plane)) < 1e-4,
+      str(filled.distance(above)))
+check("fill holes: unfilled, farther (the rim)", unfilled.distance(above)[0] > 1.5 - plane + 0.01, str(unfilled.distance(above)))
+settings.scalp = open_ob
+settings.scalp_fill_holes = 10.0
+select_guides()
+result = bpy.ops.groom.generate()
+ob = bpy.context.view_layer.objects.active
+expected = groom.generate(guides, scalp=filled, count=40)
+pos = np.empty(len(ob.data.points) * 3, np.float32)
+ob.data.attributes['position'].data.foreach_get('vector', pos)
+check("fill holes: the operator grows on the filled scalp",
+      result == {'FINISHED'} and pos.size == expected.points.size and np.array_equal(pos.reshape(-1, 3), expected.points), str(result))
+settings.property_unset("scalp_fill_holes")
+settings.scalp = scalp
+bpy.data.objects.remove(ob)
+bpy.data.objects.remove(open_ob)
+
 cases = [
     ("braid", lambda: groom.braid(guides, scalp=field, fibers=4, knot_length=0.6), dict(fibers=4, knot_length=0.6)),
     ("partition", lambda: groom.partition(guides, scalp=field, count=6), dict(count=6)),

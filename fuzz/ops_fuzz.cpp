@@ -9,7 +9,8 @@
 //     at ingest: that refusal is a clean error);
 //   - the scalp: the default head (16 bands) at three scales (cm, m, 1e4), or a small mesh from the
 //     bytes (degenerate, tiny, huge and far-away triangles; the head plus one stray triangle),
-//     converted with build_scalp under a 16 MiB budget, as `--scalp mesh` does;
+//     converted with build_scalp under a 16 MiB budget, as `--scalp mesh` does (a quarter of the
+//     time with its rims filled up to a fuzzed length, as `groom scalp --fill-holes`);
 //   - 0..10 options of the command, each with a value drawn from the numbers its help text gives
 //     (the documented range's ends, the default, and their float neighbours), from a pool of
 //     extremes (0, -1, 1e-30, 1e30, 3e38, nan, inf, 2^31, 2^63 ...), from the words of its help
@@ -549,6 +550,9 @@ int run_one(const uint8_t* data, size_t size, const Command* forced)
             const int voxel = fdp.ConsumeIntegralInRange(0, 3);
             if (voxel > 0) p.voxel_size = float(pick_number(fdp, Option{}));
             p.band_voxels = voxel == 3 ? 1.0f : 3.0f;
+            // Holes filled (`groom scalp --fill-holes`) on a hostile mesh's rims: pinches, repeated
+            // points and collinear runs reach CGAL's hole triangulation.
+            if (fdp.ConsumeIntegralInRange(0, 3) == 0) p.fill_holes = float(pick_number(fdp, Option{}));
             try {
                 store_memory_scalp("mem:fuzz_mesh", std::make_shared<const ScalpField>(build_scalp(mesh, p)));
                 scalp = "mem:fuzz_mesh";

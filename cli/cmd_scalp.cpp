@@ -42,6 +42,7 @@ std::string repair_report_json(const RepairReport& r)
         {"boundary_loops", r.boundary_loops},
         {"holes_filled", r.holes_filled},
         {"faces_added_by_fill", r.faces_added_by_fill},
+        {"holes_left_open", r.holes_left_open},
         {"output_vertices", r.output_vertices},
         {"output_faces", r.output_faces},
     };

@@ -690,7 +690,11 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
     // head's conversion is not spent looking).
     const std::vector<Rim> rims = report.boundary_loops > 0 || report.buried_faces_removed > 0 ? find_rims(pts, kept) : std::vector<Rim>{};
     for (const Rim& r : rims) report.rim_lengths.push_back(r.length);
-    if (options.fill_holes > 0.0) report.holes_filled = fill_rims(pts, kept, rims, options.fill_holes, report.faces_added_by_fill);
+    if (options.fill_holes > 0.0) {
+        report.holes_filled = fill_rims(pts, kept, rims, options.fill_holes, report.faces_added_by_fill);
+        for (const Rim& r : rims) report.holes_left_open += r.length <= options.fill_holes;
+        report.holes_left_open -= report.holes_filled;
+    }
     if (manifold_in || report.enclosed_shells_removed > 0 || report.buried_faces_removed > 0 || report.holes_filled > 0) {
         report_triangles(options, pts, kept);
     }

@@ -32,6 +32,7 @@ struct RepairReport {
     int64_t boundary_loops = 0;              ///< holes / open rims, counted before shells and buried faces go
     std::vector<double> rim_lengths;         ///< every open rim of the repaired mesh (before filling), longest first
     int64_t holes_filled = 0;                ///< rims closed by `fill_holes`
+    int64_t holes_left_open = 0;             ///< rims within `fill_holes` left open (pinched, or no patch fits)
     int64_t faces_added_by_fill = 0;
     int64_t output_vertices = 0, output_faces = 0;
     bool flipped_by_user = false;            ///< --flip was given

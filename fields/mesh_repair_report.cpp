@@ -36,6 +36,10 @@ std::string RepairReport::summary() const
         s << "\n";
     }
     if (holes_filled) s << "  " << holes_filled << (holes_filled == 1 ? " hole" : " holes") << " filled (" << faces_added_by_fill << " faces)\n";
+    if (holes_left_open) {
+        s << "  " << holes_left_open << (holes_left_open == 1 ? " rim" : " rims")
+          << " within the fill length left open: a rim that meets another at a vertex, or one whose patch would cross the mesh\n";
+    }
     if (flipped_by_user) s << "  all faces flipped (--flip)\n";
     for (const std::string& n : notes) s << "  note: " << n << "\n";
     std::string out = s.str();

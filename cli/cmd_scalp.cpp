@@ -43,6 +43,8 @@ std::string repair_report_json(const RepairReport& r)
         {"holes_filled", r.holes_filled},
         {"faces_added_by_fill", r.faces_added_by_fill},
         {"holes_left_open", r.holes_left_open},
+        {"rims_inside_union", r.rims_inside_union},
+        {"buried_shells_removed", r.buried_shells_removed},
         {"output_vertices", r.output_vertices},
         {"output_faces", r.output_faces},
     };
@@ -99,7 +101,7 @@ PolygonSoup joined_meshes(Args& a, bool voxel_given, const CommonOptions& common
         try {
             mesh = read_mesh(a.inputs[k], k == 0 ? a.params.group : std::string());
         } catch (const ParseError& e) {
-            if (a.inputs.size() < 2 || a.params.group.empty()) throw;
+            if (k != 0 || a.inputs.size() < 2 || a.params.group.empty()) throw;
             throw ParseError(std::string(e.what()) + " (--group picks faces of the first MESH only; the others are joined whole)");
         }
         Bounds3 box;

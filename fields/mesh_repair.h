@@ -29,8 +29,10 @@ struct RepairReport {
     int64_t faces_in_removed_shells = 0;
     int64_t buried_faces_removed = 0;        ///< faces of overlapping shells lying inside another shell
     int64_t shells_with_buried_faces = 0;
+    int64_t buried_shells_removed = 0;       ///< of those, shells buried whole (listed as removed)
     int64_t boundary_loops = 0;              ///< holes / open rims, counted before shells and buried faces go
-    std::vector<double> rim_lengths;         ///< every open rim of the repaired mesh (before filling), longest first
+    std::vector<double> rim_lengths;         ///< every hole of the repaired mesh (before filling), longest first
+    int64_t rims_inside_union = 0;           ///< rims cut where buried faces went: inside the union, not holes
     int64_t holes_filled = 0;                ///< rims closed by `fill_holes`
     int64_t holes_left_open = 0;             ///< rims within `fill_holes` left open (pinched, or no patch fits)
     int64_t faces_added_by_fill = 0;

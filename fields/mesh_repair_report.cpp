@@ -30,7 +30,7 @@ std::string RepairReport::summary() const
     line(enclosed_shells_removed, "enclosed shells removed");
     line(buried_faces_removed, "faces inside another shell removed");
     if (!rim_lengths.empty()) {
-        s << "  " << rim_lengths.size() << (rim_lengths.size() == 1 ? " open rim" : " open rims") << " after repair, length";
+        s << "  " << rim_lengths.size() << (rim_lengths.size() == 1 ? " hole (open rim)" : " holes (open rims)") << " after repair, length";
         for (size_t i = 0; i < rim_lengths.size() && i < 8; ++i) s << (i ? ", " : " ") << format_number(std::round(rim_lengths[i] * 1000.0) / 1000.0);
         if (rim_lengths.size() > 8) s << ", ... (" << rim_lengths.size() - 8 << " more)";
         s << "\n";
@@ -38,7 +38,12 @@ std::string RepairReport::summary() const
     if (holes_filled) s << "  " << holes_filled << (holes_filled == 1 ? " hole" : " holes") << " filled (" << faces_added_by_fill << " faces)\n";
     if (holes_left_open) {
         s << "  " << holes_left_open << (holes_left_open == 1 ? " rim" : " rims")
-          << " within the fill length left open: a rim that meets another at a vertex, or one whose patch would cross the mesh\n";
+          << " within the fill length left open: a rim that meets another at a vertex, or one no patch fits without repeating "
+             "an edge of the mesh\n";
+    }
+    if (rims_inside_union) {
+        s << "  " << rims_inside_union << (rims_inside_union == 1 ? " rim" : " rims")
+          << " where buried faces went (inside the union: not holes, never filled)\n";
     }
     if (flipped_by_user) s << "  all faces flipped (--flip)\n";
     for (const std::string& n : notes) s << "  note: " << n << "\n";

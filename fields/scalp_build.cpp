@@ -398,7 +398,8 @@ ScalpField build_scalp(const PolygonSoup& soup, const ScalpBuildParams& params, 
         im.geometry.compute(mesh);
         im.query = std::make_unique<detail::MeshQuery>(im.geometry);
         // Open rims are signed by the winding number: built here, it too runs beside meshToVolume.
-        if (report.boundary_loops > 0) im.query->winding();
+        // Rims are the holes not filled, and those cut where buried faces went.
+        if (report.rim_lengths.size() > size_t(report.holes_filled) || report.rims_inside_union > 0) im.query->winding();
     }
     catch (...) {
         early.stop.stop = true;

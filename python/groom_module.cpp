@@ -598,6 +598,10 @@ PYBIND11_MODULE(groom, m)
                         throw InvalidParam(m);
                     }
                 });
+                if (fill_holes > 0.0f && path.extension() == ".vdb") {
+                    warn("Scalp.load: fill_holes is for meshes; " + path.string() + " is a field already, built as it was: rebuild it "
+                         "with `groom scalp MESH --fill-holes " + format_number(fill_holes) + "`");
+                }
                 if (voxel > 0.0f && path.extension() == ".vdb" && s.field->voxel_size() != voxel) {
                     // A .vdb is read as it was built; the voxel asked for was silently dropped.
                     warn("Scalp.load: voxel " + format_number(voxel) + " is for meshes; " + path.string() + " keeps the voxel it was built with (" +

@@ -112,8 +112,9 @@ def _world_triangles(ob, depsgraph):
 def scalp_from_object(ob, voxel=0.0, extras=(), fill_holes=0.0):
     """groom.Scalp from a mesh object's evaluated triangles, in world space, joined with those of the
     mesh objects in `extras` (eyeballs in open sockets, teeth): the scalp is the solid they make
-    together, as `groom scalp head.obj eyes.obj` makes it. `fill_holes` closes open rims up to that
-    length, as `groom scalp --fill-holes`."""
+    together, as `groom scalp head.obj eyes.obj` makes it (the head's size sets the automatic voxel;
+    unlike the command, a joined mesh far from the head or of another scale is not refused).
+    `fill_holes` closes open rims up to that length, as `groom scalp --fill-holes`."""
     if ob is None or ob.type != 'MESH':
         raise ValueError(f"scalp: expected a mesh object, got {ob.name + ' (' + ob.type + ')' if ob else 'none'}")
     depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -124,6 +125,10 @@ def scalp_from_object(ob, voxel=0.0, extras=(), fill_holes=0.0):
         points.append(verts)
         triangles.append(tris + base)
         base += len(verts)
+    if voxel <= 0.0 and len(points) > 1:
+        # As `groom scalp head.obj eyes.obj`: the head sets the automatic voxel (its diagonal / 256),
+        # so a body joined to it does not make it coarser.
+        voxel = float(np.linalg.norm(points[0].max(axis=0) - points[0].min(axis=0))) / 256.0
     return groom.Scalp.from_mesh(np.concatenate(points), np.concatenate(triangles), voxel=voxel, fill_holes=fill_holes)
 
 

@@ -195,7 +195,7 @@ TEST(ScalpCli, FillHolesClosesRimsUpToALength)
     write_mesh(sphere_cap({0, 0, 0}, 1.0f, {0, -1, 0}, 160.0f, 48, 64), dir.file("open.obj"));
     auto r = run_groom({"scalp", dir.file("open.obj"), "-o", dir.file("a.vdb"), "--voxel", "0.02"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("1 open rim after repair, length 2.148"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("1 hole (open rim) after repair, length 2.148"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("filled"), std::string::npos) << r.err;
     r = run_groom({"scalp", dir.file("open.obj"), "-o", dir.file("b.vdb"), "--voxel", "0.02", "--fill-holes", "2.2", "--report",
                    dir.file("r.json")});

@@ -113,6 +113,27 @@ TEST(ScalpUnion, OverlappingSpheresGiveTheirUnion)
     EXPECT_LT(worst, 0.25 * h);
 }
 
+// The rims cut where buried faces went lie inside the union: they are not holes, and filling them
+// (any --fill-holes length) would put discs inside both spheres whose normals read the points
+// beside them as outside (a review found +0.76 where -1.59 is right).
+TEST(ScalpUnion, RimsCutByBuriedFacesAreNeverFilled)
+{
+    const float3 c(0.9f, 0.1f, -0.05f);
+    ScalpBuildParams params{0.02f, 3.0f};
+    params.fill_holes = 1e30f;
+    RepairReport report;
+    const ScalpField field = build_scalp(joined(icosphere({0, 0, 0}, 1.0f, 4), icosphere(c, 0.4f, 4)), params, &report);
+    EXPECT_EQ(report.rims_inside_union, 2);
+    EXPECT_TRUE(report.rim_lengths.empty());
+    EXPECT_EQ(report.holes_filled, 0);
+    // On the line between the centres: inside the big sphere beside the small one, inside both, and
+    // inside the small one out of the big one.
+    for (const float x : {0.45f, 0.6f, 0.9f, 1.1f, 1.25f}) {
+        const float3 p(x, 0.1f * x / 0.9f, -0.05f * x / 0.9f);
+        EXPECT_LT(field.distance(p), -0.04f) << "x " << x;
+    }
+}
+
 // Sintel's eyeballs are a file of their own: joined to her head (whose eye sockets are open), they
 // fill the sockets. Measured on 19,758 points around the eyes: 8 read a sign other than that of
 // the head's and the eyeballs' own fields (min of the two), at the eye openings, where the head

@@ -233,15 +233,30 @@ std::vector<Polygon> triangulate(std::vector<Point>& pts, const std::vector<Poly
     return tris;
 }
 
+/// The points in groom's float type (what the field and the winding number take).
+std::vector<float3> float_points(const std::vector<Point>& at)
+{
+    std::vector<float3> points(at.size());
+    for (size_t i = 0; i < at.size(); ++i) points[i] = float3(float(at[i].x()), float(at[i].y()), float(at[i].z()));
+    return points;
+}
+
+/// Triangles as index triples: all of `faces`, or those listed in `only` (one shell's).
+std::vector<std::array<int32_t, 3>> index_triangles(const std::vector<Polygon>& faces, const std::vector<size_t>* only = nullptr)
+{
+    const size_t n = only ? only->size() : faces.size();
+    std::vector<std::array<int32_t, 3>> triangles(n);
+    for (size_t i = 0; i < n; ++i) {
+        const Polygon& f = faces[only ? (*only)[i] : i];
+        triangles[i] = {int32_t(f[0]), int32_t(f[1]), int32_t(f[2])};
+    }
+    return triangles;
+}
+
 /// Hands the triangles to options.on_triangles, if set, in groom's types.
 void report_triangles(const RepairOptions& options, const std::vector<Point>& at, const std::vector<Polygon>& faces)
 {
-    if (!options.on_triangles) return;
-    std::vector<float3> points(at.size());
-    for (size_t i = 0; i < at.size(); ++i) points[i] = float3(float(at[i].x()), float(at[i].y()), float(at[i].z()));
-    std::vector<std::array<int32_t, 3>> triangles(faces.size());
-    for (size_t t = 0; t < faces.size(); ++t) triangles[t] = {int32_t(faces[t][0]), int32_t(faces[t][1]), int32_t(faces[t][2])};
-    options.on_triangles(std::move(points), std::move(triangles));
+    if (options.on_triangles) options.on_triangles(float_points(at), index_triangles(faces));
 }
 
 /// Consistent orientation per component; non-manifold vertices and edges are cut apart so the soup
@@ -447,16 +462,10 @@ void remove_enclosed(const std::vector<Point>& pts, const std::vector<Polygon>& 
     // |winding number| of vertex v with respect to shell b: the hierarchical estimate (built once
     // per host shell), and where it lies within 0.02 of the 1/2 threshold, the exact sum.
     // Brute force alone took 150 ms for makehuman's 104 helper cubes inside a 27k-face body.
-    std::vector<float3> points(pts.size());
-    for (size_t i = 0; i < pts.size(); ++i) points[i] = float3(float(pts[i].x()), float(pts[i].y()), float(pts[i].z()));
+    const std::vector<float3> points = float_points(pts);
     std::vector<std::unique_ptr<WindingNumber>> estimate(nshells);
     auto host_winding = [&](size_t b, size_t v) {
-        const auto& host = tris_of_shell[b];
-        if (!estimate[b]) {
-            std::vector<std::array<int32_t, 3>> faces(host.size());
-            for (size_t i = 0; i < host.size(); ++i) faces[i] = {int32_t(tris[host[i]][0]), int32_t(tris[host[i]][1]), int32_t(tris[host[i]][2])};
-            estimate[b] = std::make_unique<WindingNumber>(points, faces);
-        }
+        if (!estimate[b]) estimate[b] = std::make_unique<WindingNumber>(points, index_triangles(tris, &tris_of_shell[b]));
         const double w = std::fabs((*estimate[b])(points[v], 8.0));
         return std::fabs(w - 0.5) > 0.02 ? w : std::fabs(estimate[b]->exact(points[v]));
     };
@@ -540,14 +549,8 @@ void remove_buried_faces(const std::vector<Point>& pts, const std::vector<Polygo
             }
         }
         if (candidates.empty()) continue;
-        if (points.empty()) {
-            points.resize(pts.size());
-            for (size_t i = 0; i < pts.size(); ++i) points[i] = float3(float(pts[i].x()), float(pts[i].y()), float(pts[i].z()));
-        }
-        const auto& host = tris_of_shell[b];
-        std::vector<std::array<int32_t, 3>> faces(host.size());
-        for (size_t i = 0; i < host.size(); ++i) faces[i] = {int32_t(tris[host[i]][0]), int32_t(tris[host[i]][1]), int32_t(tris[host[i]][2])};
-        const WindingNumber winding(points, faces);
+        if (points.empty()) points = float_points(pts);
+        const WindingNumber winding(points, index_triangles(tris, &tris_of_shell[b]));
         // Each vertex on its own (the same answer for any thread count), each estimate asked only
         // where the one before is too close to call: at 2 radii (error about 0.07), at 4 (0.02)
         // within 0.15 of the threshold, at 8 (0.005) within 0.05, exact within 0.02. On ICT's 52

@@ -67,41 +67,15 @@ int64_t fill_rims(const std::vector<RimPoint>& points, std::vector<std::vector<s
         std::vector<CGAL::Triple<int, int, int>> patch;
         PMP::triangulate_hole_polyline(polyline, std::back_inserter(patch));
         if (patch.size() != n - 2) continue;
-        // The mesh runs each rim edge a -> b; the patch must run it b -> a. A triangle with a rim
-        // edge is wound by it; one with none (inside the patch) by a neighbour already wound, which
-        // a patch of n - 2 triangles over n corners always has (it is a triangulated disc).
-        std::vector<std::vector<size_t>> tris(patch.size());
-        std::vector<int> wound(patch.size(), 0);  // 1 done
-        auto is_rim_edge = [&](int i, int j) { return (i + 1) % int(n) == j; };  // i -> j along the rim
-        for (size_t k = 0; k < patch.size(); ++k) {
-            const int c[3] = {patch[k].first, patch[k].second, patch[k].third};
-            tris[k] = {rim.loop[size_t(c[0])], rim.loop[size_t(c[1])], rim.loop[size_t(c[2])]};
-            for (int e = 0; e < 3 && !wound[k]; ++e) {
-                const int i = c[e], j = c[(e + 1) % 3];
-                if (is_rim_edge(i, j)) std::swap(tris[k][1], tris[k][2]), wound[k] = 1;  // it ran a -> b: turn it
-                else if (is_rim_edge(j, i)) wound[k] = 1;                               // it runs b -> a already
-            }
+        // The mesh runs each rim edge a -> b; the patch must run it b -> a. The patch is a disc whose
+        // corners all lie on the rim, so each triangle's corners in rim order (i < m < k) run the
+        // way the rim does, whatever order CGAL lists them in: each is turned to k, m, i.
+        std::vector<std::vector<size_t>> tris;
+        for (const auto& t : patch) {
+            int c[3] = {t.first, t.second, t.third};
+            std::sort(c, c + 3);
+            tris.push_back({rim.loop[size_t(c[2])], rim.loop[size_t(c[1])], rim.loop[size_t(c[0])]});
         }
-        // Inner triangles: wound against a wound neighbour (a shared edge runs opposite ways).
-        for (bool changed = true; changed;) {
-            changed = false;
-            for (size_t k = 0; k < tris.size(); ++k) {
-                if (wound[k]) continue;
-                for (size_t m = 0; m < tris.size() && !wound[k]; ++m) {
-                    if (!wound[m]) continue;
-                    for (int e = 0; e < 3 && !wound[k]; ++e) {
-                        const size_t a = tris[m][size_t(e)], b = tris[m][size_t((e + 1) % 3)];
-                        for (int f = 0; f < 3; ++f) {
-                            const size_t x = tris[k][size_t(f)], y = tris[k][size_t((f + 1) % 3)];
-                            if (x == a && y == b) std::swap(tris[k][1], tris[k][2]), wound[k] = 1, changed = true;
-                            else if (x == b && y == a) wound[k] = 1, changed = true;
-                            if (wound[k]) break;
-                        }
-                    }
-                }
-            }
-        }
-        if (std::count(wound.begin(), wound.end(), 0) > 0) continue;
         // Each directed edge at most once keeps the soup an oriented manifold: a patch whose
         // diagonal is an edge the mesh (or another patch) already has stays out. (Asking
         // is_oriented_manifold of the whole soup per rim took 1.3 s for ICT's 134 rims.)

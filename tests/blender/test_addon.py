@@ -63,6 +63,20 @@ field = convert.scalp_from_object(scalp, 0.02)
 d = field.distance(np.array([[0, 0, 0], [0, 0, 2]], np.float32))
 check("scalp from the sphere mesh", abs(d[0] + 1) < 0.01 and abs(d[1] - 1) < 0.01, str(d))
 
+def generate_matches(label, field):
+    """Runs the Generate operator (40 hairs) on the selected guides and checks its object's points
+    equal the module's generate on `field`; returns the new object."""
+    select_guides()
+    result = bpy.ops.groom.generate()
+    ob = bpy.context.view_layer.objects.active
+    expected = groom.generate(guides, scalp=field, count=40)
+    pos = np.empty(len(ob.data.points) * 3, np.float32)
+    ob.data.attributes['position'].data.foreach_get('vector', pos)
+    check(label, result == {'FINISHED'} and pos.size == expected.points.size and np.array_equal(pos.reshape(-1, 3), expected.points),
+          str(result))
+    return ob
+
+
 # Meshes joined to the scalp (the panel's "Joined" collection): an eyeball half through the sphere.
 # The scalp is their union: inside the sphere beside the eyeball's back reads inside (the eyeball's
 # back, buried in the sphere, is not part of the surface), inside the eyeball outside the sphere too.
@@ -80,14 +94,7 @@ check("joined: outside both", abs(d[2] - 0.1) < 0.01, str(d))
 settings.scalp_extras = joined
 settings.property_unset("hairs")
 settings.hairs = 40
-select_guides()
-result = bpy.ops.groom.generate()
-ob = bpy.context.view_layer.objects.active
-expected = groom.generate(guides, scalp=with_eye, count=40)
-pos = np.empty(len(ob.data.points) * 3, np.float32)
-ob.data.attributes['position'].data.foreach_get('vector', pos)
-check("joined: the operator grows on the joined scalp",
-      result == {'FINISHED'} and pos.size == expected.points.size and np.array_equal(pos.reshape(-1, 3), expected.points), str(result))
+ob = generate_matches("joined: the operator grows on the joined scalp", with_eye)
 settings.scalp_extras = None
 bpy.data.objects.remove(ob)
 bpy.data.objects.remove(eye)
@@ -116,14 +123,7 @@ check("fill holes: above the filled hole, the rim's plane", abs(filled.distance(
 check("fill holes: unfilled, farther (the rim)", unfilled.distance(above)[0] > 1.5 - plane + 0.01, str(unfilled.distance(above)))
 settings.scalp = open_ob
 settings.scalp_fill_holes = 10.0
-select_guides()
-result = bpy.ops.groom.generate()
-ob = bpy.context.view_layer.objects.active
-expected = groom.generate(guides, scalp=filled, count=40)
-pos = np.empty(len(ob.data.points) * 3, np.float32)
-ob.data.attributes['position'].data.foreach_get('vector', pos)
-check("fill holes: the operator grows on the filled scalp",
-      result == {'FINISHED'} and pos.size == expected.points.size and np.array_equal(pos.reshape(-1, 3), expected.points), str(result))
+ob = generate_matches("fill holes: the operator grows on the filled scalp", filled)
 settings.property_unset("scalp_fill_holes")
 settings.scalp = scalp
 bpy.data.objects.remove(ob)

@@ -61,6 +61,7 @@ std::string repair_report_json(const RepairReport& r)
                                    {"removed", sh.removed},
                                    {"winding", sh.winding},
                                    {"buried_faces", sh.buried_faces},
+                                   {"source", sh.source},
                                    {"bbox", {sh.lo[0], sh.lo[1], sh.lo[2], sh.hi[0], sh.hi[1], sh.hi[2]}}});
     }
     return j.dump(2) + "\n";
@@ -125,6 +126,12 @@ PolygonSoup joined_meshes(Args& a, bool voxel_given, const CommonOptions& common
             }
         }
         sizes += (sizes.empty() ? "" : ", ") + a.inputs[k] + " " + std::to_string(mesh.num_faces()) + " faces";
+        // With several meshes each shell's source in the report names its file too.
+        if (a.inputs.size() > 1) {
+            const std::string file = std::filesystem::path(a.inputs[k]).filename().string();
+            if (!mesh.has_parts()) mesh.part_names = {std::string()}, mesh.face_part.assign(mesh.num_faces(), 0);
+            for (std::string& name : mesh.part_names) name = name.empty() ? file : file + ": " + name;
+        }
         append(soup, mesh, a.params.source);
     }
     if (a.inputs.size() > 1) {

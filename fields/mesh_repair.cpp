@@ -7,6 +7,7 @@
 #include "fields/rims.h"
 
 #include "kernel/error.h"
+#include "kernel/position_key.h"
 #include "kernel/parallel.h"
 
 #include <CGAL/AABB_traits.h>
@@ -24,7 +25,9 @@
 #include <set>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
+#include <unordered_map>
 
 namespace groom {
 
@@ -49,6 +52,12 @@ void validate_soup(const PolygonSoup& soup, const std::string& what)
     if (soup.face_offsets.empty() || soup.face_offsets.front() != 0 ||
         soup.face_offsets.back() != static_cast<int64_t>(soup.face_indices.size())) {
         throw InvalidGeometry(what + ": face offsets do not match the index list");
+    }
+    if (soup.has_parts()) {
+        if (soup.face_part.size() != soup.num_faces()) throw InvalidGeometry(what + ": part names do not match the faces");
+        for (const int32_t k : soup.face_part) {
+            if (k < 0 || size_t(k) >= soup.part_names.size()) throw InvalidGeometry(what + ": a face's part is out of range");
+        }
     }
     const int64_t n = static_cast<int64_t>(soup.points.size());
     for (size_t f = 0; f < soup.num_faces(); ++f) {
@@ -291,7 +300,11 @@ struct Shell {
     bool flip = false, removed = false;
     double winding = 0.0;
     size_t buried_faces = 0;
+    std::string source;  ///< the file's part most of its triangles came from, "" where unnamed
 };
+
+/// " ('name')" for a shell whose source is named, else "": what notes add after a shell.
+std::string named(const Shell& s) { return s.source.empty() ? std::string() : " ('" + s.source + "')"; }
 
 /// The shells: shell[t] for each triangle, and per shell its area, signed volume about its
 /// centroid, size and boundary edges. Counts shells, closed shells and boundary loops into `report`.
@@ -420,6 +433,38 @@ void orient_outward(const std::vector<Point>& pts, const std::vector<Polygon>& t
     }
 }
 
+/// Each shell's source: the part of the soup (an OBJ object or group, a joined file) most of its
+/// triangles came from, with how many others it joins ("'EyeL' (+1 more part)"). The repair
+/// renumbers and splits vertices but never moves one, so a triangle is traced back by its first
+/// vertex's position to the first face of the soup that uses it.
+void name_shells(const PolygonSoup& soup, const std::vector<Point>& pts, const std::vector<Polygon>& tris,
+                 const std::vector<int32_t>& shell, std::vector<Shell>& shells)
+{
+    if (!soup.has_parts()) return;
+    std::unordered_map<PositionKey, int32_t, PositionHash> part_at;
+    part_at.reserve(soup.points.size());
+    for (size_t f = 0; f < soup.num_faces(); ++f) {
+        for (const int32_t v : soup.face(f)) {
+            part_at.emplace(PositionKey::of(soup.points[size_t(v)]), soup.face_part[f]);
+        }
+    }
+    std::vector<std::map<int32_t, size_t>> count(shells.size());
+    for (size_t t = 0; t < tris.size(); ++t) {
+        const Point& q = pts[tris[t][0]];
+        const auto it = part_at.find(PositionKey::of(float3(float(q.x()), float(q.y()), float(q.z()))));
+        if (it != part_at.end()) ++count[size_t(shell[t])][it->second];
+    }
+    for (size_t i = 0; i < shells.size(); ++i) {
+        const auto& c = count[i];
+        if (c.empty()) continue;
+        const auto top = std::max_element(c.begin(), c.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+        const std::string& name = soup.part_names[size_t(top->first)];
+        if (name.empty()) continue;
+        const size_t others = c.size() - 1;
+        shells[i].source = name + (others == 0 ? "" : " (+" + std::to_string(others) + (others == 1 ? " more part)" : " more parts)"));
+    }
+}
+
 /// Enclosed shells: a shell whose sampled vertices all have |winding number| > 1/2 with respect to a
 /// larger shell lies inside it (eyes and teeth in a head, joint helpers in a body). Hair never
 /// reaches them, and they would give the inside of the head a false outside. Decides Shell::removed.
@@ -470,6 +515,7 @@ void remove_enclosed(const std::vector<Point>& pts, const std::vector<Polygon>& 
         return std::fabs(w - 0.5) > 0.02 ? w : std::fabs(estimate[b]->exact(points[v]));
     };
     size_t biggest_host = order[0];
+    std::vector<std::string> removed_names;  // the first few removed shells' sources, for the note
     for (size_t ai = 1; ai < nshells; ++ai) {
         const size_t a = order[ai];
         const auto& va = vertices_of[a];
@@ -493,6 +539,11 @@ void remove_enclosed(const std::vector<Point>& pts, const std::vector<Polygon>& 
             if (inside) {
                 shells[a].removed = true;
                 biggest_host = b;
+                const std::string& name = shells[a].source;
+                if (!name.empty() && removed_names.size() < 4 &&
+                    std::find(removed_names.begin(), removed_names.end(), name) == removed_names.end()) {
+                    removed_names.push_back(name);
+                }
                 ++report.enclosed_shells_removed;
                 report.faces_in_removed_shells += static_cast<int64_t>(shells[a].faces);
             }
@@ -500,10 +551,13 @@ void remove_enclosed(const std::vector<Point>& pts, const std::vector<Polygon>& 
     }
     if (report.enclosed_shells_removed > 0) {
         const int64_t n = report.enclosed_shells_removed;
-        report.notes.push_back("removed " + std::to_string(n) + (n == 1 ? " shell (" : " shells (") +
+        std::string which;
+        for (const std::string& name : removed_names) which += (which.empty() ? " ('" : "', '") + name;
+        if (!which.empty()) which += n > int64_t(removed_names.size()) ? "', ...)" : "')";
+        report.notes.push_back("removed " + std::to_string(n) + (n == 1 ? " shell" : " shells") + which + " (" +
                                std::to_string(report.faces_in_removed_shells) + " faces) lying entirely inside a larger shell (" +
-                               (n == 1 ? "inside" : "e.g. inside") + " one of " + std::to_string(shells[biggest_host].faces) +
-                               " faces): eyes, teeth or helpers inside a head would make its inside read as outside");
+                               (n == 1 ? "inside" : "e.g. inside") + " one of " + std::to_string(shells[biggest_host].faces) + " faces" +
+                               named(shells[biggest_host]) + "): eyes, teeth or helpers inside a head would make its inside read as outside");
     }
 }
 
@@ -592,7 +646,7 @@ void remove_buried_faces(const std::vector<Point>& pts, const std::vector<Polygo
                            " lying inside another shell where shells overlap (an eyeball's back inside a head, a body under "
                            "a garment): the scalp is the shells' union, and those faces would make its inside read as outside";
         if (whole > 0) note += "; " + plural(whole, "shell lies", "shells lie") + " inside others whole and went";
-        note += "; the most from a shell of " + std::to_string(most->faces) + " faces: " + std::to_string(most->buried_faces) + " (" +
+        note += "; the most from a shell of " + std::to_string(most->faces) + " faces" + named(*most) + ": " + std::to_string(most->buried_faces) + " (" +
                 format_number(std::round(1000.0 * double(most->buried_faces) / double(most->faces)) / 10.0) + "%)";
         report.notes.push_back(note);
     }
@@ -616,6 +670,7 @@ void list_shells(const std::vector<Shell>& shells, RepairReport& report)
         out.removed = s.removed;
         out.winding = s.winding;
         out.buried_faces = static_cast<int64_t>(s.buried_faces);
+        out.source = s.source;
         report.shell_list.push_back(out);
     }
 }
@@ -667,6 +722,7 @@ TriMesh repair_soup(const PolygonSoup& soup, const RepairOptions& options, Repai
 
     std::vector<int32_t> shell;
     std::vector<Shell> shells = find_shells(pts, tris, shell, report);
+    name_shells(soup, pts, tris, shell, shells);
     if (options.orient_outward) orient_outward(pts, tris, shell, reversed, size2, shells, report);
     std::vector<char> buried;
     if (options.remove_enclosed && shells.size() > 1) {

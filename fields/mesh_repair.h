@@ -48,6 +48,9 @@ struct RepairReport {
         bool closed = false, flipped = false, removed = false;
         double winding = 0.0;        ///< largest |winding number| of its samples w.r.t. a larger shell
         int64_t buried_faces = 0;    ///< faces removed as lying inside another shell
+        /// The file's part most of its faces came from (an OBJ object or group; with several meshes
+        /// joined, "file: part" or the file), "(+N more parts)" when it joins others; "" unnamed.
+        std::string source;
     };
     std::vector<Shell> shell_list;
 

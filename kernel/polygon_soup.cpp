@@ -1,38 +1,17 @@
 #include "kernel/polygon_soup.h"
 
 #include "kernel/error.h"
+#include "kernel/position_key.h"
 
 #include <algorithm>
 #include <limits>
 #include <string>
-#include <cstring>
 #include <numeric>
 #include <unordered_map>
 
 namespace groom {
 
 namespace {
-
-struct PositionKey {
-    uint32_t x, y, z;
-    bool operator==(const PositionKey&) const = default;
-};
-struct PositionHash {
-    size_t operator()(const PositionKey& k) const
-    {
-        uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
-        h ^= (h >> 29) + k.y * 0xBF58476D1CE4E5B9ull;
-        h ^= (h >> 31) + k.z * 0x94D049BB133111EBull;
-        return static_cast<size_t>(h ^ (h >> 32));
-    }
-};
-uint32_t bits(float f)
-{
-    if (f == 0.0f) f = 0.0f;  // -0 and +0 are the same position
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
 
 int64_t find_root(std::vector<int64_t>& parent, int64_t i)
 {
@@ -51,6 +30,22 @@ void append(PolygonSoup& to, const PolygonSoup& more, const std::string& what)
     if (to.points.size() + more.points.size() > kMost || (to.uvs.size() + more.uvs.size()) / 2 > kMost) {
         throw LimitExceeded(what + ": " + std::to_string(to.points.size() + more.points.size()) +
                             " vertices together, more than a face index holds (2^31 - 1): convert the meshes one by one, or fewer at once");
+    }
+    // Parts before the faces grow: a side without names gets one unnamed part.
+    if (to.has_parts() || more.has_parts()) {
+        if (!to.has_parts()) {
+            to.face_part.assign(to.num_faces(), int32_t(to.part_names.size()));
+            to.part_names.emplace_back();
+        }
+        const auto part_base = int32_t(to.part_names.size());
+        if (more.has_parts()) {
+            to.part_names.insert(to.part_names.end(), more.part_names.begin(), more.part_names.end());
+            for (const int32_t k : more.face_part) to.face_part.push_back(k + part_base);
+        }
+        else {
+            to.part_names.emplace_back();
+            to.face_part.resize(to.face_part.size() + more.num_faces(), part_base);
+        }
     }
     const auto base = int32_t(to.points.size()), uv_base = int32_t(to.uvs.size() / 2);
     const bool uvs = to.has_uvs() || more.has_uvs();
@@ -82,7 +77,7 @@ MeshStats mesh_stats(const PolygonSoup& soup)
     ids.reserve(soup.points.size());
     for (size_t i = 0; i < soup.points.size(); ++i) {
         const float3& p = soup.points[i];
-        const auto [it, fresh] = ids.emplace(PositionKey{bits(p.x), bits(p.y), bits(p.z)}, static_cast<int64_t>(ids.size()));
+        const auto [it, fresh] = ids.emplace(PositionKey::of(p), static_cast<int64_t>(ids.size()));
         weld[i] = it->second;
         if (!fresh) ++s.duplicate_vertices;
     }

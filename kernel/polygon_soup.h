@@ -22,7 +22,15 @@ struct PolygonSoup {
     std::vector<float> uvs;               ///< #texture coordinates * 2
     std::vector<int32_t> face_uv_indices; ///< empty, or face_indices.size() entries in [-1, uvs.size()/2)
 
+    /// Names of the file's parts, for reports (which shell of a messy mesh is the eyes): OBJ objects
+    /// and groups, and the file itself where several meshes are joined. `face_part` holds each face's
+    /// index into `part_names`, or is empty when the file names no part; a name may be empty (a
+    /// mesh joined to named ones without names of its own).
+    std::vector<std::string> part_names;
+    std::vector<int32_t> face_part;       ///< empty, or #faces entries in [0, part_names.size())
+
     bool has_uvs() const { return !face_uv_indices.empty(); }
+    bool has_parts() const { return !face_part.empty(); }
 
     size_t num_faces() const { return face_offsets.size() - 1; }
     std::span<const int32_t> face(size_t f) const
@@ -44,8 +52,8 @@ struct PolygonSoup {
     }
 };
 
-/// Appends `more` to `to`: its vertices after `to`'s, its faces (and texture coordinates, where
-/// either has them) renumbered to match. Several meshes become one surface this way (a head and
+/// Appends `more` to `to`: its vertices after `to`'s, its faces (and texture coordinates and part
+/// names, where either has them) renumbered to match. Several meshes become one surface this way (a head and
 /// its eyeballs). Throws LimitExceeded when the vertices (or texture coordinates) together pass
 /// 2^31 - 1, the most a face index holds; `what` names the meshes in that message.
 void append(PolygonSoup& to, const PolygonSoup& more, const std::string& what);

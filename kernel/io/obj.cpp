@@ -279,8 +279,20 @@ PolygonSoup read_obj_mesh(const FileBytes& file, const std::string& group)
     if (obj.faces.num_faces() == 0 && obj.line_offsets.size() > 1) {
         throw ParseError(file.name + ": expected a mesh ('f' faces), found only polylines ('l'): these are curves");
     }
+    // The faces' object and group names, as the repair report's parts (names[0] is "none given").
+    std::vector<std::string> part_names;
+    for (const auto& set : obj.names) {
+        std::string name;
+        for (const std::string& t : set) name += (name.empty() ? "" : ", ") + t;
+        part_names.push_back(std::move(name));
+    }
+    const bool named = obj.names.size() > 1;
     if (group.empty()) {
         obj.faces.points = std::move(obj.points);
+        if (named) {
+            obj.faces.part_names = std::move(part_names);
+            obj.faces.face_part = std::move(obj.face_names);
+        }
         return std::move(obj.faces);
     }
     std::vector<char> wanted(obj.names.size(), 0);
@@ -309,7 +321,9 @@ PolygonSoup read_obj_mesh(const FileBytes& file, const std::string& group)
         else {
             soup.add_face(face);
         }
+        if (named) soup.face_part.push_back(obj.face_names[f]);
     }
+    if (named) soup.part_names = std::move(part_names);
     if (soup.num_faces() == 0) {
         std::vector<std::string> all;
         for (const auto& set : obj.names)

@@ -7,9 +7,12 @@
 #include "ops/head.h"
 #include "support/sphere_mesh.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 using namespace groom;
@@ -185,6 +188,50 @@ TEST(ScalpCliReal, SintelsEyeballsFillHerOpenSockets)
             EXPECT_EQ(v[3] < 0.0, inside) << scalp << ": " << line;
         }
     }
+}
+
+/// `soup` as OBJ text under object name `name` ("" for none), its vertex indices after `base`.
+std::string obj_object(const PolygonSoup& soup, const std::string& name, size_t base)
+{
+    std::ostringstream out;
+    if (!name.empty()) out << "o " << name << "\n";
+    for (const float3& p : soup.points) out << "v " << p.x << " " << p.y << " " << p.z << "\n";
+    for (size_t f = 0; f < soup.num_faces(); ++f) {
+        out << "f";
+        for (const int32_t v : soup.face(f)) out << " " << base + size_t(v) + 1;
+        out << "\n";
+    }
+    return out.str();
+}
+
+TEST(ScalpCli, ReportNamesTheFilePartEachShellCameFrom)
+{
+    // A head (unit sphere, object 'Head') with an eye inside it (object 'Eye L', a name with a
+    // space), joined to a second file without names (a sphere overlapping the head): the report
+    // gives each shell's source, the note on the removed shell names it, and with one file alone
+    // the names carry no file.
+    TempDir dir;
+    const PolygonSoup head = icosphere({0, 0, 0}, 1.0f, 3), eye = icosphere({0.4f, 0, 0}, 0.2f, 2);
+    write_text(dir.file("head.obj"), obj_object(head, "Head", 0) + obj_object(eye, "Eye L", head.points.size()));
+    write_mesh(icosphere({1.2f, 0, 0}, 0.5f, 3), dir.file("bun.obj"));
+    auto r = run_groom({"scalp", dir.file("head.obj"), dir.file("bun.obj"), "-o", dir.file("s.vdb"), "--voxel", "0.05", "--report",
+                        dir.file("r.json")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("removed 1 shell ('head.obj: Eye L') (320 faces) lying entirely inside a larger shell (inside one of "
+                         "1280 faces ('head.obj: Head'))"),
+              std::string::npos)
+        << r.err;
+    const auto report = nlohmann::json::parse(read_bytes(dir.file("r.json")));
+    std::map<std::string, bool> removed;
+    for (const auto& s : report["shell_list"]) removed[s["source"].get<std::string>()] = s["removed"].get<bool>();
+    EXPECT_EQ(removed, (std::map<std::string, bool>{{"head.obj: Head", false}, {"head.obj: Eye L", true}, {"bun.obj", false}}));
+    r = run_groom({"scalp", dir.file("head.obj"), "-o", dir.file("h.vdb"), "--voxel", "0.05", "--report", dir.file("h.json")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("removed 1 shell ('Eye L')"), std::string::npos) << r.err;
+    // A mesh without names has no sources: "" in the report, no name in the notes.
+    r = run_groom({"scalp", dir.file("bun.obj"), "-o", dir.file("b.vdb"), "--voxel", "0.05", "--report", dir.file("b.json")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(read_bytes(dir.file("b.json")))["shell_list"][0]["source"], "");
 }
 
 TEST(ScalpCli, FillHolesClosesRimsUpToALength)

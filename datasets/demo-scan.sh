@@ -4,7 +4,8 @@
 # +Y up, face +Z, about 5.7 cm per unit). Skipped, saying so, when ../shared/datasets is absent (a
 # fresh clone has no ../shared; the scan is never copied into this repository).
 # Usage: datasets/demo-scan.sh [OUT_DIR]   (expects `groom` on PATH; build first: bash scripts/build.sh)
-# Every length is in the scan's units: a curl radius of 0.04 is about 2.3 mm.
+# Every length is in the scan's units: a curl radius of 0.04 is about 2.3 mm; --units-per-cm 0.175
+# tells each command so (default hair widths, the scale check).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 out=${1:-out/demo-scan}
@@ -30,12 +31,13 @@ for side in left right; do
     seed=$([[ $side == left ]] && echo 1 || echo 2)
     run groom puff --scalp "$out/scan.vdb" -o "$out/izzy_puff_$side.usda" --center "$x,3.6,-0.3" --radius 0.5 \
         --sphere-center "$sx,4.45,-0.3" --sphere-radius 1.0 --rows 6 --cols 6 --cap-angle 160 \
-        --hairs 5000 --type 4a --amplitude 0.03,0.045 --seed "$seed"
+        --hairs 5000 --type 4a --amplitude 0.03,0.045 --seed "$seed" --units-per-cm 0.175
 done
 run groom parting --scalp "$out/scan.vdb" -o "$out/parting.usda" --through 0,3.3,5/0,6,0/0,1.5,-5 --step 0.04
 run groom gather "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" --scalp "$out/scan.vdb" \
     --hairline "$out/hairline.usda" --parting "$out/parting.usda" --parting-gap 0.05 -o "$out/izzy_gathered.usda" \
-    --hairs 12000 --lift 0.014 --step 0.045 --band-width 0.14 --band-thickness 0.02 --type 4a --amplitude 0.03,0.045 --seed 3
+    --hairs 12000 --lift 0.014 --step 0.045 --band-width 0.14 --band-thickness 0.02 --type 4a --amplitude 0.03,0.045 --seed 3 \
+    --units-per-cm 0.175
 
 run groom edges --scalp "$out/scan.vdb" --hairline "$out/hairline.usda" --parting "$out/parting.usda" --parting-gap 0.05 \
     -o "$out/izzy_baby_hairs.usda" --direction alternate --units-per-cm 0.175 --seed 2
@@ -43,7 +45,8 @@ run groom edges --scalp "$out/scan.vdb" --hairline "$out/hairline.usda" --partin
 echo "3. box braids on the scan: sections about 3.4 cm square, a plait each"
 run groom sections --scalp "$out/scan.vdb" --hairline "$out/hairline.usda" --layout grid --cols 8 --length 4.2 \
     --parting-gap 0.05 --step 0.045 --bend 0.175 --clearance 0.05 --layer 0.026 \
-    -o "$out/box_guides.usda" --partings-out "$out/box_partings.usda" --roots-out "$out/box_roots.usda" --roots 30000
+    -o "$out/box_guides.usda" --partings-out "$out/box_partings.usda" --roots-out "$out/box_roots.usda" --roots 30000 \
+    --units-per-cm 0.175
 run groom braid "$out/box_guides.usda" --scalp "$out/scan.vdb" -o "$out/box_braids.usda" --pattern plait --strands 3 \
     --knot-length 0.21 --width 0.079 --taper 0.55,1,1,1,1,1,1,1,1,1,1,1 --fibers 16 --clearance 0.009 --loose-length 0.35
 

@@ -164,7 +164,7 @@ else
 fi
 
 # --- 5. pictures ----------------------------------------------------------------------------------------
-echo "4. pictures"
+echo "5. pictures"
 render_groom() {  # NAME FILES...
     local name=$1
     shift

@@ -142,9 +142,16 @@ void setup(CommandContext& ctx)
                              "they were laid on the outermost scalp along rays from their arc's centre instead");
         }
         if (!jumped.empty()) {
+            // Only the ways out not taken: a trial on Lee Perry-Smith that had given --center, --radius
+            // and --hairline was told to pass them.
+            std::vector<std::string> ways;
+            if (app->count("--center") == 0 || app->count("--radius") == 0) ways.push_back("pass this head's own --center and --radius");
+            if (a.hairline.empty()) ways.push_back("a --hairline");
+            ways.push_back("a smaller --spread (now " + format_number(a.params.spread) + ")");
+            std::string way;
+            for (size_t k = 0; k < ways.size(); ++k) way += (k == 0 ? "" : k + 1 == ways.size() ? ", or " : ", ") + ways[k];
             warn(common, "cornrow-guides: warning: rows " + jumped + " jump across a fold of the scalp in one step of that length, " +
-                             "which cuts through the head (under a brow or an ear): pass this head's own --center and --radius, " +
-                             "a --hairline, or a smaller --spread");
+                             "which cuts through the head (under a brow or an ear): " + way);
         }
         // A row cut to a stub by the hairline (at a sideburn, above an ear) braids into a short tuft
         // with its tail hanging by the face (a trial on Lee Perry-Smith and MakeHuman): say which.

@@ -158,3 +158,22 @@ TEST(CornrowGuidesCli, DefaultsOnAHeadTheyDoNotFitAreRefused)
     EXPECT_NE(mh.err.find("from that sphere"), std::string::npos) << mh.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("mh.usda")));
 }
+
+// A row that still jumps across a fold is warned of with the ways out the user has not taken: a
+// trial on Lee Perry-Smith had given --center, --radius and --hairline and was told to pass them.
+TEST(CornrowGuidesCliReal, TheFoldWarningOffersOnlyTheWaysOutNotTaken)
+{
+    GROOM_REQUIRE_SHARED(scan, "lee_perry_smith/LeePerrySmith.obj");
+    test::TempDir dir;
+    ASSERT_EQ(run_groom({"scalp", scan, "-o", dir.file("s.vdb"), "-q"}).exit_code, 0);
+    ASSERT_EQ(run_groom({"hairline", "--scalp", dir.file("s.vdb"), "-o", dir.file("h.usda"), "-q"}).exit_code, 0);
+    const auto r = run_groom({"cornrow-guides", "--scalp", dir.file("s.vdb"), "-o", dir.file("g.usda"), "--count", "10", "--center",
+                              "0,2.3,0", "--radius", "1.7", "--hairline", dir.file("h.usda")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const size_t w = r.err.find("jump across a fold");
+    ASSERT_NE(w, std::string::npos) << r.err;
+    const std::string advice = r.err.substr(w);
+    EXPECT_NE(advice.find("a smaller --spread (now 24)"), std::string::npos) << advice;
+    EXPECT_EQ(advice.find("--center"), std::string::npos) << advice;
+    EXPECT_EQ(advice.find("--hairline"), std::string::npos) << advice;
+}

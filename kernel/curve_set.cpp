@@ -91,6 +91,18 @@ void CurveSet::set_detail_string(std::string_view name, std::string_view value)
     add<std::string>(Domain::Detail, name)[0] = std::string(value);
 }
 
+bool is_closed(const CurveSet& curves)
+{
+    const auto v = curves.find<int32_t>(Domain::Detail, attr::closed);
+    return !v.empty() && v[0] == 1;
+}
+
+void set_closed(CurveSet& curves, bool closed)
+{
+    curves.attributes(Domain::Detail).remove(attr::closed);
+    if (closed) curves.add<int32_t>(Domain::Detail, attr::closed)[0] = 1;
+}
+
 void CurveSet::validate(std::string_view what) const
 {
     const std::string where = what.empty() ? std::string() : std::string(what) + ": ";
@@ -181,7 +193,9 @@ void carry_curve_attributes(const CurveSet& src, CurveSet& dst, std::span<const 
             a.data);
     }
     for (const Attribute& a : src.attributes(Domain::Detail).all()) {
-        if (dst.attributes(Domain::Detail).find(a.name)) continue;
+        // Curves made from loops are not loops themselves (a braid on a closed guide); an op that
+        // keeps each curve's ends (resample, select) says so itself.
+        if (a.name == attr::closed || dst.attributes(Domain::Detail).find(a.name)) continue;
         dst.attributes(Domain::Detail).all().push_back(a);
     }
 }

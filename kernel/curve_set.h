@@ -25,6 +25,10 @@ namespace attr {
 inline constexpr std::string_view P = "P";          ///< point float3, position
 inline constexpr std::string_view width = "width";  ///< point float, fibre diameter in scene units
 inline constexpr std::string_view id = "id";        ///< curve int64, stable identity
+/// detail int32, 1: every curve is a closed loop, its first point repeated at its end (as readers
+/// give a USD `wrap = "periodic"` curve, an OBJ record back to its first vertex, a loop of edges);
+/// writers that can say so write the loop closed again (.usda periodic, .obj back to its first vertex)
+inline constexpr std::string_view closed = "closed";
 }  // namespace attr
 
 class CurveSet {
@@ -100,8 +104,14 @@ private:
     AttributeSet domains_[3];
 };
 
+/// Whether `curves` are closed loops: the detail int `closed` (attr::closed) is 1.
+bool is_closed(const CurveSet& curves);
+/// Sets (1) or removes the detail int `closed`.
+void set_closed(CurveSet& curves, bool closed);
+
 /// Copies every curve and detail attribute of `src` onto `dst`, where dst curve c comes from src curve
-/// src_curve[c]. Columns dst already has are left alone. Point attributes are not touched: ops that
+/// src_curve[c]. Columns dst already has are left alone, and so is the detail `closed` (curves made
+/// from loops are not loops; an op that keeps every curve's ends sets it again). Point attributes are not touched: ops that
 /// rebuild points decide how those carry.
 void carry_curve_attributes(const CurveSet& src, CurveSet& dst, std::span<const int64_t> src_curve);
 

@@ -53,6 +53,7 @@ CurveSet join(const CurveSet& a, const CurveSet& b)
             if (!dst.attributes(Domain::Detail).find(col.name)) dst.attributes(Domain::Detail).all().push_back(col);
         }
     }
+    set_closed(dst, is_closed(a) && is_closed(b));  // open curves joined to loops are not all loops
     return dst;
 }
 
@@ -77,7 +78,31 @@ CurveSet remove_curves(const CurveSet& src, std::span<const char> remove, std::v
     const auto Q = dst.positions_for_write();
     for (size_t i = 0; i < src_point.size(); ++i) Q[i] = P[size_t(src_point[i])];
     carry_curve_attributes(src, dst, src_curve);
+    set_closed(dst, is_closed(src));  // the curves left are the same loops
     if (kept) *kept = std::move(src_curve);
+    return dst;
+}
+
+CurveSet without_closing_points(const CurveSet& src)
+{
+    const auto P = src.positions();
+    std::vector<int64_t> counts, src_point, src_curve;
+    counts.reserve(src.num_curves());
+    src_point.reserve(src.num_points());
+    for (size_t c = 0; c < src.num_curves(); ++c) {
+        const IndexRange r = src.points_of(c);
+        const bool repeats = r.size() >= 3 && P[size_t(r.begin)] == P[size_t(r.end - 1)];
+        const int64_t n = r.size() - (repeats ? 1 : 0);
+        counts.push_back(n);
+        src_curve.push_back(int64_t(c));
+        for (int64_t i = 0; i < n; ++i) src_point.push_back(r.begin + i);
+    }
+    CurveSet dst = CurveSet::from_counts(counts);
+    auto dP = dst.positions_for_write();
+    for (size_t i = 0; i < src_point.size(); ++i) dP[i] = P[size_t(src_point[i])];
+    carry_point_attributes(src, dst, src_point, {attr::P});
+    carry_curve_attributes(src, dst, src_curve);
+    set_closed(dst, false);
     return dst;
 }
 

@@ -9,7 +9,8 @@
 namespace groom {
 
 /// One set holding the curves of `a` then those of `b`. Columns only one side has are filled with
-/// -1 (integers) or 0 (floats, float3) on the other; a detail column both have keeps a's value.
+/// -1 (integers) or 0 (floats, float3) on the other; a detail column both have keeps a's value,
+/// except `closed`, kept only where both sides are closed loops.
 /// Throws InvalidGeometry naming the column when it has different types in a and b.
 CurveSet join(const CurveSet& a, const CurveSet& b);
 
@@ -17,5 +18,10 @@ CurveSet join(const CurveSet& a, const CurveSet& b);
 /// curve and detail column carried, order kept. `kept` (optional) receives the source index of
 /// each curve left. Throws InvalidParam when `remove` has the wrong size.
 CurveSet remove_curves(const CurveSet& src, std::span<const char> remove, std::vector<int64_t>* kept = nullptr);
+
+/// A copy of `src` without each curve's last point where it repeats the first (at 3 or more points:
+/// a closed loop as the readers give one), every column carried, and without the detail `closed`:
+/// what a format that says "closed" itself (.usda periodic, .obj) writes.
+CurveSet without_closing_points(const CurveSet& src);
 
 }  // namespace groom

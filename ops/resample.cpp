@@ -86,6 +86,7 @@ CurveSet resample(const CurveSet& src, const ResampleParams& params)
     for (size_t c = 0; c < nc; ++c) identity[c] = int64_t(c);
     carry_curve_attributes(src, dst, identity);
     carry_point_attributes(src, dst, src_point, {attr::P});
+    set_closed(dst, is_closed(src));  // each curve keeps its ends: a loop stays one
     return dst;
 }
 

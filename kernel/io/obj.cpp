@@ -1,6 +1,7 @@
 // Wavefront OBJ: `v` positions, `l` polylines (curves) and `f` faces (meshes). An `l` record of 3 or
 // more points is one curve, root first; two-point records are joined into chains (Blender writes one
 // per edge). A soup keeps every `f` record as one face, optionally only those of one `o`/`g` name.
+#include "kernel/curve_set_edit.h"
 #include "kernel/io/edge_chains.h"
 #include "kernel/io/formats.h"
 
@@ -235,14 +236,23 @@ CurveSet read_obj_curves(const FileBytes& file, bool closed_loops)
     CurveSet cs = CurveSet::from_counts(counts);
     auto P = cs.positions_for_write();
     size_t i = 0;
+    // Every curve a loop (a record back to its first vertex, a closed chain of edges): closed curves.
+    bool loops = !pieces.empty();
     for (const Piece& piece : pieces) {
-        for (int64_t j = 0; j < piece.count; ++j) P[i++] = obj.points[size_t(piece.indices32 ? int64_t(piece.indices32[j]) : piece.indices64[j])];
+        auto index = [&](int64_t j) { return piece.indices32 ? int64_t(piece.indices32[j]) : piece.indices64[j]; };
+        for (int64_t j = 0; j < piece.count; ++j) P[i++] = obj.points[size_t(index(j))];
+        loops = loops && piece.count >= 3 && index(0) == index(piece.count - 1);
     }
+    set_closed(cs, loops);
     return cs;
 }
 
-std::string write_obj_curves(const CurveSet& curves, bool closed)
+std::string write_obj_curves(const CurveSet& given, bool closed)
 {
+    // Closed loops: each point once, the record back to its first vertex (as USD periodic).
+    closed = closed || is_closed(given);
+    const CurveSet opened = closed ? without_closing_points(given) : CurveSet();
+    const CurveSet& curves = closed ? opened : given;
     std::string out;
     out.reserve(curves.num_points() * 36 + curves.num_curves() * 8 + 128);
     out += "# groom curves: " + std::to_string(curves.num_curves()) + " curves, " + std::to_string(curves.num_points()) +

@@ -215,6 +215,7 @@ CurveSet read_ply_curves(const FileBytes& file, bool closed_loops)
 
     std::vector<int64_t> order;  // point i of the result is vertex order[i]
     std::vector<int64_t> counts;
+    bool edge_loops = false;
     if (curve && curve->find("point_count")) {
         // groom's own files: curves are consecutive runs of vertices.
         const PlyProperty* pc = curve->find("point_count");
@@ -253,6 +254,12 @@ CurveSet read_ply_curves(const FileBytes& file, bool closed_loops)
         EdgeChains chains = join_edge_chains(n, from, to, true, file.name, 0, "edges", closed_loops);
         order = std::move(chains.order);
         counts = std::move(chains.counts);
+        // Every chain a loop of edges (Blender's closed curve): closed curves.
+        bool loops = !counts.empty();
+        for (size_t c = 0, at = 0; loops && c < counts.size(); at += size_t(counts[c]), ++c) {
+            loops = counts[c] >= 3 && order[at] == order[at + size_t(counts[c]) - 1];
+        }
+        edge_loops = loops;
     }
 
     CurveSet cs = CurveSet::from_counts(counts);
@@ -265,6 +272,7 @@ CurveSet read_ply_curves(const FileBytes& file, bool closed_loops)
         add_columns(*curve, g.curve_types, Domain::Curve, identity, {"point_count"}, cs);
     }
     for (const auto& [name, spec] : g.details) add_detail(file, cs, name, spec);
+    if (edge_loops) set_closed(cs, true);
     return cs;
 }
 

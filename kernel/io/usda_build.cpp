@@ -494,6 +494,8 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
         if (domain == Domain::Point) data = through(interp == "vertex" ? ev.vertex : ev.varying, data);
         out.attributes(domain).add(name, domain, type, 0).data = std::move(data);
     }
+    // The prim's wrap says whether its curves are loops (a primvar of that name does not).
+    set_closed(out, cp.type_name != "NurbsCurves" && token("wrap", "nonperiodic") == "periodic" && out.num_curves() > 0);
     out.validate(file);
     return out;
 }
@@ -582,7 +584,9 @@ CurveSet read_usda(const FileBytes& file, const CurveReadOptions& options)
         }
         return CurveSet();  // only prims with no curves: an empty but valid result
     }
+    const bool loops = std::all_of(parts.begin(), parts.end(), [](const CurveSet& part) { return is_closed(part); });
     CurveSet all = concatenate(parts, file.name, warn);
+    set_closed(all, loops);  // closed only where every prim read was periodic
     if (options.prim_paths) {
         all.attributes(Domain::Detail).remove("prim_paths");
         all.set_detail_string("prim_paths", paths);

@@ -1,6 +1,7 @@
 // The .usda writer: one linear BasisCurves prim holding every curve, point widths and one primvar
 // per attribute (../shared/NOTES.md: always write `type`). Shares only identifier rules with the
 // reader (usda_lexer.h), so it is kept apart from the parsing files.
+#include "kernel/curve_set_edit.h"
 #include "kernel/io/formats.h"
 #include "kernel/io/usda_lexer.h"
 
@@ -98,7 +99,24 @@ const char* usd_scalar_type(AttrType t)
 
 }  // namespace
 
+namespace {
+
+std::string write_usda_text(const CurveSet& curves, bool closed);
+
+}  // namespace
+
 std::string write_usda(const CurveSet& curves, bool closed)
+{
+    // Closed loops are written periodic, each point once (read back, the first point is repeated
+    // at the end again): `groom convert` of a hairline had written it open, its ends on top of
+    // each other (a trial).
+    if (closed || is_closed(curves)) return write_usda_text(without_closing_points(curves), true);
+    return write_usda_text(curves, false);
+}
+
+namespace {
+
+std::string write_usda_text(const CurveSet& curves, bool closed)
 {
     // Check names first so no partial text is produced for an attribute USD cannot name.
     std::map<std::string, Domain> seen;
@@ -209,5 +227,7 @@ std::string write_usda(const CurveSet& curves, bool closed)
     out += "}\n";
     return out;
 }
+
+}  // namespace
 
 }  // namespace groom::io

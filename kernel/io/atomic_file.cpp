@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <streambuf>
 
@@ -162,7 +163,27 @@ AtomicOutput::AtomicOutput(std::string path, bool binary) : path_(std::move(path
         return;
     }
     if (path_.empty()) throw IoError("output path is empty");
-    temp_ = temp_name(path_);
+    // A device, a FIFO or a socket is written into as it is (`-o /dev/null`): renamed over, it was
+    // replaced by a regular file (as root, /dev/null itself: a trial). Nothing can be undone there.
+    struct stat st {};
+    if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+        const int fd = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+        if (fd < 0) {
+            const int err = errno;
+            throw IoError(path_ + ": cannot open for writing (" + std::strerror(err) + ")");
+        }
+        file_ = std::make_unique<File>(fd);
+        in_place_ = true;
+        return;
+    }
+    // A symbolic link: its target is written (atomically, beside the target), the link kept; renamed
+    // over, the link was replaced by a regular file and its target left as it was.
+    std::error_code ec;
+    if (std::filesystem::is_symlink(path_, ec)) {
+        const std::filesystem::path target = std::filesystem::weakly_canonical(path_, ec);
+        if (!ec) target_ = target.string();
+    }
+    temp_ = temp_name(target_.empty() ? path_ : target_);
     // Listed before the file exists: a signal between open and registration would leave it behind.
     slot_ = register_temporary(temp_);
     (void)binary;  // POSIX files have no text mode
@@ -177,6 +198,7 @@ AtomicOutput::AtomicOutput(std::string path, bool binary) : path_(std::move(path
 
 AtomicOutput::~AtomicOutput()
 {
+    if (in_place_) return;
     if (!committed_ && !to_stdout_) {
         file_.reset();
         std::remove(temp_.c_str());
@@ -202,7 +224,10 @@ void AtomicOutput::finish()
     const bool ok = file_->buffer.close() && !file_->stream.bad();
     if (!ok) {
         const int err = file_->buffer.error();
-        throw IoError(path_ + ": write failed (" + (err ? std::string(std::strerror(err)) : std::string("stream error")) + ")");
+        // .hair is written a block at a time, each at its place: a FIFO or pipe cannot take that.
+        const std::string why = err == ESPIPE ? "it cannot seek: this format is written at places, so write it to a file"
+                                              : err ? std::string(std::strerror(err)) : std::string("stream error");
+        throw IoError(path_ + ": write failed (" + why + ")");
     }
     finished_ = true;
 }
@@ -210,15 +235,16 @@ void AtomicOutput::finish()
 void AtomicOutput::commit()
 {
     finish();
-    if (to_stdout_) {
+    if (to_stdout_ || in_place_) {
         committed_ = true;
         return;
     }
     // A file replaced keeps its permissions (the temporary was made 0666 less the umask): a script
     // that rewrites a shared output must not change who may read it.
+    const std::string& into = target_.empty() ? path_ : target_;
     struct stat old {};
-    if (::stat(path_.c_str(), &old) == 0 && S_ISREG(old.st_mode)) ::chmod(temp_.c_str(), old.st_mode & 07777);
-    if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
+    if (::stat(into.c_str(), &old) == 0 && S_ISREG(old.st_mode)) ::chmod(temp_.c_str(), old.st_mode & 07777);
+    if (std::rename(temp_.c_str(), into.c_str()) != 0) {
         const int err = errno;
         std::remove(temp_.c_str());
         throw IoError(path_ + ": cannot rename temporary into place (" + std::strerror(err) + ")");

@@ -1,5 +1,7 @@
 // Atomic output: write to a temporary file beside the target, rename over it when complete. If
-// anything throws before commit(), the temporary is removed and the target is left untouched.
+// anything throws before commit(), the temporary is removed and the target is left untouched. A
+// symbolic link's target is what is replaced (the link stays); a device, FIFO or socket
+// (`-o /dev/null`) is written into directly, without a temporary.
 // A command with several outputs writes them through one OutputBatch: every output is written and
 // checked in its temporary first, and only then are all renamed into place, so a failed second
 // output never leaves a new first one beside an old second one.
@@ -34,11 +36,13 @@ public:
 private:
     struct File;  ///< the temporary: a file descriptor behind a stream that keeps the failing write's errno
     std::string path_, temp_;
+    std::string target_;  ///< where a symbolic link `path_` points: what is replaced, the link kept
     std::unique_ptr<File> file_;
     int slot_ = -1;  ///< in the registry of temporaries, or -1
     bool finished_ = false;
     bool committed_ = false;
     bool to_stdout_ = false;
+    bool in_place_ = false;  ///< a device, FIFO or socket: written into directly, no temporary
 };
 
 /// Every output of one command, committed together: open() each, write it, then commit() checks all

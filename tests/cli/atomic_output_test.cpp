@@ -11,7 +11,10 @@
 #include "support/sphere_mesh.h"
 
 
+#include <sys/stat.h>
+
 #include <filesystem>
+#include <thread>
 
 using namespace groom;
 using groom::test::run_groom;
@@ -171,5 +174,52 @@ TEST(AtomicOutput, OutputOntoAnInputIsRefusedUnlessForced)
             EXPECT_EQ(forced.exit_code, 0) << c.command << ": " << forced.err;
             EXPECT_NE(test::read_bytes(in), before) << c.command << ": --force should have written over the input";
         }
+    }
+}
+
+// A FIFO (or a device: `-o /dev/null`) given as the output is written into, not replaced by a
+// regular file (as root, `-o /dev/null` had replaced /dev/null itself: a trial); a symbolic link's
+// target is written and the link kept (it had been replaced by a file, its target left as it was).
+TEST(AtomicOutput, SpecialFilesAreWrittenIntoAndLinksFollowed)
+{
+    for (const Case& c : cases()) {
+        test::TempDir dir;
+        const std::string in = write_guides(dir, "in.usda");
+        // Into a regular file first, for the bytes the others must hold.
+        const std::string plain = dir.file(std::string("plain.") + c.output_ext);
+        ASSERT_EQ(run_groom(expand(c, in, plain)).exit_code, 0) << c.command;
+        const std::string want = test::read_bytes(plain);
+        // A symbolic link to an existing file of another folder: the target is replaced, the link stays.
+        fs::create_directory(dir.path() / "elsewhere");
+        const std::string target = (dir.path() / "elsewhere" / (std::string("t.") + c.output_ext)).string();
+        test::write_text(target, kPrevious);
+        const std::string link = dir.file(std::string("link.") + c.output_ext);
+        fs::create_symlink(target, link);
+        auto r = run_groom(expand(c, in, link));
+        EXPECT_EQ(r.exit_code, 0) << c.command << ": " << r.err;
+        EXPECT_TRUE(fs::is_symlink(link)) << c.command << ": the link was replaced";
+        if (c.command != std::string("head") && c.command != std::string("scalp")) {  // their bytes are not reproducible
+            EXPECT_EQ(test::read_bytes(target), want) << c.command;
+        } else {
+            EXPECT_NE(test::read_bytes(target), kPrevious) << c.command;
+        }
+        EXPECT_TRUE(temporaries(dir).empty()) << c.command;
+        // A FIFO: a reader gets the bytes; the FIFO is still one afterwards. .hair is written a
+        // block at a time at its places, which a FIFO cannot take: refused, saying so.
+        const std::string fifo = dir.file(std::string("fifo.") + c.output_ext);
+        ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+        std::string got;
+        std::thread reader([&] { got = test::read_bytes(fifo); });
+        r = run_groom(expand(c, in, fifo));
+        reader.join();
+        EXPECT_TRUE(fs::is_fifo(fifo)) << c.command << ": the FIFO was replaced";
+        if (c.output_ext == std::string("hair")) {
+            EXPECT_EQ(r.exit_code, 1) << c.command << ": " << r.err;
+            EXPECT_NE(r.err.find("cannot seek: this format is written at places, so write it to a file"), std::string::npos) << r.err;
+        } else {
+            EXPECT_EQ(r.exit_code, 0) << c.command << ": " << r.err;
+            EXPECT_EQ(got.size(), want.size()) << c.command;
+        }
+        EXPECT_TRUE(temporaries(dir).empty()) << c.command;
     }
 }

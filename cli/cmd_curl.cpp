@@ -39,7 +39,7 @@ void setup(CommandContext& ctx)
     add_prim_option(app, *ctx.common);
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common] {
-        check_output(args->output, {args->input}, common);
+        check_output(args->output, {args->input, args->scalp}, common);  // the scalp too: `-o head.obj` had overwritten it
         CurlParams params = curl_params_from(args->curl);
         params.labels = keeps_point_labels(args->output);
         const CurveSet in = read_curve_input(args->input, common);

@@ -223,3 +223,21 @@ TEST(AtomicOutput, SpecialFilesAreWrittenIntoAndLinksFollowed)
         EXPECT_TRUE(temporaries(dir).empty()) << c.command;
     }
 }
+
+// `-o` naming the --scalp mesh is refused as for any input (curl had overwritten its scalp with curves).
+TEST(AtomicOutput, OutputOntoTheScalpMeshIsRefused)
+{
+    test::TempDir dir;
+    const std::string in = write_guides(dir);
+    const std::string mesh = dir.file("head.obj");
+    write_mesh(icosphere(float3(0, 0, 0), 10.0f, 2), mesh);
+    const std::string before = test::read_bytes(mesh);
+    for (const std::string command : {"curl", "project", "cull", "braid", "generate"}) {
+        std::vector<std::string> args = {command, in, "--scalp", mesh, "-o", mesh};
+        if (command == "generate") args.insert(args.end(), {"--count", "10"});
+        const auto r = run_groom(args);
+        EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
+        EXPECT_NE(r.err.find("is also an input file"), std::string::npos) << command << ": " << r.err;
+        EXPECT_EQ(test::read_bytes(mesh), before) << command << ": the scalp was overwritten";
+    }
+}

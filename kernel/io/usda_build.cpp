@@ -503,6 +503,32 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
 /// Concatenates the prims' CurveSets in one pass (linear in the total). Point and curve columns present
 /// in every part (same type) are kept; a column missing from some part cannot be filled honestly and
 /// is dropped with a warning. Detail values come from the first part.
+/// The layer's `upAxis` and `metersPerUnit` as the curves' detail strings `up_axis` and `units`,
+/// which `groom transform` converts from and the writer puts back: a Z-up file (Blender's) had been
+/// written out as Y-up without a word, and `transform --up-axis z` turned its hair on its side (a
+/// trial). A Y-up layer sets nothing unless the curves said otherwise (files groom writes say Y
+/// always, and read back must write the same bytes); a unit groom has no name for is warned of.
+void apply_layer_units(const Layer& layer, const std::string& file, CurveSet& curves, const Warn& warn)
+{
+    if (layer.up_axis == "Z" || (layer.up_axis == "Y" && !curves.detail_string("up_axis").empty())) {
+        curves.set_detail_string("up_axis", layer.up_axis);
+    }
+    else if (!layer.up_axis.empty() && layer.up_axis != "Y" && warn) {
+        warn(file + ": upAxis '" + layer.up_axis + "' is neither Y nor Z (USD's two); taken as Y");
+    }
+    if (layer.meters_per_unit > 0.0) {
+        const std::pair<const char*, double> known[] = {{"mm", 0.001}, {"cm", 0.01}, {"m", 1.0}, {"in", 0.0254}};
+        const char* name = nullptr;
+        for (const auto& [n, mpu] : known)
+            if (std::fabs(layer.meters_per_unit / mpu - 1.0) < 1e-6) name = n;
+        if (name) curves.set_detail_string("units", name);
+        else if (warn) {
+            warn(file + ": metersPerUnit " + format_number(layer.meters_per_unit) +
+                 " is none of mm, cm, m, in: groom transform --units needs --from-units for these curves");
+        }
+    }
+}
+
 CurveSet concatenate(std::vector<CurveSet>& parts, const std::string& file, const Warn& warn)
 {
     if (parts.size() == 1) return std::move(parts[0]);
@@ -591,6 +617,7 @@ CurveSet read_usda(const FileBytes& file, const CurveReadOptions& options)
         all.attributes(Domain::Detail).remove("prim_paths");
         all.set_detail_string("prim_paths", paths);
     }
+    apply_layer_units(layer, file.name, all, warn);
     all.validate(file.name);
     return all;
 }

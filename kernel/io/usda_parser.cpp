@@ -171,6 +171,13 @@ private:
             if (is_list_op(key.text)) key = lex_.next();
             if (!lex_.accept_punct('=')) continue;
             if (key.text == "defaultPrim" && lex_.peek().kind == Tok::String) layer_.default_prim = string_value();
+            else if (key.text == "upAxis" && lex_.peek().kind == Tok::String) layer_.up_axis = string_value();
+            else if (key.text == "metersPerUnit" && lex_.peek().kind == Tok::Number) {
+                const Token n = lex_.next();
+                double v = 0.0;
+                if (!parse_double(n.text, v) || !(v > 0.0) || !std::isfinite(v)) lex_.fail(n, "expected metersPerUnit > 0");
+                layer_.meters_per_unit = v;
+            }
             else skip_value();
         }
     }

@@ -58,6 +58,9 @@ struct PrimSpec {
 
 struct Layer {
     std::string default_prim;
+    /// Layer metadata `upAxis` ("" when not authored) and `metersPerUnit` (0 when not authored).
+    std::string up_axis;
+    double meters_per_unit = 0.0;
     std::vector<PrimSpec> specs;
     std::vector<int32_t> roots;  ///< the top-level prims, in file order
 };

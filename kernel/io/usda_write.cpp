@@ -146,7 +146,8 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
     const std::string up = curves.detail_string("up_axis") == "Z" ? "Z" : "Y";
     out += "#usda 1.0\n(\n    defaultPrim = \"groom\"\n    doc = \"Written by groom " GROOM_VERSION "\"\n";
     const std::string units = curves.detail_string("units");
-    if (const double mpu = units == "mm" ? 0.001 : units == "cm" ? 0.01 : units == "m" ? 1.0 : units == "in" ? 0.0254 : 0.0; mpu > 0) {
+    const double mpu = units == "mm" ? 0.001 : units == "cm" ? 0.01 : units == "m" ? 1.0 : units == "in" ? 0.0254 : 0.0;
+    if (mpu > 0) {
         out += "    metersPerUnit = ";
         append_number(out, float(mpu));
         out += "\n";
@@ -192,6 +193,11 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
         const char* interp = d == Domain::Point ? "vertex" : d == Domain::Curve ? "uniform" : "constant";
         for (const Attribute& a : curves.attributes(d).all()) {
             if (d == Domain::Point && (a.name == attr::P || (a.name == attr::width && a.type() == AttrType::Float))) continue;
+            // Said by the layer's upAxis and metersPerUnit, and read back from there.
+            if (d == Domain::Detail && ((a.name == "up_axis" && (up == "Z" || curves.detail_string("up_axis") == "Y")) ||
+                                        (a.name == "units" && mpu > 0))) {
+                continue;
+            }
             out += "    ";
             out += usd_scalar_type(a.type());
             if (d != Domain::Detail) out += "[]";

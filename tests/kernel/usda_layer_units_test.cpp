@@ -1,0 +1,56 @@
+// The layer's upAxis and metersPerUnit become the curves' `up_axis` and `units` (what `groom
+// transform` converts from) and are written back to the layer, not as primvars: a Z-up file, as
+// Blender writes, had been written out Y-up without a word (a trial).
+#include "tests/kernel/usda_test_util.h"
+
+#include "kernel/io/curve_io.h"
+
+using namespace groom;
+using groom::test::read_bytes;
+using groom::test::read_usda_text;
+using groom::test::TempDir;
+
+namespace {
+
+std::string layer(const std::string& metadata)
+{
+    return "#usda 1.0\n(\n" + metadata + ")\ndef BasisCurves \"c\" {\n uniform token type = \"linear\"\n int[] curveVertexCounts = [2]\n"
+           " point3f[] points = [(0,0,0),(0,0,1)]\n}\n";
+}
+
+}  // namespace
+
+TEST(UsdaLayerUnits, UpAxisAndMetersPerUnitAreKeptThroughReadAndWrite)
+{
+    const auto z = read_usda_text(layer("    metersPerUnit = 1\n    upAxis = \"Z\"\n"));
+    EXPECT_EQ(z.curves.detail_string("up_axis"), "Z");
+    EXPECT_EQ(z.curves.detail_string("units"), "m");
+    TempDir dir;
+    write_curves(z.curves, dir.file("out.usda"));
+    const std::string out = read_bytes(dir.file("out.usda"));
+    EXPECT_NE(out.find("upAxis = \"Z\""), std::string::npos) << out;
+    EXPECT_NE(out.find("metersPerUnit = 1\n"), std::string::npos) << out;
+    EXPECT_EQ(out.find("primvars:up_axis"), std::string::npos) << out;
+    EXPECT_EQ(out.find("primvars:units"), std::string::npos) << out;
+    // Read back and written again: the same bytes.
+    write_curves(read_curves(dir.file("out.usda")), dir.file("again.usda"));
+    EXPECT_EQ(read_bytes(dir.file("again.usda")), out);
+    // Each unit groom names, within float rounding of its metres.
+    for (const auto& [mpu, name] : {std::pair<std::string, std::string>{"0.001", "mm"}, {"0.01", "cm"}, {"0.0254", "in"}, {"0.009999999776", "cm"}}) {
+        EXPECT_EQ(read_usda_text(layer("    metersPerUnit = " + mpu + "\n")).curves.detail_string("units"), name) << mpu;
+    }
+}
+
+TEST(UsdaLayerUnits, YUpAndUnnamedUnitsSetNothingAndOthersAreWarnedOf)
+{
+    // Y-up and no unit: nothing (files groom writes say Y and read back must write the same bytes).
+    const auto y = read_usda_text(layer("    upAxis = \"Y\"\n"));
+    EXPECT_TRUE(y.curves.detail_string("up_axis").empty());
+    EXPECT_TRUE(y.curves.detail_string("units").empty());
+    const auto dm = read_usda_text(layer("    metersPerUnit = 0.1\n"));
+    EXPECT_TRUE(dm.curves.detail_string("units").empty());
+    EXPECT_TRUE(dm.warned("metersPerUnit 0.1 is none of mm, cm, m, in")) << (dm.warnings.empty() ? "" : dm.warnings[0]);
+    const auto x = read_usda_text(layer("    upAxis = \"X\"\n"));
+    EXPECT_TRUE(x.warned("upAxis 'X' is neither Y nor Z"));
+    EXPECT_NE(test::usda_error(layer("    metersPerUnit = -1\n")).find("expected metersPerUnit > 0"), std::string::npos);
+}

@@ -22,6 +22,20 @@ constexpr double kMinCos = 0.2;
 
 int round_count(double x) { return int(std::lround(std::max(1.0, x))); }
 
+/// The bands `size` makes across `across` (rounded to an odd count for rows), refused past the most
+/// the count options allow: `--size 1e-20` had overflowed the count (a crash), and 1e-3 asked for
+/// 23 GB before anything said no (a trial).
+int bands_from_size(double across, float size, int most, bool odd, const char* what)
+{
+    const double n = across / double(size);
+    if (!(n <= double(most) + 0.5)) {
+        throw InvalidParam("sections: `size` " + format_number(size) + " makes " + format_number(float(n)) + " " + what + " across this scalp (" +
+                           format_number(float(across)) + " scene units; at most " + std::to_string(most) + "): give a size of at least " +
+                           format_number(float(across / double(most))) + ", or the count itself");
+    }
+    return odd ? 2 * int(std::lround(std::max(0.0, (n - 1.0) / 2.0))) + 1 : round_count(n);
+}
+
 }  // namespace
 
 SectionMap::SectionMap(const Surface& scalp, const CurveSet& hairline, const HairRegion& region, const SectionsParams& params,
@@ -120,14 +134,14 @@ SectionMap::SectionMap(const Surface& scalp, const CurveSet& hairline, const Hai
 
     // --- How many bands: given, from the size, or the layout's default.
     switch (layout_) {
-    case SectionLayout::Grid: bands_ = params.cols > 0 ? params.cols : params.size > 0 ? round_count(across / params.size) : 8; break;
+    case SectionLayout::Grid: bands_ = params.cols > 0 ? params.cols : params.size > 0 ? bands_from_size(across, params.size, 256, false, "bands") : 8; break;
     case SectionLayout::Rows:
         if (params.rows > 0) bands_ = params.rows;
-        else if (params.size > 0) bands_ = 2 * int(std::lround(std::max(0.0, (across / params.size - 1.0) / 2.0))) + 1;
+        else if (params.size > 0) bands_ = bands_from_size(across, params.size, 256, true, "rows");
         else bands_ = 7;
         break;
     case SectionLayout::Radial:
-        bands_ = params.rings > 0 ? params.rings : params.size > 0 ? round_count(across / params.size) : 1;
+        bands_ = params.rings > 0 ? params.rings : params.size > 0 ? bands_from_size(across, params.size, 64, false, "rings") : 1;
         break;
     }
     edges_.assign(size_t(bands_) + 1, 0.0);
@@ -247,7 +261,7 @@ SectionMap::SectionMap(const Surface& scalp, const CurveSet& hairline, const Hai
         const double ab = band_area(b);
         if (ab <= 0.0) continue;
         switch (layout_) {
-        case SectionLayout::Grid: cells[b] = round_count(ab / grid_target_); break;
+        case SectionLayout::Grid: cells[b] = round_count(std::min(ab / grid_target_, 256.0)); break;  // --rows' most
         case SectionLayout::Rows: cells[b] = 1; break;
         case SectionLayout::Radial:
             if (params.wedges > 0 || params.size <= 0) {
@@ -257,7 +271,7 @@ SectionMap::SectionMap(const Surface& scalp, const CurveSet& hairline, const Hai
             else {
                 // Square cells: as long around as the ring is wide (area / length of its middle line).
                 const double l = band_length(b);
-                cells[b] = round_count(l > 0.0 ? l * l / ab : 1.0);
+                cells[b] = round_count(std::min(l > 0.0 ? l * l / ab : 1.0, 256.0));  // --wedges' most
             }
             break;
         }

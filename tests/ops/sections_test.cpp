@@ -570,3 +570,22 @@ TEST(Sections, PartingsTooFineForTheBudgetAreRefusedNamingStep)
     p.step = test_params(SectionLayout::Grid).step;
     EXPECT_NO_THROW(sections(sphere(), sphere_hairline(), nullptr, p));
 }
+
+// A `size` that makes more bands than the count options allow is refused naming the least size
+// that fits, before any work (1e-20 overflowed the count and crashed; 1e-3 asked for 23 GB: a trial).
+TEST(Sections, ASizeTooSmallForTheCountsIsRefusedNamingTheLeast)
+{
+    for (const SectionLayout layout : {SectionLayout::Grid, SectionLayout::Rows, SectionLayout::Radial}) {
+        SectionsParams p = test_params(layout);
+        p.size = 1e-20f;
+        try {
+            sections(sphere(), sphere_hairline(), nullptr, p);
+            ADD_FAILURE() << "size 1e-20 was accepted";
+        } catch (const InvalidParam& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find("`size` 1e-20 makes"), std::string::npos) << m;
+            EXPECT_NE(m.find(layout == SectionLayout::Radial ? "at most 64" : "at most 256"), std::string::npos) << m;
+            EXPECT_NE(m.find("give a size of at least "), std::string::npos) << m;
+        }
+    }
+}

@@ -39,7 +39,7 @@ void setup(CommandContext& ctx)
     app->add_option("--rows", p.rows, "Guide rows, 1..256")->capture_default_str();
     app->add_option("--cols", p.cols, "Guide columns, 1..256")->capture_default_str();
     app->add_option("--cap-angle", p.cap_angle, "Half-angle of the sphere cap the guide tips cover, degrees, (0, 180)")->capture_default_str();
-    app->add_option("--guide-points", p.guide_points, "Points per guide, >= 4")->capture_default_str();
+    app->add_option("--guide-points", p.guide_points, "Points per guide, [4, 4096]")->capture_default_str();
     app->add_option("--bend", p.bend, "Guide end-tangent length as a fraction of root-to-tip distance, (0, 1]")->capture_default_str();
     app->add_option("--hairs", p.hairs, "Curled hairs to grow in the region, >= 0")->capture_default_str();
     app->add_option("--hair-points", p.hair_points, "Points per hair centreline before curling, >= 4")->capture_default_str();

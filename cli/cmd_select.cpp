@@ -40,7 +40,11 @@ void setup(CommandContext& ctx)
         if (!a.guides.empty()) {
             for (const IdRange& r : parse_id_ranges(a.guides, "guide")) {
                 if (r.hi - r.lo > 1000000) throw InvalidParam("select: `guide` range " + std::to_string(r.lo) + "-" + std::to_string(r.hi) + " is too long (more than a million guides)");
-                for (int64_t g = r.lo; g <= r.hi; ++g) params.guides.push_back(g);
+                // Stops at r.hi itself: `g <= r.hi` never failed for r.hi = INT64_MAX (g wrapped; a trial).
+                for (int64_t g = r.lo;; ++g) {
+                    params.guides.push_back(g);
+                    if (g >= r.hi) break;
+                }
             }
         }
         // Several in one value, comma-separated (how the Python module passes a list); no comparison

@@ -72,8 +72,10 @@ void PuffParams::validate() const
     if (!(cap_angle > 0.0f && cap_angle < 180.0f)) {
         throw InvalidParam("puff: `cap_angle` must be in (0, 180) degrees (got " + str(cap_angle) + ")");
     }
-    if (guide_points < 4) {
-        throw InvalidParam("puff: `guide_points` must be >= 4 (got " + std::to_string(guide_points) + ")");
+    // At most 4096: a guide's points are what every hair blends, and 10^6 of them ran past 100 s,
+    // 10^8 past the memory, before anything said no (a trial). 16 already follow a puff's curve.
+    if (guide_points < 4 || guide_points > 4096) {
+        throw InvalidParam("puff: `guide_points` must be in [4, 4096] (got " + std::to_string(guide_points) + ")");
     }
     if (!(bend > 0.0f && bend <= 1.0f)) throw InvalidParam("puff: `bend` must be in (0, 1] (got " + str(bend) + ")");
     if (first_id < 0) throw InvalidParam("puff: `first_id` must be >= 0 (got " + std::to_string(first_id) + ")");

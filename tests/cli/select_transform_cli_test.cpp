@@ -58,6 +58,22 @@ TEST(SelectCli, KeepsIdsAndComparisonsAndInverts)
     EXPECT_NE(r.err.find("the input's ids run from 0 to 50"), std::string::npos) << r.err;
 }
 
+// A guide at the top of int64's range is one guide (the loop over the range had wrapped and grown
+// without end: a trial).
+TEST(SelectCli, TheLargestGuideIsOneGuide)
+{
+    TempDir dir;
+    CurveSet cs = CurveSet::from_counts(std::vector<int64_t>(2, 2));
+    auto P = cs.positions_for_write();
+    P[1] = P[3] = float3(0, 1, 0);
+    auto guide = cs.add<int64_t>(Domain::Curve, "guide");
+    guide[0] = 3, guide[1] = INT64_MAX;
+    write_curves(cs, dir.file("g.usda"));
+    const auto r = run_groom({"select", dir.file("g.usda"), "--guide", "9223372036854775807", "-o", dir.file("o.usda")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_curves(dir.file("o.usda")).num_curves(), 1u);
+}
+
 TEST(SelectCli, BadExpressionNamesTheOptionAndWhatWasExpected)
 {
     TempDir dir;

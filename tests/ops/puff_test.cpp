@@ -324,7 +324,9 @@ TEST(Puff, RejectsInvalidParams)
     EXPECT_NE(message(p).find("`cap_angle`"), std::string::npos) << message(p);
     p = top_puff();
     p.guide_points = 3;
-    EXPECT_NE(message(p).find("`guide_points` must be >= 4 (got 3)"), std::string::npos) << message(p);
+    EXPECT_NE(message(p).find("`guide_points` must be in [4, 4096] (got 3)"), std::string::npos) << message(p);
+    p.guide_points = 100000000;  // ran past the memory before anything said no
+    EXPECT_NE(message(p).find("`guide_points` must be in [4, 4096] (got 100000000)"), std::string::npos) << message(p);
     p = top_puff();
     p.bend = 0;
     EXPECT_NE(message(p).find("`bend`"), std::string::npos) << message(p);

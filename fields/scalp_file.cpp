@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -57,6 +58,34 @@ void write_scalp(const ScalpField& scalp, const std::string& path)
     batch.commit();
 }
 
+namespace {
+
+/// OpenVDB writes a random UUID into every file's header (io::Archive::writeHeader, with no way to
+/// give one), so two runs of the same `groom scalp` differed in those 36 bytes (a trial: `cmp`-based
+/// checks failed, against "the same inputs give the same bytes"). Replaced by one made from the
+/// file's content after the header (two FNV-1a hashes, as a version-4 UUID's text): the same
+/// content, the same UUID; other content, another. Readers use it only to tell files apart.
+/// The header: magic (8 bytes), file version (4), library major and minor (4 + 4), whether grids
+/// have offsets (1), then the UUID as 36 characters.
+void stamp_content_uuid(std::string& file)
+{
+    constexpr size_t kAt = 21, kLen = 36;
+    if (file.size() < kAt + kLen || file[kAt + 8] != '-' || file[kAt + 13] != '-' || file[kAt + 18] != '-' || file[kAt + 23] != '-') return;
+    uint64_t h[2] = {0xcbf29ce484222325ull, 0x84222325cbf29ce4ull};
+    for (size_t i = kAt + kLen; i < file.size(); ++i) {
+        for (uint64_t& x : h) x = (x ^ uint8_t(file[i])) * 0x100000001b3ull;
+    }
+    char hex[33];
+    std::snprintf(hex, sizeof hex, "%016llx%016llx", (unsigned long long)h[0], (unsigned long long)h[1]);
+    hex[12] = '4';                                          // version 4
+    hex[16] = "89ab"[(hex[16] >= 'a' ? hex[16] - 'a' + 10 : hex[16] - '0') & 3];  // the RFC 4122 variant
+    const std::string id = std::string(hex, 8) + "-" + std::string(hex + 8, 4) + "-" + std::string(hex + 12, 4) + "-" +
+                           std::string(hex + 16, 4) + "-" + std::string(hex + 20, 12);
+    file.replace(kAt, kLen, id);
+}
+
+}  // namespace
+
 void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& batch)
 {
     detail::init_openvdb();
@@ -77,12 +106,17 @@ void write_scalp(const ScalpField& scalp, const std::string& path, OutputBatch& 
         if (im.mesh_exact) copy->insertMeta(kMeshMeta, openvdb::StringMetadata(detail::encode_source_mesh(im.geometry.points, im.geometry.tris)));
         grid = copy;
     }
+    std::ostringstream bytes;
     try {
-        openvdb::io::Stream(batch.open(path)).write(openvdb::GridCPtrVec{grid});
+        openvdb::io::Stream(bytes).write(openvdb::GridCPtrVec{grid});
     }
     catch (const openvdb::Exception& e) {
         throw IoError(path + ": cannot write the level set (" + e.what() + ")");
     }
+    std::string file = std::move(bytes).str();
+    stamp_content_uuid(file);
+    std::ostream& out = batch.open(path);
+    out.write(file.data(), std::streamsize(file.size()));
 }
 
 namespace {

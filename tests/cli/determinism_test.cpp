@@ -2,7 +2,8 @@
 // byte-identical files (the brief: "bitwise identical output for any thread count"). The inputs
 // are big enough (240 guides) that TBB really splits the work over both threads.
 // A command joins the table when it lands on main; a case whose command is not registered fails.
-// (`groom scalp` is not compared: OpenVDB stamps every .vdb file with a fresh UUID.)
+// `groom scalp` too: OpenVDB stamps every .vdb with a random UUID, which write_scalp replaces by one
+// made from the file's content.
 #include "test_support.h"
 
 #include "kernel/io/curve_io.h"
@@ -86,6 +87,7 @@ std::vector<Case> cases()
         {"populate", "usda", {"populate", "{guides}", "-o", "{out}", "--count", "8", "--radius", "0.3", "--seed", "2"}},
         {"curl", "usda", {"curl", "{guides}", "-o", "{out}", "--type", "3b", "--uniformity", "0.4", "--seed", "7"}},
         {"head", "obj", {"head", "-o", "{out}", "--resolution", "96"}},
+        {"scalp", "vdb", {"scalp", "{head}", "-o", "{out}"}},
         {"edges", "usda", {"edges", "--scalp", "{head}", "-o", "{out}", "--direction", "random", "--from", "-180", "--to", "180", "--seed", "4"}},
         {"render", "png", {"render", "{guides}", "--scalp", "{head}", "-o", "{out}", "--size", "160x120", "--color-by", "strand"}},
     };

@@ -39,8 +39,8 @@ GatherPuff read_puff(const std::string& path)
     const auto sc = all.find<float3>(Domain::Detail, "puff_sphere_center");
     const auto sr = all.find<float>(Domain::Detail, "puff_sphere_radius");
     if (base.empty() || radius.empty() || sc.empty() || sr.empty()) {
-        throw InvalidParam(path + ": expected a puff written by `groom puff` as .usda (detail attributes puff_base, puff_radius, "
-                                  "puff_sphere_center, puff_sphere_radius); found none (re-run groom puff with -o FILE.usda)");
+        throw InvalidParam(path + ": expected a puff written by `groom puff` as .usda, .ply or .obj (detail attributes puff_base, puff_radius, "
+                                  "puff_sphere_center, puff_sphere_radius; .hair cannot hold them); found none (re-run groom puff with -o FILE.usda)");
     }
     puff.base = base[0];
     puff.base_radius = radius[0];

@@ -68,7 +68,7 @@ bool obj_holds_curves(const FileBytes& file)
 }
 
 // --- which columns survive a write -----------------------------------------------------------------
-bool obj_keeps(Domain, const Attribute&) { return false; }  // OBJ has positions only
+bool obj_keeps(Domain d, const Attribute&) { return d == Domain::Detail; }  // positions, and detail values as comments
 /// Cem Yuksel's .hair has per-point thickness, transparency and colour arrays, nothing else.
 bool hair_keeps(Domain d, const Attribute& a)
 {

@@ -2,6 +2,7 @@
 // more points is one curve, root first; two-point records are joined into chains (Blender writes one
 // per edge). A soup keeps every `f` record as one face, optionally only those of one `o`/`g` name.
 #include "kernel/curve_set_edit.h"
+#include "kernel/io/detail_text.h"
 #include "kernel/io/edge_chains.h"
 #include "kernel/io/formats.h"
 
@@ -244,6 +245,19 @@ CurveSet read_obj_curves(const FileBytes& file, bool closed_loops)
         loops = loops && piece.count >= 3 && index(0) == index(piece.count - 1);
     }
     set_closed(cs, loops);
+    // Detail values groom wrote as comments (a --shard part's tag), each at the start of a line.
+    constexpr std::string_view kDetail = "# groom detail ";
+    const std::string_view text = file.data;
+    for (size_t at = text.find(kDetail); at != std::string_view::npos; at = text.find(kDetail, at + 1)) {
+        if (at > 0 && text[at - 1] != '\n') continue;
+        const size_t end = std::min(text.find('\n', at), text.size());
+        std::string_view line = text.substr(at + kDetail.size(), end - at - kDetail.size());
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        const size_t space = line.find(' ');
+        const std::string name(line.substr(0, space));
+        const std::string_view value = space == std::string_view::npos ? std::string_view() : line.substr(space + 1);
+        set_detail_from_text(cs, name, value, file.name + ": malformed '" + std::string(kDetail) + std::string(line) + "'");
+    }
     return cs;
 }
 
@@ -256,7 +270,8 @@ std::string write_obj_curves(const CurveSet& given, bool closed)
     std::string out;
     out.reserve(curves.num_points() * 36 + curves.num_curves() * 8 + 128);
     out += "# groom curves: " + std::to_string(curves.num_curves()) + " curves, " + std::to_string(curves.num_points()) +
-           " points (OBJ keeps positions only)\n";
+           " points (OBJ keeps positions, and detail values in these comments)\n";
+    for (const Attribute& a : curves.attributes(Domain::Detail).all()) out += "# groom detail " + a.name + " " + detail_value_text(a, "obj") + "\n";
     for (const float3& p : curves.positions()) {
         out += "v ";
         append_number(out, p.x);

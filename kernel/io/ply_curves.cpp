@@ -1,5 +1,6 @@
 // PLY curves: read_ply_curves / write_ply_curves and the `comment groom ...` lines that carry attribute
 // types and detail values. Apart from the mesh reader because curves need their own elements and metadata.
+#include "kernel/io/detail_text.h"
 #include "kernel/io/edge_chains.h"
 #include "kernel/io/formats.h"
 #include "kernel/io/ply_data.h"
@@ -28,13 +29,6 @@ struct GroomComments {
     std::vector<std::pair<std::string, std::string>> details;  ///< name, "TYPE VALUE..."
 };
 
-std::optional<AttrType> attr_type_named(std::string_view s)
-{
-    for (AttrType t : {AttrType::Float, AttrType::Int32, AttrType::Int64, AttrType::Float3, AttrType::String})
-        if (s == type_name(t)) return t;
-    return std::nullopt;
-}
-
 GroomComments groom_comments(const PlyData& ply)
 {
     GroomComments g;
@@ -59,68 +53,9 @@ GroomComments groom_comments(const PlyData& ply)
     return g;
 }
 
-std::string escape_line(std::string_view s)
-{
-    std::string out;
-    for (char c : s) {
-        if (c == '\\') out += "\\\\";
-        else if (c == '\n') out += "\\n";
-        else if (c == '\r') out += "\\r";
-        else out += c;
-    }
-    return out;
-}
-
-std::string unescape_line(std::string_view s)
-{
-    std::string out;
-    for (size_t i = 0; i < s.size(); ++i) {
-        if (s[i] == '\\' && i + 1 < s.size()) {
-            const char e = s[++i];
-            out += e == 'n' ? '\n' : e == 'r' ? '\r' : e;
-        }
-        else {
-            out += s[i];
-        }
-    }
-    return out;
-}
-
 void add_detail(const FileBytes& file, CurveSet& cs, const std::string& name, const std::string& spec)
 {
-    TextCursor cur(spec);
-    const auto type = attr_type_named(cur.token());
-    auto bad = [&] { throw ParseError(file.name + ": malformed 'comment groom detail " + name + " " + spec + "'"); };
-    if (!type) bad();
-    switch (*type) {
-        case AttrType::String: {
-            std::string_view rest = cur.rest_of_line();
-            if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
-            cs.set_detail_string(name, unescape_line(rest));
-            break;
-        }
-        case AttrType::Float: {
-            float v;
-            if (!parse_float(cur.token(), v)) bad();
-            cs.add<float>(Domain::Detail, name)[0] = v;
-            break;
-        }
-        case AttrType::Int32:
-        case AttrType::Int64: {
-            int64_t v;
-            if (!parse_int(cur.token(), v)) bad();
-            if (*type == AttrType::Int32) cs.add<int32_t>(Domain::Detail, name)[0] = static_cast<int32_t>(v);
-            else cs.add<int64_t>(Domain::Detail, name)[0] = v;
-            break;
-        }
-        case AttrType::Float3: {
-            float3 v;
-            for (int k = 0; k < 3; ++k)
-                if (!parse_float(cur.token(), v[k])) bad();
-            cs.add<float3>(Domain::Detail, name)[0] = v;
-            break;
-        }
-    }
+    set_detail_from_text(cs, name, spec, file.name + ": malformed 'comment groom detail " + name + " " + spec + "'");
 }
 
 /// Turns the scalar properties of `e` (except those in `skip`) into columns on `domain`, gathering
@@ -295,23 +230,7 @@ std::string write_ply_curves(const CurveSet& curves, PlyEncoding encoding)
              "groom element curve: point_count and per-curve attributes; float3 X is X_x X_y X_z"});
     for (const std::string& c : comments) w.comment(c);
     for (const Attribute& a : curves.attributes(Domain::Detail).all()) {
-        std::string spec = "groom detail " + a.name + " " + type_name(a.type()) + " ";
-        for (char c : a.name)
-            if (c <= ' ' || c > '~') throw InvalidParam("ply: detail attribute name '" + a.name + "' contains spaces or non-ASCII characters");
-        std::visit(
-            [&](const auto& v) {
-                using T = typename std::decay_t<decltype(v)>::value_type;
-                if constexpr (std::is_same_v<T, std::string>) spec += escape_line(v[0]);
-                else if constexpr (std::is_same_v<T, float3>) {
-                    append_number(spec, v[0].x);
-                    spec += ' ';
-                    append_number(spec, v[0].y);
-                    spec += ' ';
-                    append_number(spec, v[0].z);
-                }
-                else append_number(spec, v[0]);
-            },
-            a.data);
+        const std::string spec = "groom detail " + a.name + " " + detail_value_text(a, "ply");
         w.comment(spec);
     }
     std::vector<int32_t> ea, eb;

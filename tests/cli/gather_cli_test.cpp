@@ -85,7 +85,7 @@ TEST(GatherCli, HairlinePartingAndGatherChain)
     EXPECT_EQ(bands, 24);
 
     // The bands can go to their own file; the same file twice is refused; a puff file without its
-    // base (as .obj) is refused naming the file.
+    // base (as .hair) is refused naming the file.
     r = run_groom({"gather", puffs[0], "--scalp", scalp, "-o", dir.file("h.usda"), "--bands-out", dir.file("b.usda"), "--hairs", "50"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(read_curves(dir.file("b.usda")).num_curves(), 12u);
@@ -93,12 +93,16 @@ TEST(GatherCli, HairlinePartingAndGatherChain)
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("--bands-out"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x.usda")));
-    ASSERT_EQ(run_groom({"convert", puffs[0], "-o", dir.file("p.obj")}).exit_code, 0);
-    r = run_groom({"gather", dir.file("p.obj"), "--scalp", scalp, "-o", dir.file("y.usda")});
+    ASSERT_EQ(run_groom({"convert", puffs[0], "-o", dir.file("p.hair")}).exit_code, 0);
+    r = run_groom({"gather", dir.file("p.hair"), "--scalp", scalp, "-o", dir.file("y.usda")});
     EXPECT_NE(r.exit_code, 0);
-    EXPECT_NE(r.err.find("p.obj"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("p.hair"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("puff_base"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("y.usda")));
+    // .obj keeps the puff's detail values (as `# groom detail` comments): its puff gathers.
+    ASSERT_EQ(run_groom({"convert", puffs[0], "-o", dir.file("p.obj")}).exit_code, 0);
+    r = run_groom({"gather", dir.file("p.obj"), "--scalp", scalp, "-o", dir.file("y.usda"), "--hairs", "50"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
     // Options are named as the user typed them.
     r = run_groom({"gather", puffs[0], "--scalp", scalp, "-o", dir.file("z.usda"), "--lift", "-1"});
     EXPECT_NE(r.exit_code, 0);

@@ -165,6 +165,35 @@ TEST(Shard, MergeOrdersShardsAndRefusesMissingOrRepeatedOnes)
     EXPECT_FALSE(std::filesystem::exists(bad));
 }
 
+// The tag is kept in every format that can hold it: .obj keeps it as `# groom detail` comments (its
+// parts were merged without a word with one missing, or out of order: a trial), .ply as its own.
+TEST(Shard, ObjAndPlyPartsCarryTheirTag)
+{
+    test::TempDir dir;
+    const std::string guides = write_guides(dir);
+    for (const std::string ext : {"obj", "ply"}) {
+        const std::vector<std::string> run{"curl", guides, "--type", "3b", "--seed", "7", "--quiet"};
+        std::vector<std::string> args = run;
+        const std::string whole = dir.file("whole." + ext);
+        args.insert(args.end(), {"-o", whole});
+        ASSERT_EQ(run_groom(args).exit_code, 0);
+        std::vector<std::string> parts;
+        for (int i = 0; i < 3; ++i) {
+            parts.push_back(dir.file("p" + std::to_string(i) + "." + ext));
+            std::vector<std::string> sargs = run;
+            sargs.insert(sargs.end(), {"-o", parts.back(), "--shard", std::to_string(i) + "/3"});
+            ASSERT_EQ(run_groom(sargs).exit_code, 0);
+        }
+        EXPECT_EQ(read_curves(parts[1]).detail_string("shard"), "1/3") << ext;
+        const auto missing = run_groom({"merge", parts[0], parts[2], "-o", dir.file("bad." + ext)});
+        EXPECT_EQ(missing.exit_code, 2) << ext << ": " << missing.err;
+        EXPECT_NE(missing.err.find("missing (1)"), std::string::npos) << missing.err;
+        const auto m = run_groom({"merge", parts[2], parts[0], parts[1], "-o", dir.file("merged." + ext)});
+        ASSERT_EQ(m.exit_code, 0) << m.err;
+        EXPECT_TRUE(test::read_bytes(dir.file("merged." + ext)) == test::read_bytes(whole)) << ext << ": merged parts differ from the whole run";
+    }
+}
+
 // Each part carries which run it is of: parts of another run (another --seed, --count or --type),
 // or of another frame, are refused by name; parts of one run written with other thread counts or
 // verbosity are the same run (a trial merged a 4,000-hair run's part into a 5,000-hair run's and

@@ -1,0 +1,107 @@
+#include "kernel/io/detail_text.h"
+
+#include "kernel/error.h"
+#include "kernel/io/io_util.h"
+
+#include <type_traits>
+
+namespace groom::io {
+
+namespace {
+
+std::string escape_line(std::string_view s)
+{
+    std::string out;
+    for (char c : s) {
+        if (c == '\\') out += "\\\\";
+        else if (c == '\n') out += "\\n";
+        else if (c == '\r') out += "\\r";
+        else out += c;
+    }
+    return out;
+}
+
+std::string unescape_line(std::string_view s)
+{
+    std::string out;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == '\\' && i + 1 < s.size()) {
+            const char e = s[++i];
+            out += e == 'n' ? '\n' : e == 'r' ? '\r' : e;
+        }
+        else {
+            out += s[i];
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::optional<AttrType> attr_type_named(std::string_view s)
+{
+    for (AttrType t : {AttrType::Float, AttrType::Int32, AttrType::Int64, AttrType::Float3, AttrType::String})
+        if (s == type_name(t)) return t;
+    return std::nullopt;
+}
+
+std::string detail_value_text(const Attribute& a, const std::string& format)
+{
+    for (char c : a.name)
+        if (c <= ' ' || c > '~') throw InvalidParam(format + ": detail attribute name '" + a.name + "' contains spaces or non-ASCII characters");
+    std::string spec = std::string(type_name(a.type())) + " ";
+    std::visit(
+        [&](const auto& v) {
+            using T = typename std::decay_t<decltype(v)>::value_type;
+            if constexpr (std::is_same_v<T, std::string>) spec += escape_line(v[0]);
+            else if constexpr (std::is_same_v<T, float3>) {
+                append_number(spec, v[0].x);
+                spec += ' ';
+                append_number(spec, v[0].y);
+                spec += ' ';
+                append_number(spec, v[0].z);
+            }
+            else append_number(spec, v[0]);
+        },
+        a.data);
+    return spec;
+}
+
+void set_detail_from_text(CurveSet& cs, const std::string& name, std::string_view text, const std::string& bad_message)
+{
+    TextCursor cur(text);
+    const auto type = attr_type_named(cur.token());
+    auto bad = [&] { throw ParseError(bad_message); };
+    if (!type) bad();
+    switch (*type) {
+        case AttrType::String: {
+            std::string_view rest = cur.rest_of_line();
+            if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
+            cs.set_detail_string(name, unescape_line(rest));
+            break;
+        }
+        case AttrType::Float: {
+            float v;
+            if (!parse_float(cur.token(), v)) bad();
+            cs.add<float>(Domain::Detail, name)[0] = v;
+            break;
+        }
+        case AttrType::Int32:
+        case AttrType::Int64: {
+            int64_t v;
+            if (!parse_int(cur.token(), v)) bad();
+            if (*type == AttrType::Int32) cs.add<int32_t>(Domain::Detail, name)[0] = static_cast<int32_t>(v);
+            else cs.add<int64_t>(Domain::Detail, name)[0] = v;
+            break;
+        }
+        case AttrType::Float3: {
+            float3 v;
+            for (int k = 0; k < 3; ++k)
+                if (!parse_float(cur.token(), v[k])) bad();
+            cs.add<float3>(Domain::Detail, name)[0] = v;
+            break;
+        }
+    }
+}
+
+}  // namespace groom::io

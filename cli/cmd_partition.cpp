@@ -215,7 +215,15 @@ void setup(CommandContext& ctx)
         params.validate();  // options first: no need to read anything to reject them
 
         const CurveSet guides = read_curve_input(args->input, common);
-        if (!args->adjacent_file.empty()) params.adjacent = read_adjacent(args->adjacent_file, guides.num_curves());
+        if (!args->adjacent_file.empty()) {
+            params.adjacent = read_adjacent(args->adjacent_file, guides.num_curves());
+            // Empty, it would fall to the automatic search below, against "only the sources listed
+            // are partitioned" (a trial's file of comments only did).
+            if (params.adjacent.empty()) {
+                throw ParseError(args->adjacent_file + ": --adjacent lists no guide (expected 'source,left,right' lines); to let partition "
+                                 "find the neighbours itself, leave --adjacent out");
+            }
+        }
         if (params.centroids == CentroidMode::Points) params.centroid_points = read_centroids(spec, guides.num_curves());
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());

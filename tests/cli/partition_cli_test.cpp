@@ -210,6 +210,8 @@ TEST(PartitionCli, RejectsBadOptionsAndFilesWithoutWritingOutput)
     write_text(bad, "2,2,1\n");
     expect_error({"--adjacent", bad}, 1, bad + ":1: guide 2 cannot be its own neighbour");
     expect_error({"--adjacent", dir.file("missing.csv")}, 1, "cannot open");
+    write_text(bad, "# none\n");  // was taken as no file: the automatic search ran
+    expect_error({"--adjacent", bad}, 1, bad + ": --adjacent lists no guide");
     write_text(bad, "1,1.5\n");
     expect_error({"--centroids", bad}, 1, bad + ":1: u must be in [0, 1] (got 1.5)");
     write_text(bad, "3,0.5\n");

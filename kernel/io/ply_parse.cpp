@@ -3,6 +3,7 @@
 // Shared by the curve and mesh readers; what the elements mean is theirs to decide.
 #include "kernel/io/ply_data.h"
 
+#include <limits>
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -147,6 +148,12 @@ PlyData parse_ply(const FileBytes& file)
             p.type = *pt;
             p.name = std::string(cur.token());
             if (p.name.empty()) fail_at_line(file.name, cur.line(), "expected a property name, found end of line");
+            for (const PlyProperty& q : ply.elements.back().props) {
+                if (q.name == p.name) {
+                    fail_at_line(file.name, cur.line(), "element " + ply.elements.back().name + " has a second property '" + p.name +
+                                                            "' (which one holds the values?)");
+                }
+            }
             ply.elements.back().props.push_back(std::move(p));
         }
         else {
@@ -178,6 +185,10 @@ PlyData parse_ply(const FileBytes& file)
                                                                     std::to_string(r) + " property '" + p.name + "', found " +
                                                                     (t.empty() ? std::string("end of file") : describe_found(t)));
                         }
+                        if (!integer && type == PlyType::Float32 && std::isfinite(v) && std::fabs(v) > double(std::numeric_limits<float>::max())) {
+                            fail_at_line(file.name, cur.line(), "value " + std::string(t) + " for " + e.name + " " + std::to_string(r) + " property '" +
+                                                                    p.name + "' is out of range for its type float (its largest is 3.40282e+38)");
+                        }
                         if (integer) {
                             const IntRange range = int_range(type);
                             if (v < range.lo || v > range.hi) {
@@ -197,7 +208,18 @@ PlyData parse_ply(const FileBytes& file)
                     for (int64_t k = 0; k < static_cast<int64_t>(n); ++k) p.values.push_back(number(p.type));
                     p.list_offsets.push_back(static_cast<int64_t>(p.values.size()));
                 }
+                // A row is a line: a value more than the properties (a stray token) had shifted every
+                // value after it into the next property, read without a word (a trial).
+                if (!cur.at_line_end(false)) {
+                    const size_t line = cur.line();
+                    fail_at_line(file.name, line, "expected the end of " + e.name + " " + std::to_string(r) + "'s line after its " +
+                                                      std::to_string(e.props.size()) + (e.props.size() == 1 ? " property" : " properties") +
+                                                      ", found " + describe_found(cur.token()));
+                }
             }
+        }
+        if (!cur.token_any_line().empty()) {
+            fail_at_line(file.name, cur.line(), "expected the end of the file after the header's elements' rows, found more values");
         }
         return ply;
     }

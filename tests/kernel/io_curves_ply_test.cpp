@@ -114,6 +114,13 @@ TEST(CurveIoPly, RejectsMalformedInput)
     expect_parse_error(dir.file("nan.ply"), ascii + "0 0 0\nnan 1 1\n0 1\n", "vertex 1 has a non-finite position");
     expect_parse_error(dir.file("short.ply"), ascii + "0 0 0\n1 1\n", "short.ply:13: expected a number for vertex 1 property 'z', found end of file");
     expect_parse_error(dir.file("word.ply"), ascii + "0 0 0\n1 x 1\n0 1\n", "word.ply:12: expected a number for vertex 1 property 'y', found 'x'");
+    // A stray value in a row had shifted every later value into the next property (vertex 2 read
+    // as (0, 2, 0)), and rows past the header's counts were ignored: a trial.
+    expect_parse_error(dir.file("stray.ply"), ascii + "0 0 0\n1 1 1 9\n0 1\n", "stray.ply:12: expected the end of vertex 1's line after its 3 properties, found '9'");
+    expect_parse_error(dir.file("extra.ply"), ascii + "0 0 0\n1 1 1\n0 1\n1 0\n", "extra.ply:14: expected the end of the file after the header's elements' rows");
+    expect_parse_error(dir.file("dup.ply"), ascii.substr(0, ascii.find("element edge")) + "property float x\nend_header\n",
+                       "dup.ply:7: element vertex has a second property 'x'");
+    expect_parse_error(dir.file("big.ply"), ascii + "0 0 0\n1 1e40 1\n0 1\n", "value 1e40 for vertex 1 property 'y' is out of range for its type float");
     expect_parse_error(dir.file("magic.ply"), "plx\n", "magic.ply:1: expected 'ply' magic");
     expect_parse_error(dir.file("header.ply"), "ply\nformat ascii 1.0\nelement vertex 1\n", "expected 'end_header', found end of file");
     expect_parse_error(dir.file("type.ply"), "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n",

@@ -112,6 +112,37 @@ py::object column_view(Attribute& a, py::handle owner)
     return py::none();
 }
 
+/// Checks that `value` holds whole numbers in [lo, hi] before it is cast to an integer array:
+/// pybind11's forcecast truncates 2.5 to 2 and wraps a uint64 2^64 - 1 to -1 without a word (a
+/// trial: CurveSet(points, [2.5, 2.5]) made two curves of 2, a face index 2.7 named vertex 2).
+void require_whole_numbers(const py::handle& value, const std::string& what, double lo, double hi)
+{
+    const py::array any = py::array::ensure(value);
+    if (!any) raise(true, what + ": expected a numpy array (or a list) of integers");
+    if (any.size() == 0) return;
+    const char kind = any.dtype().kind();
+    if (kind == 'b') return;
+    if (kind != 'i' && kind != 'u' && kind != 'f') {
+        raise(true, what + ": expected integers, got dtype '" + std::string(py::str(any.dtype())) + "'");
+    }
+    const py::module_ np = py::module_::import("numpy");
+    if (kind == 'f') {
+        const py::object whole = np.attr("logical_and")(np.attr("isfinite")(any), np.attr("equal")(any, np.attr("floor")(any)));
+        if (!np.attr("all")(whole).cast<bool>()) {
+            const auto at = np.attr("argmin")(whole).cast<py::ssize_t>();
+            raise(true, what + ": expected whole numbers, found " + std::string(py::str(any.attr("flat")[py::int_(at)])) + " (value " +
+                            std::to_string(at) + " of the array)");
+        }
+    }
+    // Compared as Python numbers (exact for any integer dtype).
+    const py::object least = any.attr("min")(), most = any.attr("max")();
+    if (least < py::float_(lo) || most > py::float_(hi)) {
+        raise(true, what + ": values " + std::string(py::str(least)) + " to " + std::string(py::str(most)) + " are outside " +
+                        format_number(lo) + " to " + format_number(hi));
+    }
+}
+
+
 /// Sets (adding or replacing) column `name` on domain `d` from a numpy array or, on the detail
 /// domain, a string: float32/float64 of shape (n,) -> float, (n, 3) -> float3, int32 -> int,
 /// int64 -> int64.
@@ -149,11 +180,13 @@ void set_column(CurveSet& cs, Domain d, const std::string& name, py::handle valu
         const auto arr = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
         std::memcpy(cs.add<float>(d, name).data(), arr.data(), n * sizeof(float));
     }
-    else if ((kind == 'i' || kind == 'u') && any.itemsize() <= 4 && !vec3) {
+    else if ((kind == 'i' && any.itemsize() <= 4 || kind == 'u' && any.itemsize() <= 2 || kind == 'b') && !vec3) {
         const auto arr = py::array_t<int32_t, py::array::c_style | py::array::forcecast>::ensure(value);
         std::memcpy(cs.add<int32_t>(d, name).data(), arr.data(), n * sizeof(int32_t));
     }
     else if ((kind == 'i' || kind == 'u') && !vec3) {
+        // uint32 into int64 (into int32 it wrapped past 2^31); uint64 only when every value fits.
+        if (kind == 'u') require_whole_numbers(value, std::string(domain_name(d)) + " attribute '" + name + "'", 0, 9223372036854775807.0);
         const auto arr = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(value);
         std::memcpy(cs.add<int64_t>(d, name).data(), arr.data(), n * sizeof(int64_t));
     }
@@ -395,9 +428,10 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
     return std::make_shared<CurveSet>(take_memory_curves(out_path));
 }
 
-std::shared_ptr<CurveSet> make_curves(py::array_t<float, py::array::c_style | py::array::forcecast> points,
-                                      py::array_t<int64_t, py::array::c_style | py::array::forcecast> counts)
+std::shared_ptr<CurveSet> make_curves(py::array_t<float, py::array::c_style | py::array::forcecast> points, py::object counts_given)
 {
+    require_whole_numbers(counts_given, "counts", -9.2e18, 9.2e18);
+    const auto counts = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(counts_given);
     if (points.ndim() != 2 || points.shape(1) != 3) raise(true, "points: expected an array of shape (n, 3)");
     if (counts.ndim() != 1) raise(true, "counts: expected a 1-D array of points per curve");
     int64_t total = 0;
@@ -616,8 +650,9 @@ PYBIND11_MODULE(groom, m)
             "length, as `groom scalp --fill-holes`); a str or a pathlib.Path")
         .def_static(
             "from_mesh",
-            [](py::array_t<float, py::array::c_style | py::array::forcecast> vertices,
-               py::array_t<int32_t, py::array::c_style | py::array::forcecast> faces, float voxel, float fill_holes) {
+            [](py::array_t<float, py::array::c_style | py::array::forcecast> vertices, py::object faces_given, float voxel, float fill_holes) {
+                require_whole_numbers(faces_given, "faces", -2147483648.0, 2147483647.0);
+                const auto faces = py::array_t<int32_t, py::array::c_style | py::array::forcecast>::ensure(faces_given);
                 if (vertices.ndim() != 2 || vertices.shape(1) != 3) raise(true, "vertices: expected an array of shape (n, 3)");
                 if (faces.ndim() != 2 || faces.shape(1) < 3) raise(true, "faces: expected an array of shape (m, 3) or (m, 4)");
                 PolygonSoup soup;

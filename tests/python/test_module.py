@@ -103,6 +103,18 @@ def test_bad_arrays_name_what_is_wrong():
         groom.Scalp.from_mesh(tri, np.array([[0, 1, 2]]), voxel=0.1)
     with pytest.raises(groom.ParamError, match=r"faces: row 1 names vertex 7; expected 0 to 2"):
         groom.Scalp.from_mesh(tri[:3], np.array([[0, 1, 2], [0, 2, 7]]), voxel=0.1)
+    # Numbers that are not whole, or that no int64 holds, were cast without a word (a trial: counts
+    # [2.5, 2.5] made two curves of 2, a face index 2.7 named vertex 2, a uint64 2^64 - 1 read back -1).
+    with pytest.raises(groom.ParamError, match=r"counts: expected whole numbers, found 2.5"):
+        groom.CurveSet(np.zeros((5, 3)), [2.5, 2.5])
+    with pytest.raises(groom.ParamError, match=r"faces: expected whole numbers, found 2.7"):
+        groom.Scalp.from_mesh(tri[:3], np.array([[0, 1, 2.7]]), voxel=0.1)
+    curves = groom.CurveSet(np.zeros((5, 3)), [2.0, 3.0])  # whole floats are counts
+    assert list(curves.counts) == [2, 3]
+    with pytest.raises(groom.ParamError, match=r"curve attribute 'big': values 1 to 18446744073709551615 are outside"):
+        curves.curve_attributes["big"] = np.array([2**64 - 1, 1], np.uint64)
+    curves.curve_attributes["u32"] = np.array([2**32 - 1, 1], np.uint32)  # into int64: it wrapped to -1 in int32
+    assert list(curves.curve_attributes["u32"]) == [2**32 - 1, 1]
 
 
 @pytest.mark.parametrize("op,kwargs,options", [

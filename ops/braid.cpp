@@ -3,6 +3,7 @@
 // (braid_plan), one guide's strand centrelines (braid_strands), their fibers (braid_fibers), the tie
 // (braid_tie); the scalp rule is fields/keep_outside.h.
 #include "ops/braid.h"
+#include "ops/scene_length.h"
 #include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
@@ -30,7 +31,7 @@ std::string fmt(double v) { return format_number(v); }
 // Closed ranges: a length past kMaxLength (or an amplitude scale past kMaxScale times one) puts
 // points so far out that their squared distances overflow float, and the NaN that follows crashed
 // the exact scalp queries (`width` 3e38 with --rest --orient scalp: SIGFPE in GMP).
-constexpr float kMaxLength = 1e15f;  // scene units
+constexpr float kMaxLength = kMaxSceneLength;  // scene units (ops/scene_length.h)
 constexpr float kMaxScale = 1000.0f;
 
 void require_finite_at_least(const char* option, float value, float lo, float hi = kMaxLength)

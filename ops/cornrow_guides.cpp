@@ -1,4 +1,5 @@
 #include "ops/cornrow_guides.h"
+#include "ops/scene_length.h"
 #include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
@@ -71,12 +72,12 @@ void CornrowGuidesParams::validate(bool hairline) const
 {
     require(count >= 1 && count <= 256, "`count` must be in [1, 256] (got " + std::to_string(count) + ")");
     require(std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z), "`center` must be finite");
-    require(std::isfinite(radius) && radius > 0.0f, "`radius` must be > 0 (got " + fmt(radius) + ")");
+    require(radius > 0.0f && radius <= kMaxSceneLength, "`radius` must be in (0, 1e15] (got " + fmt(radius) + ")");
     require(isfinite(up) && length(up) > 0.0f, "`up` must be a finite direction of length > 0 (got " + format_xyz(up) + ")");
     require(isfinite(forward) && length(forward) > 0.0f, "`forward` must be a finite direction of length > 0 (got " + format_xyz(forward) + ")");
     require(length(cross(normalize(up), normalize(forward))) > std::sin(10.0f * kDeg),
             "`forward` " + format_xyz(forward) + " must be at least 10 degrees from `up` " + format_xyz(up) + " (the direction the face looks)");
-    require(std::isfinite(pivot) && pivot >= 0.0f, "`pivot` must be >= 0 (got " + fmt(pivot) + ")");
+    require(pivot >= 0.0f && pivot <= kMaxSceneLength, "`pivot` must be in [0, 1e15] (got " + fmt(pivot) + ")");
     require(std::isfinite(spread) && spread >= 0.0f && spread < 90.0f, "`spread` must be in [0, 90) degrees (got " + fmt(spread) + ")");
     require(pivot * std::sin(spread * kDeg) < radius, "`pivot` " + fmt(pivot) + " x sin(`spread` " + fmt(spread) + ") must be below `radius` " +
                                                           fmt(radius) + " (the outermost rows' planes would miss the sphere): lower one of them");

@@ -1,4 +1,5 @@
 #include "ops/cull.h"
+#include "ops/scene_length.h"
 
 #include "fields/keep_outside.h"
 #include "kernel/curve_set_edit.h"
@@ -13,8 +14,8 @@ namespace groom {
 
 void CullParams::validate() const
 {
-    if (!(clearance >= 0.0f) || !std::isfinite(clearance)) {
-        throw InvalidParam("cull: `clearance` must be a finite distance >= 0 (got " + std::to_string(clearance) + ")");
+    if (!(clearance >= 0.0f && clearance <= kMaxSceneLength)) {
+        throw InvalidParam("cull: `clearance` must be a distance in [0, 1e15] scene units (got " + format_number(clearance) + ")");
     }
 }
 

@@ -1,4 +1,5 @@
 #include "ops/generate.h"
+#include "ops/scene_length.h"
 #include "ops/root_uv.h"
 
 #include "fields/keep_outside.h"
@@ -148,8 +149,8 @@ void GenerateParams::validate() const
     if (!(max_angle > 0.0f && max_angle <= 180.0f)) {
         throw InvalidParam("generate: `max_angle` must be in (0, 180] degrees (got " + str(max_angle) + ")");
     }
-    if (!(clearance >= 0.0f) || !std::isfinite(clearance)) {
-        throw InvalidParam("generate: `clearance` must be finite and >= 0 (got " + str(clearance) + ")");
+    if (!(clearance >= 0.0f && clearance <= kMaxSceneLength)) {
+        throw InvalidParam("generate: `clearance` must be in [0, 1e15] scene units (got " + str(clearance) + ")");
     }
     if (first_id < 0) throw InvalidParam("generate: `first_id` must be >= 0 (got " + std::to_string(first_id) + ")");
     if (first_id > std::numeric_limits<int64_t>::max() - count) {

@@ -281,10 +281,13 @@ TEST(CornrowGuides, InvalidOptionsAreRejected)
     rejects(p, "`count` must be in [1, 256] (got 0)");
     p = {};
     p.radius = -1.0f;
-    rejects(p, "`radius` must be > 0");
+    rejects(p, "`radius` must be in (0, 1e15] (got -1)");
+    p = {};
+    p.radius = 1e20f;  // reached the scalp queries as "a non-finite point", the option unnamed (a trial)
+    rejects(p, "`radius` must be in (0, 1e15] (got 1e+20)");
     p = {};
     p.pivot = -1.0f;
-    rejects(p, "`pivot` must be >= 0");
+    rejects(p, "`pivot` must be in [0, 1e15]");
     p = {};
     p.pivot = 30.0f;  // x sin(24 degrees) = 12.2 > radius 10: the outer rows' planes miss the sphere
     rejects(p, "the outermost rows' planes would miss the sphere");

@@ -90,6 +90,13 @@ TEST(Cull, SameResultForAnyThreadCount)
 TEST(Cull, RejectsNegativeClearance)
 {
     EXPECT_THROW(cull(three_curves(), AnalyticSphere({0, 0, 0}, 1), {CullMode::Push, -0.1f}), InvalidParam);
+    // Past 1e15 it reached the scalp queries as "a non-finite point", the option unnamed (a trial).
+    try {
+        cull(three_curves(), AnalyticSphere({0, 0, 0}, 1), {CullMode::Push, 1e20f});
+        ADD_FAILURE() << "clearance 1e20 was accepted";
+    } catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("`clearance` must be a distance in [0, 1e15] scene units (got 1e+20)"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace

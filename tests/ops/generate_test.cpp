@@ -487,6 +487,8 @@ TEST(Generate, RejectsInvalidParams)
     p = {};
     p.clearance = -1;
     EXPECT_NE(message(p).find("`clearance`"), std::string::npos) << message(p);
+    p.clearance = 1e20f;  // reached the scalp queries as "a non-finite point", the option unnamed (a trial)
+    EXPECT_NE(message(p).find("`clearance` must be in [0, 1e15] scene units (got 1e+20)"), std::string::npos) << message(p);
     p = {};
     p.first_id = -2;
     EXPECT_NE(message(p).find("`first_id`"), std::string::npos) << message(p);

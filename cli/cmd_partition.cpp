@@ -10,8 +10,10 @@
 #include "kernel/io/curve_io.h"
 #include "ops/partition.h"
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <string>
@@ -43,7 +45,12 @@ struct CsvLine {
 std::vector<CsvLine> read_csv(const std::string& path, const std::string& option)
 {
     std::ifstream in(path);
-    if (!in) throw IoError(option + " " + path + ": cannot open for reading");
+    if (!in) {
+        const int err = errno;
+        // --centroids takes a word too: say so where the value is neither (`--centroids 0`: a trial).
+        throw IoError(option + " " + path + ": cannot open for reading (" + std::strerror(err) + ")" +
+                      (option == "--centroids" ? "; --centroids takes every:K, knots, or a file of 'guide,u' lines" : ""));
+    }
     std::vector<CsvLine> lines;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

@@ -121,7 +121,11 @@ LiftStats braid_guide(const BraidContext& ctx, const GuidePlan& plan, std::span<
         // Each fiber keeps its full width while the section grows with the hair fed in (braid_fibers).
         const float fed = feed_scale(p.feed_in, plan.feed_t(p.feed_length), t[j]);
         const float fiber_w = p.fibers > 0 ? (p.fiber_width > 0.0f ? p.fiber_width : w * inv_sqrt_m / fed) : 0.0f;
-        section_reach[j] = p.fibers > 0 ? float(0.5 * w * (kFiberSpreadAcross + 0.5 * p.flatten) * spread) + 0.5f * fiber_w : 0.5f * w;
+        // Along the scalp normal (the lift's direction) a strand's fibers reach its radius (their
+        // ellipse is kFiberSpreadAcross times wider across the braid, and flattened in height where
+        // strands press): the reach across had lifted every cornrow about 1.5 fiber widths off the
+        // scalp with --rest --clearance 0 (a trial measured 0.09 above where 0 was asked).
+        section_reach[j] = p.fibers > 0 ? float(0.5 * w * spread) + 0.5f * fiber_w : 0.5f * w;
         for (int i = 0; i < N; ++i) {
             WeaveOffset o = loose ? end_offset[i] : ctx.weave.at(i, u);
             if (loose) {

@@ -1,5 +1,7 @@
 #include "cli/scalp_xform.h"
 
+#include "ops/scene_length.h"
+
 #include "kernel/error.h"
 
 #include <cmath>
@@ -95,6 +97,13 @@ std::map<long, RigidXform> read_scalp_xforms(const std::string& path)
             throw ParseError(where + "expected a rigid transform (a rotation: orthonormal columns to 1e-5, determinant +1); found columns " +
                              "off by " + std::to_string(worst) + ", determinant " + std::to_string(det) +
                              " (a head that changes shape goes in as a frame pattern of meshes, --scalp head.####.obj)");
+        }
+        // A translation past any scene puts the curves past float's range: named here, not as a
+        // non-finite point of the frame's output file (a trial).
+        for (int i = 0; i < 3; ++i) {
+            if (std::abs(x.t[i]) > double(kMaxSceneLength)) {
+                throw ParseError(where + "expected a translation within 1e15 scene units, found " + format_number(x.t[i]));
+            }
         }
         if (!out.emplace(frame, x).second) throw ParseError(where + "frame " + std::to_string(frame) + " is given twice");
     }

@@ -125,7 +125,7 @@ ObjData parse_obj(const FileBytes& file)
                         fail_at_line(file.name, cur.line(), "expected 3 vertex coordinates, found " + describe_found(t));
                     }
                 }
-                if (!isfinite(p)) fail_at_line(file.name, cur.line(), "vertex coordinate is not finite (NaN or inf)");
+                if (!isfinite(p)) fail_at_line(file.name, cur.line(), "vertex coordinate is not finite (NaN, inf, or past float's range of 3.4e38)");
                 obj.points.push_back(p);
             }
             else if (key == "l") {

@@ -53,7 +53,7 @@ PolygonSoup read_off(const FileBytes& file)
             const std::string_view t = next_token(cur);
             if (!parse_float(t, p[k])) fail_at_line(file.name, cur.line(), "expected vertex " + std::to_string(i) + " coordinates, found " + (t.empty() ? std::string("end of file") : describe_found(t)));
         }
-        if (!isfinite(p)) fail_at_line(file.name, cur.line(), "vertex coordinate is not finite (NaN or inf)");
+        if (!isfinite(p)) fail_at_line(file.name, cur.line(), "vertex coordinate is not finite (NaN, inf, or past float's range of 3.4e38)");
         soup.points[i] = p;
     }
     std::vector<int32_t> face;
@@ -138,7 +138,7 @@ PolygonSoup read_stl(const FileBytes& file)
                 const std::string_view c = cur.token();
                 if (!parse_float(c, p[k])) fail_at_line(file.name, cur.line(), "expected 3 vertex coordinates, found " + describe_found(c));
             }
-            if (!isfinite(p)) fail_at_line(file.name, cur.line(), "vertex coordinate is not finite (NaN or inf)");
+            if (!isfinite(p)) fail_at_line(file.name, cur.line(), "vertex coordinate is not finite (NaN, inf, or past float's range of 3.4e38)");
             face.push_back(static_cast<int32_t>(soup.points.size()));
             soup.points.push_back(p);
         }

@@ -353,7 +353,7 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
                                                std::to_string(pts->size()) + " points");
     }
     for (size_t i = 0; i < pts->size(); ++i) {
-        if (!isfinite((*pts)[i])) fail_at_line(file, points_p->line, "points[" + std::to_string(i) + "] is not finite (NaN or inf)");
+        if (!isfinite((*pts)[i])) fail_at_line(file, points_p->line, "points[" + std::to_string(i) + "] is not finite (NaN, inf, or past float's range of 3.4e38)");
     }
     auto token = [&](const char* name, const char* fallback) -> std::string {
         const Property* p = prop(name);

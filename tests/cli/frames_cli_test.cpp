@@ -179,6 +179,14 @@ TEST(FramesCli, ScalpXformFileErrorsNameTheLine)
     EXPECT_EQ(r2.exit_code, 2);
     EXPECT_NE(r2.err.find("no pose for frame 1"), std::string::npos) << r2.err;
     EXPECT_FALSE(std::filesystem::exists(frame_file(dir, "x", 0, "usda")));
+    // A translation past any scene: named by its line, not as a non-finite point of the output.
+    test::write_text(dir.file("far.txt"), "0 0 0 0 0 0 0
+1 1e40 0 0 0 0 0
+");
+    const auto r3 = run_groom({"generate", dir.file("g.usda"), "--scalp", scalp, "--count", "5", "--frames", "0:1", "--scalp-xform",
+                               dir.file("far.txt"), "-o", dir.file("x.####.usda")});
+    EXPECT_NE(r3.exit_code, 0);
+    EXPECT_NE(r3.err.find("far.txt:2: expected a translation within 1e15 scene units, found 1e+40"), std::string::npos) << r3.err;
 }
 
 // A head and its guides that move rigidly: every frame's groom is frame 0's moved by the pose

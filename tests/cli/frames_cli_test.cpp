@@ -180,9 +180,7 @@ TEST(FramesCli, ScalpXformFileErrorsNameTheLine)
     EXPECT_NE(r2.err.find("no pose for frame 1"), std::string::npos) << r2.err;
     EXPECT_FALSE(std::filesystem::exists(frame_file(dir, "x", 0, "usda")));
     // A translation past any scene: named by its line, not as a non-finite point of the output.
-    test::write_text(dir.file("far.txt"), "0 0 0 0 0 0 0
-1 1e40 0 0 0 0 0
-");
+    test::write_text(dir.file("far.txt"), "0 0 0 0 0 0 0\n1 1e40 0 0 0 0 0\n");
     const auto r3 = run_groom({"generate", dir.file("g.usda"), "--scalp", scalp, "--count", "5", "--frames", "0:1", "--scalp-xform",
                                dir.file("far.txt"), "-o", dir.file("x.####.usda")});
     EXPECT_NE(r3.exit_code, 0);

@@ -161,6 +161,7 @@ TEST(CornrowGuidesCli, DefaultsOnAHeadTheyDoNotFitAreRefused)
 
 // A row that still jumps across a fold is warned of with the ways out the user has not taken: a
 // trial on Lee Perry-Smith had given --center, --radius and --hairline and was told to pass them.
+// Rows cut much shorter than their mirror rows where they crowd are warned of too.
 TEST(CornrowGuidesCliReal, TheFoldWarningOffersOnlyTheWaysOutNotTaken)
 {
     GROOM_REQUIRE_SHARED(scan, "lee_perry_smith/LeePerrySmith.obj");
@@ -176,4 +177,12 @@ TEST(CornrowGuidesCliReal, TheFoldWarningOffersOnlyTheWaysOutNotTaken)
     EXPECT_NE(advice.find("a smaller --spread (now 24)"), std::string::npos) << advice;
     EXPECT_EQ(advice.find("--center"), std::string::npos) << advice;
     EXPECT_EQ(advice.find("--hairline"), std::string::npos) << advice;
+    // Rows 6 and 7 are cut by over a fifth of the median where they crowd (behind one ear): warned of.
+    EXPECT_NE(r.err.find("warning: rows 6 ("), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("were cut by more than 15% of the rows' median length"), std::string::npos) << r.err;
+    // With a smaller spread they are not.
+    const auto narrow = run_groom({"cornrow-guides", "--scalp", dir.file("s.vdb"), "-o", dir.file("n.usda"), "--count", "10", "--center",
+                                   "0,2.3,0", "--radius", "1.7", "--hairline", dir.file("h.usda"), "--spread", "18"});
+    ASSERT_EQ(narrow.exit_code, 0) << narrow.err;
+    EXPECT_EQ(narrow.err.find("warning"), std::string::npos) << narrow.err;
 }

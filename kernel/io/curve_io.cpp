@@ -64,8 +64,15 @@ void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& 
         fmt.stream_curves(curves, options, batch.open(path));
         return;
     }
-    // Encode fully before opening the output, so an encoding error leaves no file behind.
-    const std::string bytes = fmt.write_curves(curves, options);
+    // Encode fully before opening the output, so an encoding error leaves no file behind; the error
+    // names the file (an attribute USD cannot name said only "usda: ...": a trial).
+    std::string bytes;
+    try {
+        bytes = fmt.write_curves(curves, options);
+    }
+    catch (const InvalidParam& e) {
+        throw InvalidParam("writing " + path + ": " + e.what());
+    }
     batch.open(path).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 

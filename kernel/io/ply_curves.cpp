@@ -200,6 +200,17 @@ CurveSet read_ply_curves(const FileBytes& file, bool closed_loops)
     CurveSet cs = CurveSet::from_counts(counts);
     auto P = cs.positions_for_write();
     for (size_t i = 0; i < order.size(); ++i) P[i] = pts[order[i]];
+    // A property named P would be a second positions column: refused by the file's name (the
+    // attribute set's own message named neither the file nor the property: a trial).
+    for (const PlyElement* e : {v, curve}) {
+        if (!e) continue;
+        for (const PlyProperty& p : e->props) {
+            if (p.name == attr::P || (p.name.size() == 3 && p.name[0] == 'P' && p.name[1] == '_' && std::string_view("xyz").find(p.name[2]) != std::string_view::npos)) {
+                fail_at_line(file.name, e->line, "element " + e->name + " has a property '" + p.name +
+                                                      "': P is the positions (x, y, z); rename the property");
+            }
+        }
+    }
     add_columns(*v, g.point_types, Domain::Point, order, {"x", "y", "z"}, cs);
     if (curve && curve->find("point_count") && curve->count == counts.size()) {
         std::vector<int64_t> identity(counts.size());

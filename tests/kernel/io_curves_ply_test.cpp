@@ -121,6 +121,8 @@ TEST(CurveIoPly, RejectsMalformedInput)
     expect_parse_error(dir.file("dup.ply"), ascii.substr(0, ascii.find("element edge")) + "property float x\nend_header\n",
                        "dup.ply:7: element vertex has a second property 'x'");
     expect_parse_error(dir.file("big.ply"), ascii + "0 0 0\n1 1e40 1\n0 1\n", "value 1e40 for vertex 1 property 'y' is out of range for its type float");
+    expect_parse_error(dir.file("pprop.ply"), ascii.substr(0, ascii.find("element edge")) + "property float P\nelement edge 1\nproperty int vertex1\n"
+                       "property int vertex2\nend_header\n0 0 0 1\n1 1 1 2\n0 1\n", "pprop.ply:3: element vertex has a property 'P': P is the positions");
     expect_parse_error(dir.file("magic.ply"), "plx\n", "magic.ply:1: expected 'ply' magic");
     expect_parse_error(dir.file("header.ply"), "ply\nformat ascii 1.0\nelement vertex 1\n", "expected 'end_header', found end of file");
     expect_parse_error(dir.file("type.ply"), "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n",

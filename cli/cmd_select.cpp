@@ -39,7 +39,7 @@ void setup(CommandContext& ctx)
         if (!a.ids.empty()) params.ids = parse_id_ranges(a.ids, "ids");
         if (!a.guides.empty()) {
             for (const IdRange& r : parse_id_ranges(a.guides, "guide")) {
-                if (r.hi - r.lo > 1000000) throw InvalidParam("select: `guide` range " + std::to_string(r.lo) + "-" + std::to_string(r.hi) + " is too long (more than a million guides)");
+                if (uint64_t(r.hi) - uint64_t(r.lo) > 1000000) throw InvalidParam("select: `guide` range " + std::to_string(r.lo) + "-" + std::to_string(r.hi) + " is too long (more than a million guides)");
                 // Stops at r.hi itself: `g <= r.hi` never failed for r.hi = INT64_MAX (g wrapped; a trial).
                 for (int64_t g = r.lo;; ++g) {
                     params.guides.push_back(g);

@@ -540,8 +540,7 @@ void remove_enclosed(const std::vector<Point>& pts, const std::vector<Polygon>& 
                 shells[a].removed = true;
                 biggest_host = b;
                 const std::string& name = shells[a].source;
-                if (!name.empty() && removed_names.size() < 4 &&
-                    std::find(removed_names.begin(), removed_names.end(), name) == removed_names.end()) {
+                if (!name.empty() && std::find(removed_names.begin(), removed_names.end(), name) == removed_names.end()) {
                     removed_names.push_back(name);
                 }
                 ++report.enclosed_shells_removed;
@@ -551,9 +550,10 @@ void remove_enclosed(const std::vector<Point>& pts, const std::vector<Polygon>& 
     }
     if (report.enclosed_shells_removed > 0) {
         const int64_t n = report.enclosed_shells_removed;
+        // The first four names; "..." only where more names follow (two shells of one part are one name).
         std::string which;
-        for (const std::string& name : removed_names) which += (which.empty() ? " ('" : "', '") + name;
-        if (!which.empty()) which += n > int64_t(removed_names.size()) ? "', ...)" : "')";
+        for (size_t k = 0; k < removed_names.size() && k < 4; ++k) which += (which.empty() ? " ('" : "', '") + removed_names[k];
+        if (!which.empty()) which += removed_names.size() > 4 ? "', ...)" : "')";
         report.notes.push_back("removed " + std::to_string(n) + (n == 1 ? " shell" : " shells") + which + " (" +
                                std::to_string(report.faces_in_removed_shells) + " faces) lying entirely inside a larger shell (" +
                                (n == 1 ? "inside" : "e.g. inside") + " one of " + std::to_string(shells[biggest_host].faces) + " faces" +

@@ -106,4 +106,28 @@ CurveSet without_closing_points(const CurveSet& src)
     return dst;
 }
 
+CurveSet with_closing_points(const CurveSet& src)
+{
+    const auto P = src.positions();
+    std::vector<int64_t> counts, src_point, src_curve;
+    counts.reserve(src.num_curves());
+    src_point.reserve(src.num_points() + src.num_curves());
+    for (size_t c = 0; c < src.num_curves(); ++c) {
+        const IndexRange r = src.points_of(c);
+        for (int64_t i = r.begin; i < r.end; ++i) src_point.push_back(i);
+        const bool repeats = r.size() >= 3 && P[size_t(r.begin)] == P[size_t(r.end - 1)];
+        const bool add = r.size() >= 2 && !repeats;
+        if (add) src_point.push_back(r.begin);
+        counts.push_back(r.size() + (add ? 1 : 0));
+        src_curve.push_back(int64_t(c));
+    }
+    CurveSet dst = CurveSet::from_counts(counts);
+    auto dP = dst.positions_for_write();
+    for (size_t i = 0; i < src_point.size(); ++i) dP[i] = P[size_t(src_point[i])];
+    carry_point_attributes(src, dst, src_point, {attr::P});
+    carry_curve_attributes(src, dst, src_curve);
+    set_closed(dst, true);
+    return dst;
+}
+
 }  // namespace groom

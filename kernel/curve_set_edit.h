@@ -24,4 +24,9 @@ CurveSet remove_curves(const CurveSet& src, std::span<const char> remove, std::v
 /// what a format that says "closed" itself (.usda periodic, .obj) writes.
 CurveSet without_closing_points(const CurveSet& src);
 
+/// The inverse: a copy of `src` with each curve's first point repeated at its end where it is not
+/// already (at 2 or more points), every column carried, marked `closed`. What a format that cannot
+/// say "closed" itself (.ply, .hair) writes for a loop, so the loop is read back one.
+CurveSet with_closing_points(const CurveSet& src);
+
 }  // namespace groom

@@ -28,10 +28,13 @@ int round_count(double x) { return int(std::lround(std::max(1.0, x))); }
 int bands_from_size(double across, float size, int most, bool odd, const char* what)
 {
     const double n = across / double(size);
-    if (!(n <= double(most) + 0.5)) {
+    // The count as it is rounded (odd for rows: 256 rounds up to 257), checked after rounding; the
+    // least size named gives at most `most` (most - 1 when odd).
+    const double fits = odd ? double(most - 1) : double(most);
+    if (!(n <= fits + 0.49)) {
         throw InvalidParam("sections: `size` " + format_number(size) + " makes " + format_number(float(n)) + " " + what + " across this scalp (" +
                            format_number(float(across)) + " scene units; at most " + std::to_string(most) + "): give a size of at least " +
-                           format_number(float(across / double(most))) + ", or the count itself");
+                           format_number(float(across / fits)) + ", or the count itself");
     }
     return odd ? 2 * int(std::lround(std::max(0.0, (n - 1.0) / 2.0))) + 1 : round_count(n);
 }

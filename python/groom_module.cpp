@@ -14,6 +14,7 @@
 #include "kernel/io/curve_io.h"
 #include "kernel/io/memory_files.h"
 
+#include <cstdint>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -115,7 +116,7 @@ py::object column_view(Attribute& a, py::handle owner)
 /// Checks that `value` holds whole numbers in [lo, hi] before it is cast to an integer array:
 /// pybind11's forcecast truncates 2.5 to 2 and wraps a uint64 2^64 - 1 to -1 without a word (a
 /// trial: CurveSet(points, [2.5, 2.5]) made two curves of 2, a face index 2.7 named vertex 2).
-void require_whole_numbers(const py::handle& value, const std::string& what, double lo, double hi)
+void require_whole_numbers(const py::handle& value, const std::string& what, int64_t lo, int64_t hi)
 {
     const py::array any = py::array::ensure(value);
     if (!any) raise(true, what + ": expected a numpy array (or a list) of integers");
@@ -134,11 +135,12 @@ void require_whole_numbers(const py::handle& value, const std::string& what, dou
                             std::to_string(at) + " of the array)");
         }
     }
-    // Compared as Python numbers (exact for any integer dtype).
-    const py::object least = any.attr("min")(), most = any.attr("max")();
-    if (least < py::float_(lo) || most > py::float_(hi)) {
-        raise(true, what + ": values " + std::string(py::str(least)) + " to " + std::string(py::str(most)) + " are outside " +
-                        format_number(lo) + " to " + format_number(hi));
+    // Compared as Python ints, exact for every integer dtype (numpy compares a uint64 scalar with an
+    // int64 bound in float64, which let 2^63 through as -2^63: a review).
+    const py::int_ least(any.attr("min")()), most(any.attr("max")());
+    if (least < py::int_(lo) || most > py::int_(hi)) {
+        raise(true, what + ": values " + py::str(py::object(least)).cast<std::string>() + " to " + py::str(py::object(most)).cast<std::string>() + " are outside " +
+                        std::to_string(lo) + " to " + std::to_string(hi));
     }
 }
 
@@ -186,7 +188,7 @@ void set_column(CurveSet& cs, Domain d, const std::string& name, py::handle valu
     }
     else if ((kind == 'i' || kind == 'u') && !vec3) {
         // uint32 into int64 (into int32 it wrapped past 2^31); uint64 only when every value fits.
-        if (kind == 'u') require_whole_numbers(value, std::string(domain_name(d)) + " attribute '" + name + "'", 0, 9223372036854775807.0);
+        if (kind == 'u') require_whole_numbers(value, std::string(domain_name(d)) + " attribute '" + name + "'", 0, INT64_MAX);
         const auto arr = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(value);
         std::memcpy(cs.add<int64_t>(d, name).data(), arr.data(), n * sizeof(int64_t));
     }
@@ -430,7 +432,7 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
 
 std::shared_ptr<CurveSet> make_curves(py::array_t<float, py::array::c_style | py::array::forcecast> points, py::object counts_given)
 {
-    require_whole_numbers(counts_given, "counts", -9.2e18, 9.2e18);
+    require_whole_numbers(counts_given, "counts", INT64_MIN, INT64_MAX);
     const auto counts = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(counts_given);
     if (points.ndim() != 2 || points.shape(1) != 3) raise(true, "points: expected an array of shape (n, 3)");
     if (counts.ndim() != 1) raise(true, "counts: expected a 1-D array of points per curve");
@@ -651,7 +653,7 @@ PYBIND11_MODULE(groom, m)
         .def_static(
             "from_mesh",
             [](py::array_t<float, py::array::c_style | py::array::forcecast> vertices, py::object faces_given, float voxel, float fill_holes) {
-                require_whole_numbers(faces_given, "faces", -2147483648.0, 2147483647.0);
+                require_whole_numbers(faces_given, "faces", INT32_MIN, INT32_MAX);
                 const auto faces = py::array_t<int32_t, py::array::c_style | py::array::forcecast>::ensure(faces_given);
                 if (vertices.ndim() != 2 || vertices.shape(1) != 3) raise(true, "vertices: expected an array of shape (n, 3)");
                 if (faces.ndim() != 2 || faces.shape(1) < 3) raise(true, "faces: expected an array of shape (m, 3) or (m, 4)");

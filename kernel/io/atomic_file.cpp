@@ -178,11 +178,16 @@ AtomicOutput::AtomicOutput(std::string path, bool binary) : path_(std::move(path
     }
     // A symbolic link: its target is written (atomically, beside the target), the link kept; renamed
     // over, the link was replaced by a regular file and its target left as it was.
+    // Followed link by link (weakly_canonical stops at a target that does not exist yet, and the
+    // rename then replaced the link: a review), each relative to its own folder.
     std::error_code ec;
-    if (std::filesystem::is_symlink(path_, ec)) {
-        const std::filesystem::path target = std::filesystem::weakly_canonical(path_, ec);
-        if (!ec) target_ = target.string();
+    std::filesystem::path at = path_;
+    for (int hops = 0; hops < 40 && std::filesystem::is_symlink(at, ec); ++hops) {
+        const std::filesystem::path to = std::filesystem::read_symlink(at, ec);
+        if (ec) break;
+        at = to.is_absolute() ? to : at.parent_path() / to;
     }
+    if (at != std::filesystem::path(path_)) target_ = at.lexically_normal().string();
     temp_ = temp_name(target_.empty() ? path_ : target_);
     // Listed before the file exists: a signal between open and registration would leave it behind.
     slot_ = register_temporary(temp_);

@@ -1,5 +1,6 @@
 #include "kernel/io/curve_io.h"
 
+#include "kernel/curve_set_edit.h"
 #include "kernel/error.h"
 #include "kernel/io/format_table.h"
 #include "kernel/io/formats.h"
@@ -50,8 +51,13 @@ void write_curves(const CurveSet& curves, const std::string& path, const CurveWr
     batch.commit();
 }
 
-void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& batch, const CurveWriteOptions& options)
+void write_curves(const CurveSet& given, const std::string& path, OutputBatch& batch, const CurveWriteOptions& options)
 {
+    // Loops asked for closed are marked so, their first point repeated, whatever the format: .usda
+    // and .obj say "closed" themselves (each point once), .ply keeps the mark and .hair the repeated
+    // point. `groom hairline -o h.ply` had written an open curve (a review).
+    const CurveSet looped = options.closed && !is_closed(given) ? with_closing_points(given) : CurveSet();
+    const CurveSet& curves = options.closed && !is_closed(given) ? looped : given;
     if (is_memory_path(path)) {
         curves.validate("writing " + path);
         batch.defer([copy = curves, path]() mutable { store_memory_curves(path, std::move(copy)); });

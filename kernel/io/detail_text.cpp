@@ -38,6 +38,14 @@ std::string unescape_line(std::string_view s)
 
 }  // namespace
 
+bool plain_detail_name(std::string_view name)
+{
+    if (name.empty()) return false;
+    for (char c : name)
+        if (c <= ' ' || c > '~') return false;
+    return true;
+}
+
 std::optional<AttrType> attr_type_named(std::string_view s)
 {
     for (AttrType t : {AttrType::Float, AttrType::Int32, AttrType::Int64, AttrType::Float3, AttrType::String})
@@ -47,8 +55,7 @@ std::optional<AttrType> attr_type_named(std::string_view s)
 
 std::string detail_value_text(const Attribute& a, const std::string& format)
 {
-    for (char c : a.name)
-        if (c <= ' ' || c > '~') throw InvalidParam(format + ": detail attribute name '" + a.name + "' contains spaces or non-ASCII characters");
+    if (!plain_detail_name(a.name)) throw InvalidParam(format + ": detail attribute name '" + a.name + "' contains spaces or non-ASCII characters");
     std::string spec = std::string(type_name(a.type())) + " ";
     std::visit(
         [&](const auto& v) {

@@ -12,6 +12,9 @@
 
 namespace groom::io {
 
+/// Whether a detail column's name can be one word of a comment (printable ASCII, no spaces).
+bool plain_detail_name(std::string_view name);
+
 /// The attribute type with this name (type_name's), if any.
 std::optional<AttrType> attr_type_named(std::string_view s);
 

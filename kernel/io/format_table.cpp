@@ -1,5 +1,7 @@
 #include "kernel/io/format_table.h"
 
+#include "kernel/io/detail_text.h"
+
 #include "kernel/io/formats.h"
 #include "kernel/io/io_util.h"
 
@@ -68,7 +70,7 @@ bool obj_holds_curves(const FileBytes& file)
 }
 
 // --- which columns survive a write -----------------------------------------------------------------
-bool obj_keeps(Domain d, const Attribute&) { return d == Domain::Detail; }  // positions, and detail values as comments
+bool obj_keeps(Domain d, const Attribute& a) { return d == Domain::Detail && plain_detail_name(a.name); }  // positions, and detail values as comments
 /// Cem Yuksel's .hair has per-point thickness, transparency and colour arrays, nothing else.
 bool hair_keeps(Domain d, const Attribute& a)
 {

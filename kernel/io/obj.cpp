@@ -271,7 +271,10 @@ std::string write_obj_curves(const CurveSet& given, bool closed)
     out.reserve(curves.num_points() * 36 + curves.num_curves() * 8 + 128);
     out += "# groom curves: " + std::to_string(curves.num_curves()) + " curves, " + std::to_string(curves.num_points()) +
            " points (OBJ keeps positions, and detail values in these comments)\n";
-    for (const Attribute& a : curves.attributes(Domain::Detail).all()) out += "# groom detail " + a.name + " " + detail_value_text(a, "obj") + "\n";
+    // (A name with spaces cannot be one comment word: left out, as format_table's obj_keeps tells the command.)
+    for (const Attribute& a : curves.attributes(Domain::Detail).all()) {
+        if (plain_detail_name(a.name)) out += "# groom detail " + a.name + " " + detail_value_text(a, "obj") + "\n";
+    }
     for (const float3& p : curves.positions()) {
         out += "v ";
         append_number(out, p.x);

@@ -202,13 +202,10 @@ CurveSet read_ply_curves(const FileBytes& file, bool closed_loops)
     for (size_t i = 0; i < order.size(); ++i) P[i] = pts[order[i]];
     // A property named P would be a second positions column: refused by the file's name (the
     // attribute set's own message named neither the file nor the property: a trial).
-    for (const PlyElement* e : {v, curve}) {
-        if (!e) continue;
-        for (const PlyProperty& p : e->props) {
-            if (p.name == attr::P || (p.name.size() == 3 && p.name[0] == 'P' && p.name[1] == '_' && std::string_view("xyz").find(p.name[2]) != std::string_view::npos)) {
-                fail_at_line(file.name, e->line, "element " + e->name + " has a property '" + p.name +
-                                                      "': P is the positions (x, y, z); rename the property");
-            }
+    // (On the vertex element only: a curve attribute P is no clash, and groom writes one as P_x P_y P_z.)
+    for (const PlyProperty& p : v->props) {
+        if (p.name == attr::P) {
+            fail_at_line(file.name, v->line, "element vertex has a property 'P': P is the positions (x, y, z); rename the property");
         }
     }
     add_columns(*v, g.point_types, Domain::Point, order, {"x", "y", "z"}, cs);

@@ -185,9 +185,11 @@ PlyData parse_ply(const FileBytes& file)
                                                                     std::to_string(r) + " property '" + p.name + "', found " +
                                                                     (t.empty() ? std::string("end of file") : describe_found(t)));
                         }
-                        if (!integer && type == PlyType::Float32 && std::isfinite(v) && std::fabs(v) > double(std::numeric_limits<float>::max())) {
+                        // Past float's range: what rounds to inf as a float (FLT_MAX's own shortest
+                        // text, 3.4028235e+38, is a hair above it as a double and rounds to it).
+                        if (!integer && type == PlyType::Float32 && std::isfinite(v) && std::isinf(static_cast<float>(v))) {
                             fail_at_line(file.name, cur.line(), "value " + std::string(t) + " for " + e.name + " " + std::to_string(r) + " property '" +
-                                                                    p.name + "' is out of range for its type float (its largest is 3.40282e+38)");
+                                                                    p.name + "' is out of range for its type float (it would round to inf)");
                         }
                         if (integer) {
                             const IntRange range = int_range(type);

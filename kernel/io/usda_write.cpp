@@ -194,8 +194,8 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
         for (const Attribute& a : curves.attributes(d).all()) {
             if (d == Domain::Point && (a.name == attr::P || (a.name == attr::width && a.type() == AttrType::Float))) continue;
             // Said by the layer's upAxis and metersPerUnit, and read back from there.
-            if (d == Domain::Detail && ((a.name == "up_axis" && (up == "Z" || curves.detail_string("up_axis") == "Y")) ||
-                                        (a.name == "units" && mpu > 0))) {
+            // (Y is USD's default and the layer's when nothing is said: an up_axis Y is kept as a primvar.)
+            if (d == Domain::Detail && ((a.name == "up_axis" && up == "Z") || (a.name == "units" && mpu > 0))) {
                 continue;
             }
             out += "    ";

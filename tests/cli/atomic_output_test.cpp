@@ -200,6 +200,14 @@ TEST(AtomicOutput, SpecialFilesAreWrittenIntoAndLinksFollowed)
         EXPECT_TRUE(fs::is_symlink(link)) << c.command << ": the link was replaced";
         EXPECT_EQ(test::read_bytes(target), want) << c.command;
         EXPECT_TRUE(temporaries(dir).empty()) << c.command;
+        // A link whose target does not exist yet (the first run): the target is made, the link kept.
+        const std::string later = (dir.path() / "elsewhere" / (std::string("later.") + c.output_ext)).string();
+        const std::string dangling = dir.file(std::string("dangling.") + c.output_ext);
+        fs::create_symlink(fs::path("elsewhere") / (std::string("later.") + c.output_ext), dangling);
+        r = run_groom(expand(c, in, dangling));
+        EXPECT_EQ(r.exit_code, 0) << c.command << ": " << r.err;
+        EXPECT_TRUE(fs::is_symlink(dangling)) << c.command << ": the dangling link was replaced";
+        EXPECT_EQ(test::read_bytes(later), want) << c.command;
         // A FIFO: a reader gets the bytes; the FIFO is still one afterwards. .hair is written a
         // block at a time at its places, which a FIFO cannot take: refused, saying so.
         const std::string fifo = dir.file(std::string("fifo.") + c.output_ext);

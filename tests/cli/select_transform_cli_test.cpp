@@ -72,6 +72,10 @@ TEST(SelectCli, TheLargestGuideIsOneGuide)
     const auto r = run_groom({"select", dir.file("g.usda"), "--guide", "9223372036854775807", "-o", dir.file("o.usda")});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(read_curves(dir.file("o.usda")).num_curves(), 1u);
+    // A range across int64's whole width is too long, not wrapped to a short one (a review).
+    const auto wide = run_groom({"select", dir.file("g.usda"), "--guide", "-9223372036854775807-9223372036854775807", "-o", dir.file("w.usda")});
+    EXPECT_EQ(wide.exit_code, 2) << wide.err;
+    EXPECT_NE(wide.err.find("is too long"), std::string::npos) << wide.err;
 }
 
 TEST(SelectCli, BadExpressionNamesTheOptionAndWhatWasExpected)

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 #include <string>
 
 using namespace groom;
@@ -124,6 +125,20 @@ TEST(CurveIoPly, RejectsMalformedInput)
     expect_parse_error(dir.file("pprop.ply"), ascii.substr(0, ascii.find("element edge")) + "property float P\nelement edge 1\nproperty int vertex1\n"
                        "property int vertex2\nend_header\n0 0 0 1\n1 1 1 2\n0 1\n", "pprop.ply:3: element vertex has a property 'P': P is the positions");
     expect_parse_error(dir.file("magic.ply"), "plx\n", "magic.ply:1: expected 'ply' magic");
+    // FLT_MAX's own shortest text is a hair above it as a double: it reads (groom writes it), and a
+    // curve attribute P is no clash with the positions (a review: both had been refused).
+    CurveSet big = CurveSet::from_counts(std::vector<int64_t>{2});
+    big.positions_for_write()[1] = float3(1, 0, 0);
+    big.add<float>(Domain::Point, "m")[0] = std::numeric_limits<float>::max();
+    big.add<float3>(Domain::Curve, "P")[0] = float3(1, 2, 3);
+    for (const PlyEncoding enc : {PlyEncoding::Ascii, PlyEncoding::Binary}) {
+        CurveWriteOptions o;
+        o.ply_encoding = enc;
+        write_curves(big, dir.file("big.ply"), o);
+        const CurveSet back = read_curves(dir.file("big.ply"));
+        EXPECT_EQ(back.find<float>(Domain::Point, "m")[0], std::numeric_limits<float>::max());
+        EXPECT_EQ(back.find<float3>(Domain::Curve, "P")[0], float3(1, 2, 3));
+    }
     expect_parse_error(dir.file("header.ply"), "ply\nformat ascii 1.0\nelement vertex 1\n", "expected 'end_header', found end of file");
     expect_parse_error(dir.file("type.ply"), "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n",
                        "type.ply:4: expected a PLY type");

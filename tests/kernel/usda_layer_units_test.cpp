@@ -50,6 +50,12 @@ TEST(UsdaLayerUnits, YUpAndUnnamedUnitsSetNothingAndOthersAreWarnedOf)
     const auto dm = read_usda_text(layer("    metersPerUnit = 0.1\n"));
     EXPECT_TRUE(dm.curves.detail_string("units").empty());
     EXPECT_TRUE(dm.warned("metersPerUnit 0.1 is none of mm, cm, m, in")) << (dm.warnings.empty() ? "" : dm.warnings[0]);
+    // An up_axis said Y (by transform) is kept through a write and a read (a review: it was dropped).
+    CurveSet said = read_usda_text(layer("")).curves;
+    said.set_detail_string("up_axis", "Y");
+    TempDir dir;
+    write_curves(said, dir.file("y.usda"));
+    EXPECT_EQ(read_curves(dir.file("y.usda")).detail_string("up_axis"), "Y");
     const auto x = read_usda_text(layer("    upAxis = \"X\"\n"));
     EXPECT_TRUE(x.warned("upAxis 'X' is neither Y nor Z"));
     EXPECT_NE(test::usda_error(layer("    metersPerUnit = -1\n")).find("expected metersPerUnit > 0"), std::string::npos);

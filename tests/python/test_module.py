@@ -113,6 +113,10 @@ def test_bad_arrays_name_what_is_wrong():
     assert list(curves.counts) == [2, 3]
     with pytest.raises(groom.ParamError, match=r"curve attribute 'big': values 1 to 18446744073709551615 are outside"):
         curves.curve_attributes["big"] = np.array([2**64 - 1, 1], np.uint64)
+    with pytest.raises(groom.ParamError, match=r"values 1 to 9223372036854775808 are outside"):  # compared exactly, not in float64
+        curves.curve_attributes["big"] = np.array([2**63, 1], np.uint64)
+    curves.curve_attributes["top"] = np.array([2**63 - 1, 1], np.uint64)
+    assert int(curves.curve_attributes["top"][0]) == 2**63 - 1
     curves.curve_attributes["u32"] = np.array([2**32 - 1, 1], np.uint32)  # into int64: it wrapped to -1 in int32
     assert list(curves.curve_attributes["u32"]) == [2**32 - 1, 1]
 

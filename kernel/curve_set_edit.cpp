@@ -57,6 +57,30 @@ CurveSet join(const CurveSet& a, const CurveSet& b)
     return dst;
 }
 
+namespace {
+
+/// Curves of `counts` points gathered from `src`: dst point i is src point src_point[i] (every point
+/// column carried), dst curve c is src curve src_curve[c] (every curve and detail column carried).
+CurveSet gathered(const CurveSet& src, std::span<const int64_t> counts, std::span<const int64_t> src_point,
+                  std::span<const int64_t> src_curve)
+{
+    CurveSet dst = CurveSet::from_counts(counts);
+    const auto P = src.positions();
+    const auto Q = dst.positions_for_write();
+    for (size_t i = 0; i < src_point.size(); ++i) Q[i] = P[size_t(src_point[i])];
+    carry_point_attributes(src, dst, src_point, {attr::P});
+    carry_curve_attributes(src, dst, src_curve);
+    return dst;
+}
+
+/// Whether curve `r` of points `P` ends where it starts (a loop as the readers give it).
+bool repeats_first(std::span<const float3> P, const IndexRange& r)
+{
+    return r.size() >= 3 && P[size_t(r.begin)] == P[size_t(r.end - 1)];
+}
+
+}  // namespace
+
 CurveSet remove_curves(const CurveSet& src, std::span<const char> remove, std::vector<int64_t>* kept)
 {
     if (remove.size() != src.num_curves()) {
@@ -71,13 +95,7 @@ CurveSet remove_curves(const CurveSet& src, std::span<const char> remove, std::v
         const IndexRange r = src.points_of(c);
         for (int64_t i = r.begin; i < r.end; ++i) src_point.push_back(i);
     }
-    CurveSet dst = CurveSet::from_counts(counts);
-    carry_point_attributes(src, dst, src_point);
-    // carry_point_attributes leaves columns dst has alone, and dst was born with P: gather it too.
-    const auto P = src.positions();
-    const auto Q = dst.positions_for_write();
-    for (size_t i = 0; i < src_point.size(); ++i) Q[i] = P[size_t(src_point[i])];
-    carry_curve_attributes(src, dst, src_curve);
+    CurveSet dst = gathered(src, counts, src_point, src_curve);
     set_closed(dst, is_closed(src));  // the curves left are the same loops
     if (kept) *kept = std::move(src_curve);
     return dst;
@@ -87,21 +105,14 @@ CurveSet without_closing_points(const CurveSet& src)
 {
     const auto P = src.positions();
     std::vector<int64_t> counts, src_point, src_curve;
-    counts.reserve(src.num_curves());
-    src_point.reserve(src.num_points());
     for (size_t c = 0; c < src.num_curves(); ++c) {
         const IndexRange r = src.points_of(c);
-        const bool repeats = r.size() >= 3 && P[size_t(r.begin)] == P[size_t(r.end - 1)];
-        const int64_t n = r.size() - (repeats ? 1 : 0);
+        const int64_t n = r.size() - (repeats_first(P, r) ? 1 : 0);
         counts.push_back(n);
         src_curve.push_back(int64_t(c));
         for (int64_t i = 0; i < n; ++i) src_point.push_back(r.begin + i);
     }
-    CurveSet dst = CurveSet::from_counts(counts);
-    auto dP = dst.positions_for_write();
-    for (size_t i = 0; i < src_point.size(); ++i) dP[i] = P[size_t(src_point[i])];
-    carry_point_attributes(src, dst, src_point, {attr::P});
-    carry_curve_attributes(src, dst, src_curve);
+    CurveSet dst = gathered(src, counts, src_point, src_curve);
     set_closed(dst, false);
     return dst;
 }
@@ -110,22 +121,15 @@ CurveSet with_closing_points(const CurveSet& src)
 {
     const auto P = src.positions();
     std::vector<int64_t> counts, src_point, src_curve;
-    counts.reserve(src.num_curves());
-    src_point.reserve(src.num_points() + src.num_curves());
     for (size_t c = 0; c < src.num_curves(); ++c) {
         const IndexRange r = src.points_of(c);
         for (int64_t i = r.begin; i < r.end; ++i) src_point.push_back(i);
-        const bool repeats = r.size() >= 3 && P[size_t(r.begin)] == P[size_t(r.end - 1)];
-        const bool add = r.size() >= 2 && !repeats;
+        const bool add = r.size() >= 2 && !repeats_first(P, r);
         if (add) src_point.push_back(r.begin);
         counts.push_back(r.size() + (add ? 1 : 0));
         src_curve.push_back(int64_t(c));
     }
-    CurveSet dst = CurveSet::from_counts(counts);
-    auto dP = dst.positions_for_write();
-    for (size_t i = 0; i < src_point.size(); ++i) dP[i] = P[size_t(src_point[i])];
-    carry_point_attributes(src, dst, src_point, {attr::P});
-    carry_curve_attributes(src, dst, src_curve);
+    CurveSet dst = gathered(src, counts, src_point, src_curve);
     set_closed(dst, true);
     return dst;
 }

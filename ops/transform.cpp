@@ -140,7 +140,13 @@ CurveSet transform(const CurveSet& src, const TransformParams& params)
     if (!params.up_axis.empty()) {
         new_up = lower(params.up_axis);
         std::string old_up = lower(src.detail_string("up_axis"));
-        if (old_up != "y" && old_up != "z") old_up = new_up == "z" ? "y" : "z";
+        // A value that is neither (a hand-edited file's `Q`) was taken as "the other one" and the
+        // curves turned for it (a trial): said, not guessed. Unsaid, it is the other one.
+        if (!old_up.empty() && old_up != "y" && old_up != "z") {
+            throw InvalidParam("transform: the curves' up_axis is '" + src.detail_string("up_axis") + "', neither Y nor Z: fix it in the file, "
+                               "or remove it to convert from the other axis");
+        }
+        if (old_up.empty()) old_up = new_up == "z" ? "y" : "z";
         if (old_up != new_up) axis = rotation(0, new_up == "z" ? 90.0 : -90.0);
     }
     // The unit factor k.

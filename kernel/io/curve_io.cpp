@@ -18,6 +18,26 @@ bool is_curve_path(const std::string& path)
     return f && f->can(io::kReadCurves);
 }
 
+namespace {
+
+/// The `closed` mark kept only where every curve is a loop (its first point repeated at its end): a
+/// file's mark cannot make an open curve a loop.
+CurveSet& checked_loops(CurveSet& cs)
+{
+    if (!is_closed(cs)) return cs;
+    const auto P = cs.positions();
+    for (size_t c = 0; c < cs.num_curves(); ++c) {
+        const IndexRange r = cs.points_of(c);
+        if (r.size() < 3 || P[size_t(r.begin)] != P[size_t(r.end - 1)]) {
+            set_closed(cs, false);
+            break;
+        }
+    }
+    return cs;
+}
+
+}  // namespace
+
 CurveSet read_curves(const std::string& path, const CurveReadOptions& options)
 {
     if (is_memory_path(path)) return read_memory_curves(path);
@@ -33,7 +53,7 @@ CurveSet read_curves(const std::string& path, const CurveReadOptions& options)
         if (fmt.read_curves_file && !ec && bytes > 0) {
             CurveSet cs = fmt.read_curves_file(path, options);
             cs.validate(path);
-            return cs;
+            return checked_loops(cs);
         }
     }
     const io::FileBytes file = io::read_all(path);
@@ -41,7 +61,7 @@ CurveSet read_curves(const std::string& path, const CurveReadOptions& options)
     if (file.data.empty()) throw ParseError(file.name + ": file is empty (expected " + std::string(fmt.extension) + " curves)");
     CurveSet cs = fmt.read_curves(file, options);
     cs.validate(file.name);
-    return cs;
+    return checked_loops(cs);
 }
 
 void write_curves(const CurveSet& curves, const std::string& path, const CurveWriteOptions& options)

@@ -3,6 +3,7 @@
 #include "kernel/error.h"
 #include "kernel/io/io_util.h"
 
+#include <cmath>
 #include <type_traits>
 
 namespace groom::io {
@@ -89,7 +90,7 @@ void set_detail_from_text(CurveSet& cs, const std::string& name, std::string_vie
         }
         case AttrType::Float: {
             float v;
-            if (!parse_float(cur.token(), v)) bad();
+            if (!parse_float(cur.token(), v) || !std::isfinite(v)) bad();  // (1e40 had become inf: a trial)
             cs.add<float>(Domain::Detail, name)[0] = v;
             break;
         }
@@ -104,7 +105,7 @@ void set_detail_from_text(CurveSet& cs, const std::string& name, std::string_vie
         case AttrType::Float3: {
             float3 v;
             for (int k = 0; k < 3; ++k)
-                if (!parse_float(cur.token(), v[k])) bad();
+                if (!parse_float(cur.token(), v[k]) || !std::isfinite(v[k])) bad();
             cs.add<float3>(Domain::Detail, name)[0] = v;
             break;
         }

@@ -244,7 +244,6 @@ CurveSet read_obj_curves(const FileBytes& file, bool closed_loops)
         for (int64_t j = 0; j < piece.count; ++j) P[i++] = obj.points[size_t(index(j))];
         loops = loops && piece.count >= 3 && index(0) == index(piece.count - 1);
     }
-    set_closed(cs, loops);
     // Detail values groom wrote as comments (a --shard part's tag), each at the start of a line.
     constexpr std::string_view kDetail = "# groom detail ";
     const std::string_view text = file.data;
@@ -256,8 +255,10 @@ CurveSet read_obj_curves(const FileBytes& file, bool closed_loops)
         const size_t space = line.find(' ');
         const std::string name(line.substr(0, space));
         const std::string_view value = space == std::string_view::npos ? std::string_view() : line.substr(space + 1);
-        set_detail_from_text(cs, name, value, file.name + ": malformed '" + std::string(kDetail) + std::string(line) + "'");
+        const size_t number = size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n')) + 1;
+        set_detail_from_text(cs, name, value, file.name + ":" + std::to_string(number) + ": malformed '" + std::string(kDetail) + std::string(line) + "'");
     }
+    set_closed(cs, loops);  // the records say which curves are loops, not a comment (a trial's `closed 1` closed an open one)
     return cs;
 }
 

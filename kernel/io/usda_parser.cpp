@@ -65,7 +65,13 @@ public:
     {
         const Token t = lex_.next();
         float v = 0;
-        if ((t.kind == Tok::Number || t.kind == Tok::Ident) && parse_float(t.text, v)) return v;
+        if ((t.kind == Tok::Number || t.kind == Tok::Ident) && parse_float(t.text, v)) {
+            // A number past float's range became inf without a word (`1e40` in a primvar: a trial);
+            // `inf` and `nan` written as such stay what they say.
+            const bool digits = std::any_of(t.text.begin(), t.text.end(), [](char c) { return c >= '0' && c <= '9'; });
+            if (digits && std::isinf(v)) lex_.fail(t, "expected a number within float's range (3.4e38)");
+            return v;
+        }
         lex_.fail(t, "expected a number");
     }
     int64_t number_int()

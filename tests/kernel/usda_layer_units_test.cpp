@@ -4,6 +4,9 @@
 #include "tests/kernel/usda_test_util.h"
 
 #include "kernel/io/curve_io.h"
+#include "kernel/error.h"
+
+#include <cmath>
 
 using namespace groom;
 using groom::test::read_bytes;
@@ -59,4 +62,24 @@ TEST(UsdaLayerUnits, YUpAndUnnamedUnitsSetNothingAndOthersAreWarnedOf)
     const auto x = read_usda_text(layer("    upAxis = \"X\"\n"));
     EXPECT_TRUE(x.warned("upAxis 'X' is neither Y nor Z"));
     EXPECT_NE(test::usda_error(layer("    metersPerUnit = -1\n")).find("expected metersPerUnit > 0"), std::string::npos);
+}
+
+// Numbers past float's range were read as inf without a word, in USD primvars and in the detail
+// comments of .obj and .ply (a trial); `inf` written as such stays inf. A malformed detail comment
+// names its line.
+TEST(UsdaLayerUnits, NumbersPastFloatsRangeAreRefused)
+{
+    const std::string prim = "#usda 1.0\ndef BasisCurves \"c\" {\n uniform token type = \"linear\"\n int[] curveVertexCounts = [2]\n"
+                             " point3f[] points = [(0,0,0),(0,0,1)]\n";
+    EXPECT_NE(test::usda_error(prim + " float[] primvars:w = [1, 1e40] (interpolation = \"vertex\")\n}\n").find("expected a number within float's range"),
+              std::string::npos);
+    EXPECT_TRUE(std::isinf(read_usda_text(prim + " float[] primvars:w = [1, inf] (interpolation = \"vertex\")\n}\n").curves.find<float>(Domain::Point, "w")[1]));
+    TempDir dir;
+    test::write_text(dir.file("d.obj"), "v 0 0 0\nv 0 0 1\n# groom detail foo float 1e40\nl 1 2\n");
+    try {
+        read_curves(dir.file("d.obj"));
+        ADD_FAILURE() << "a detail of 1e40 was read";
+    } catch (const ParseError& e) {
+        EXPECT_NE(std::string(e.what()).find("d.obj:3: malformed '# groom detail foo float 1e40'"), std::string::npos) << e.what();
+    }
 }

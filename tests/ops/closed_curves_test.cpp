@@ -104,6 +104,14 @@ TEST(ClosedCurves, LoopsOfEdgesAndOpenCurvesReadAsTheyAre)
                                        " int[] curveVertexCounts = [3]\n point3f[] points = [(0,0,0),(1,0,0),(1,1,0)]\n}\n"
                                        "def BasisCurves \"b\" {\n uniform token type = \"linear\"\n int[] curveVertexCounts = [2]\n"
                                        " point3f[] points = [(0,0,0),(1,0,0)]\n}\n");
+    // A file's mark does not make an open curve a loop: an .obj's `closed 1` comment beside an open
+    // record (a trial's second curve came out periodic), a .ply's beside an open curve.
+    write_text(dir.file("marked.obj"), "# groom detail closed int 1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nl 1 2 3 1\nl 1 2\n");
+    EXPECT_FALSE(is_closed(read_curves(dir.file("marked.obj"))));
+    write_text(dir.file("marked.ply"), "ply\nformat ascii 1.0\ncomment groom detail closed int 1\nelement vertex 2\nproperty float x\n"
+                                       "property float y\nproperty float z\nelement edge 1\nproperty int vertex1\nproperty int vertex2\n"
+                                       "end_header\n0 0 0\n1 0 0\n0 1\n");
+    EXPECT_FALSE(is_closed(read_curves(dir.file("marked.ply"))));
     const CurveSet mixed = read_curves(dir.file("mixed.usda"));
     EXPECT_EQ(mixed.num_points(), 6u);  // the loop's first point repeated
     EXPECT_FALSE(is_closed(mixed));

@@ -106,6 +106,16 @@ TEST(Transform, UpAxisConversionIsARotationAndRoundTrips)
     const CurveSet back = transform(z, p);
     EXPECT_EQ(0, std::memcmp(back.positions().data(), src.positions().data(), 5 * sizeof(float3)));
     EXPECT_EQ(back.detail_string("up_axis"), "Y");
+    // An up_axis that is neither (a hand-edited file's) is refused, not taken as the other one and
+    // turned for (a trial).
+    CurveSet odd = straight_guide();
+    odd.set_detail_string("up_axis", "Q");
+    try {
+        transform(odd, p);
+        ADD_FAILURE() << "up_axis Q was taken";
+    } catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("the curves' up_axis is 'Q', neither Y nor Z"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Transform, UnitsScalePointsAndWidths)

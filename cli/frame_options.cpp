@@ -383,6 +383,19 @@ int run_frames(const std::vector<std::string>& args, const std::function<int(std
             }
         }
     }
+    // A part written where its tag cannot go (.hair) cannot be checked by `groom merge`: a part
+    // missing, given twice or out of order goes unnoticed (a trial). Said once, before any part.
+    if (plan.shards > 1 && std::none_of(plan.words.begin(), plan.words.end(), [](const std::string& w) { return w == "-q" || w == "--quiet"; })) {
+        CurveSet probe;
+        probe.set_detail_string(kShardDetail, "0/2");
+        for (const Slot& s : output_slots(plan.words)) {
+            const std::string path = plan.words[s.index].substr(s.offset);
+            if (is_curve_path(path) && !attributes_dropped(probe, path).empty()) {
+                std::cerr << "groom: warning: " << s.option << " " << path << ": this format cannot hold the part's --shard tag, so `groom merge` "
+                          << "cannot put the parts in order or see one missing or given twice; write the parts as .usda, .ply or .obj\n";
+            }
+        }
+    }
     // One field for every frame of a rigid head; a frame pattern of meshes rebuilds only on change.
     const ScalpCacheScope cache;
     if (!plan.frames) return run_frame(plan, std::nullopt, nullptr, run_one);

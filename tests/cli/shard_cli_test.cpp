@@ -192,6 +192,10 @@ TEST(Shard, ObjAndPlyPartsCarryTheirTag)
         ASSERT_EQ(m.exit_code, 0) << m.err;
         EXPECT_TRUE(test::read_bytes(dir.file("merged." + ext)) == test::read_bytes(whole)) << ext << ": merged parts differ from the whole run";
     }
+    // .hair cannot hold the tag: the run says so before it writes (merge cannot check such parts).
+    const auto h = run_groom({"curl", guides, "--type", "3b", "--seed", "7", "-o", dir.file("p0.hair"), "--shard", "0/3"});
+    ASSERT_EQ(h.exit_code, 0) << h.err;
+    EXPECT_NE(h.err.find("-o " + dir.file("p0.hair") + ": this format cannot hold the part's --shard tag"), std::string::npos) << h.err;
 }
 
 // Each part carries which run it is of: parts of another run (another --seed, --count or --type),

@@ -183,6 +183,20 @@ SectionsResult sections(const Surface& scalp, const CurveSet& hairline, const Ro
     if (hairline.num_curves() != 1) {
         throw InvalidGeometry("sections: expected a hairline (one closed curve around the head), found " + std::to_string(hairline.num_curves()) + " curves");
     }
+    // Lengths against the head's size, the hairline's: a guide 65536 long on a head 34 across ran
+    // for 240 s and partings a million wide for minutes, with nothing said (a trial's typos).
+    {
+        const Bounds3 b = hairline.bounds();
+        const float across = b.empty() ? 0.0f : length(b.hi - b.lo);
+        if (across > 0.0f && params.length > 50.0f * across) {
+            throw InvalidParam("sections: `length` " + format_number(params.length) + " is over 50 times the hairline's size (" + format_number(across) +
+                               " across): give the hair's length in scene units");
+        }
+        if (across > 0.0f && params.parting_gap > across) {
+            throw InvalidParam("sections: `parting_gap` " + format_number(params.parting_gap) + " is wider than the hairline (" + format_number(across) +
+                               " across): give the bare width along each parting in scene units");
+        }
+    }
     HairRegionParams region_params;
     region_params.up = params.up;
     region_params.parting_gap = params.parting_gap;

@@ -589,3 +589,25 @@ TEST(Sections, ASizeTooSmallForTheCountsIsRefusedNamingTheLeast)
         }
     }
 }
+
+// Lengths past any head are refused against the hairline's size, before any work: a guide 65536
+// long ran for 240 s and partings a million wide for minutes (a trial's typos).
+TEST(Sections, LengthsPastTheHeadAreRefused)
+{
+    SectionsParams p = test_params(SectionLayout::Grid);
+    p.length = 1e5f;
+    try {
+        sections(sphere(), sphere_hairline(), nullptr, p);
+        ADD_FAILURE() << "length 1e5 was accepted";
+    } catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("`length` 100000 is over 50 times the hairline's size"), std::string::npos) << e.what();
+    }
+    p = test_params(SectionLayout::Grid);
+    p.parting_gap = 1e6f;
+    try {
+        sections(sphere(), sphere_hairline(), nullptr, p);
+        ADD_FAILURE() << "parting_gap 1e6 was accepted";
+    } catch (const InvalidParam& e) {
+        EXPECT_NE(std::string(e.what()).find("`parting_gap` 1e+06 is wider than the hairline"), std::string::npos) << e.what();
+    }
+}

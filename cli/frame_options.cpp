@@ -335,6 +335,7 @@ bool wants_frames(const std::vector<std::string>& args)
 int run_frames(const std::vector<std::string>& args, const std::function<int(std::vector<std::string>&)>& run_one)
 {
     const FramePlan plan = parse_plan(args);
+    const bool quiet = std::any_of(plan.words.begin(), plan.words.end(), [](const std::string& w) { return w == "-q" || w == "--quiet"; });
     std::map<long, RigidXform> poses;
     if (!plan.xform_path.empty()) poses = read_scalp_xforms(plan.xform_path);
     if (plan.frames) {
@@ -385,7 +386,7 @@ int run_frames(const std::vector<std::string>& args, const std::function<int(std
     }
     // A part written where its tag cannot go (.hair) cannot be checked by `groom merge`: a part
     // missing, given twice or out of order goes unnoticed (a trial). Said once, before any part.
-    if (plan.shards > 1 && std::none_of(plan.words.begin(), plan.words.end(), [](const std::string& w) { return w == "-q" || w == "--quiet"; })) {
+    if (plan.shards > 1 && !quiet) {
         CurveSet probe;
         probe.set_detail_string(kShardDetail, "0/2");
         for (const Slot& s : output_slots(plan.words)) {
@@ -405,7 +406,6 @@ int run_frames(const std::vector<std::string>& args, const std::function<int(std
         const int rc = run_frame(plan, f, it == poses.end() ? nullptr : &it->second, run_one);
         if (rc != 0) return rc;
     }
-    const bool quiet = std::any_of(plan.words.begin(), plan.words.end(), [](const std::string& w) { return w == "-q" || w == "--quiet"; });
     if (!quiet) {
         const long n = plan.frames->second - plan.frames->first + 1;
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -101,37 +101,41 @@ CurveSet remove_curves(const CurveSet& src, std::span<const char> remove, std::v
     return dst;
 }
 
-CurveSet without_closing_points(const CurveSet& src)
+namespace {
+
+/// A copy of `src` with each curve's closing point (its first point repeated at its end) present
+/// (`closing`) or not, the mark set to match: the one walk behind both public forms below.
+CurveSet with_ends(const CurveSet& src, bool closing)
 {
     const auto P = src.positions();
     std::vector<int64_t> counts, src_point, src_curve;
     for (size_t c = 0; c < src.num_curves(); ++c) {
         const IndexRange r = src.points_of(c);
-        const int64_t n = r.size() - (repeats_first(P, r) ? 1 : 0);
-        counts.push_back(n);
+        const bool loop = repeats_first(P, r);
+        const int64_t kept = r.size() - (!closing && loop ? 1 : 0);
+        for (int64_t i = 0; i < kept; ++i) src_point.push_back(r.begin + i);
+        const bool add = closing && r.size() >= 2 && !loop;
+        if (add) src_point.push_back(r.begin);
+        counts.push_back(kept + (add ? 1 : 0));
         src_curve.push_back(int64_t(c));
-        for (int64_t i = 0; i < n; ++i) src_point.push_back(r.begin + i);
     }
     CurveSet dst = gathered(src, counts, src_point, src_curve);
-    set_closed(dst, false);
+    set_closed(dst, closing);
     return dst;
 }
 
-CurveSet with_closing_points(const CurveSet& src)
+}  // namespace
+
+bool all_loops(const CurveSet& curves)
 {
-    const auto P = src.positions();
-    std::vector<int64_t> counts, src_point, src_curve;
-    for (size_t c = 0; c < src.num_curves(); ++c) {
-        const IndexRange r = src.points_of(c);
-        for (int64_t i = r.begin; i < r.end; ++i) src_point.push_back(i);
-        const bool add = r.size() >= 2 && !repeats_first(P, r);
-        if (add) src_point.push_back(r.begin);
-        counts.push_back(r.size() + (add ? 1 : 0));
-        src_curve.push_back(int64_t(c));
-    }
-    CurveSet dst = gathered(src, counts, src_point, src_curve);
-    set_closed(dst, true);
-    return dst;
+    const auto P = curves.positions();
+    for (size_t c = 0; c < curves.num_curves(); ++c)
+        if (!repeats_first(P, curves.points_of(c))) return false;
+    return true;
 }
+
+CurveSet without_closing_points(const CurveSet& src) { return with_ends(src, false); }
+
+CurveSet with_closing_points(const CurveSet& src) { return with_ends(src, true); }
 
 }  // namespace groom

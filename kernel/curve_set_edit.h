@@ -29,4 +29,7 @@ CurveSet without_closing_points(const CurveSet& src);
 /// say "closed" itself (.ply, .hair) writes for a loop, so the loop is read back one.
 CurveSet with_closing_points(const CurveSet& src);
 
+/// Whether every curve ends where it starts, at 3 or more points (true for no curves).
+bool all_loops(const CurveSet& curves);
+
 }  // namespace groom

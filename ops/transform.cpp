@@ -1,5 +1,7 @@
 #include "ops/transform.h"
 
+#include "kernel/units.h"
+
 #include "kernel/error.h"
 #include "kernel/parallel.h"
 
@@ -101,15 +103,6 @@ std::string lower(std::string s)
 }
 
 }  // namespace
-
-double meters_per_unit(const std::string& unit)
-{
-    if (unit == "mm") return 0.001;
-    if (unit == "cm") return 0.01;
-    if (unit == "m") return 1.0;
-    if (unit == "in") return 0.0254;
-    return 0.0;
-}
 
 void TransformParams::validate() const
 {

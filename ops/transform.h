@@ -23,9 +23,6 @@ struct TransformParams {
     void validate() const;  ///< throws InvalidParam naming the field, what was expected and what was found
 };
 
-/// Metres per unit for "mm" "cm" "m" "in"; 0 for anything else.
-double meters_per_unit(const std::string& unit);
-
 /// @brief p' = T + Rz Ry Rx S (k A p): A the up-axis change, k the unit factor, S the scale, R the
 /// rotation, T the translation. Reads and writes point P. Attributes follow by name (Houdini's
 /// conventions): float3 `rest`, `puff_base`, `puff_sphere_center` as positions (the full

@@ -24,15 +24,7 @@ namespace {
 /// file's mark cannot make an open curve a loop.
 CurveSet& checked_loops(CurveSet& cs)
 {
-    if (!is_closed(cs)) return cs;
-    const auto P = cs.positions();
-    for (size_t c = 0; c < cs.num_curves(); ++c) {
-        const IndexRange r = cs.points_of(c);
-        if (r.size() < 3 || P[size_t(r.begin)] != P[size_t(r.end - 1)]) {
-            set_closed(cs, false);
-            break;
-        }
-    }
+    if (is_closed(cs) && !all_loops(cs)) set_closed(cs, false);
     return cs;
 }
 
@@ -76,8 +68,9 @@ void write_curves(const CurveSet& given, const std::string& path, OutputBatch& b
     // Loops asked for closed are marked so, their first point repeated, whatever the format: .usda
     // and .obj say "closed" themselves (each point once), .ply keeps the mark and .hair the repeated
     // point. `groom hairline -o h.ply` had written an open curve (a review).
-    const CurveSet looped = options.closed && !is_closed(given) ? with_closing_points(given) : CurveSet();
-    const CurveSet& curves = options.closed && !is_closed(given) ? looped : given;
+    const bool close = options.closed && !is_closed(given);
+    const CurveSet looped = close ? with_closing_points(given) : CurveSet();
+    const CurveSet& curves = close ? looped : given;
     if (is_memory_path(path)) {
         curves.validate("writing " + path);
         batch.defer([copy = curves, path]() mutable { store_memory_curves(path, std::move(copy)); });

@@ -9,6 +9,7 @@
 // through a linear one over segment ends, so every basis and wrap shares one code path.
 #include "kernel/io/formats.h"
 #include "kernel/io/usda_syntax.h"
+#include "kernel/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -500,9 +501,6 @@ CurveSet build_prim(const std::string& file, const ComposedCurves& cp, const Cur
     return out;
 }
 
-/// Concatenates the prims' CurveSets in one pass (linear in the total). Point and curve columns present
-/// in every part (same type) are kept; a column missing from some part cannot be filled honestly and
-/// is dropped with a warning. Detail values come from the first part.
 /// The layer's `upAxis` and `metersPerUnit` as the curves' detail strings `up_axis` and `units`,
 /// which `groom transform` converts from and the writer puts back: a Z-up file (Blender's) had been
 /// written out as Y-up without a word, and `transform --up-axis z` turned its hair on its side (a
@@ -517,11 +515,7 @@ void apply_layer_units(const Layer& layer, const std::string& file, CurveSet& cu
         warn(file + ": upAxis '" + layer.up_axis + "' is neither Y nor Z (USD's two); taken as Y");
     }
     if (layer.meters_per_unit > 0.0) {
-        const std::pair<const char*, double> known[] = {{"mm", 0.001}, {"cm", 0.01}, {"m", 1.0}, {"in", 0.0254}};
-        const char* name = nullptr;
-        for (const auto& [n, mpu] : known)
-            if (std::fabs(layer.meters_per_unit / mpu - 1.0) < 1e-6) name = n;
-        if (name) curves.set_detail_string("units", name);
+        if (const std::string_view name = unit_named(layer.meters_per_unit); !name.empty()) curves.set_detail_string("units", name);
         else if (warn) {
             warn(file + ": metersPerUnit " + format_number(layer.meters_per_unit) +
                  " is none of mm, cm, m, in: groom transform --units needs --from-units for these curves");
@@ -529,6 +523,9 @@ void apply_layer_units(const Layer& layer, const std::string& file, CurveSet& cu
     }
 }
 
+/// Concatenates the prims' CurveSets in one pass (linear in the total). Point and curve columns present
+/// in every part (same type) are kept; a column missing from some part cannot be filled honestly and
+/// is dropped with a warning. Detail values come from the first part.
 CurveSet concatenate(std::vector<CurveSet>& parts, const std::string& file, const Warn& warn)
 {
     if (parts.size() == 1) return std::move(parts[0]);

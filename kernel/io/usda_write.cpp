@@ -4,6 +4,7 @@
 #include "kernel/curve_set_edit.h"
 #include "kernel/io/formats.h"
 #include "kernel/io/usda_lexer.h"
+#include "kernel/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -146,7 +147,7 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
     const std::string up = curves.detail_string("up_axis") == "Z" ? "Z" : "Y";
     out += "#usda 1.0\n(\n    defaultPrim = \"groom\"\n    doc = \"Written by groom " GROOM_VERSION "\"\n";
     const std::string units = curves.detail_string("units");
-    const double mpu = units == "mm" ? 0.001 : units == "cm" ? 0.01 : units == "m" ? 1.0 : units == "in" ? 0.0254 : 0.0;
+    const double mpu = meters_per_unit(units);
     if (mpu > 0) {
         out += "    metersPerUnit = ";
         append_number(out, float(mpu));

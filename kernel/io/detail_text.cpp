@@ -4,6 +4,8 @@
 #include "kernel/io/io_util.h"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <type_traits>
 
 namespace groom::io {
@@ -77,10 +79,17 @@ std::string detail_value_text(const Attribute& a, const std::string& format)
 
 void set_detail_from_text(CurveSet& cs, const std::string& name, std::string_view text, const std::string& bad_message)
 {
+    // A name given twice was last-wins without a word (a hand-edited part could carry two shard
+    // tags, and merge would check the second); a value past its type's range wrapped; words after
+    // the value were dropped.
+    if (cs.attributes(Domain::Detail).find(name)) throw ParseError(bad_message + " (detail '" + name + "' given twice)");
     TextCursor cur(text);
     const auto type = attr_type_named(cur.token());
-    auto bad = [&] { throw ParseError(bad_message); };
-    if (!type) bad();
+    auto bad = [&](const char* why) { throw ParseError(bad_message + " (" + why + ")"); };
+    if (!type) bad("expected a type: float, int, int64, float3 or string");
+    auto end_of_value = [&] {
+        if (!cur.token().empty()) bad("words after the value");
+    };
     switch (*type) {
         case AttrType::String: {
             std::string_view rest = cur.rest_of_line();
@@ -90,14 +99,19 @@ void set_detail_from_text(CurveSet& cs, const std::string& name, std::string_vie
         }
         case AttrType::Float: {
             float v;
-            if (!parse_float(cur.token(), v) || !std::isfinite(v)) bad();  // (1e40 had become inf: a trial)
+            if (!parse_float(cur.token(), v) || !std::isfinite(v)) bad("expected a finite float");  // (1e40 had become inf: a trial)
+            end_of_value();
             cs.add<float>(Domain::Detail, name)[0] = v;
             break;
         }
         case AttrType::Int32:
         case AttrType::Int64: {
             int64_t v;
-            if (!parse_int(cur.token(), v)) bad();
+            if (!parse_int(cur.token(), v)) bad("expected an integer");
+            if (*type == AttrType::Int32 && (v < std::numeric_limits<int32_t>::min() || v > std::numeric_limits<int32_t>::max())) {
+                bad("an int past the 32-bit range");
+            }
+            end_of_value();
             if (*type == AttrType::Int32) cs.add<int32_t>(Domain::Detail, name)[0] = static_cast<int32_t>(v);
             else cs.add<int64_t>(Domain::Detail, name)[0] = v;
             break;
@@ -105,7 +119,8 @@ void set_detail_from_text(CurveSet& cs, const std::string& name, std::string_vie
         case AttrType::Float3: {
             float3 v;
             for (int k = 0; k < 3; ++k)
-                if (!parse_float(cur.token(), v[k]) || !std::isfinite(v[k])) bad();
+                if (!parse_float(cur.token(), v[k]) || !std::isfinite(v[k])) bad("expected three finite floats");
+            end_of_value();
             cs.add<float3>(Domain::Detail, name)[0] = v;
             break;
         }

@@ -1,0 +1,71 @@
+// Detail values kept as comments in .obj (`# groom detail NAME TYPE VALUE`) and .ply (`comment groom
+// detail ...`): a value that does not fit its type, words after it, or a name given twice are refused
+// naming the file (and line), where before the last of two names won and an int past 32 bits wrapped.
+#include "kernel/curve_set.h"
+#include "kernel/error.h"
+#include "kernel/io/curve_io.h"
+#include "tests/test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+using namespace groom;
+
+namespace {
+
+/// The error reading `text` as `name` gives, or "" when it reads.
+std::string read_error(test::TempDir& dir, const std::string& name, const std::string& text)
+{
+    test::write_text(dir.file(name), text);
+    try {
+        read_curves(dir.file(name));
+    } catch (const ParseError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string obj_with(const std::string& comments) { return "v 0 0 0\nv 0 0 1\n" + comments + "l 1 2\n"; }
+
+std::string ply_with(const std::string& comments)
+{
+    return "ply\nformat ascii 1.0\n" + comments +
+           "element vertex 2\nproperty float x\nproperty float y\nproperty float z\nelement edge 1\nproperty int vertex1\n"
+           "property int vertex2\nend_header\n0 0 0\n0 0 1\n0 1\n";
+}
+
+}  // namespace
+
+TEST(DetailText, ValuesThatDoNotFitTheirTypeAreRefusedByLine)
+{
+    test::TempDir dir;
+    // What reads: one of each type, the string with its spaces.
+    const std::string good = "# groom detail a int -2147483648\n# groom detail b int64 5000000000\n# groom detail c float 1.5\n"
+                             "# groom detail d float3 1 2 3\n# groom detail e string two words\n";
+    ASSERT_EQ(read_error(dir, "good.obj", obj_with(good)), "");
+    const CurveSet cs = read_curves(dir.file("good.obj"));
+    EXPECT_EQ(cs.find<int32_t>(Domain::Detail, "a")[0], -2147483647 - 1);
+    EXPECT_EQ(cs.find<int64_t>(Domain::Detail, "b")[0], 5000000000);
+    EXPECT_EQ(cs.detail_string("e"), "two words");
+
+    const std::string wrapped = read_error(dir, "w.obj", obj_with("# groom detail shard int 4294967297\n"));
+    EXPECT_NE(wrapped.find("w.obj:3: malformed '# groom detail shard int 4294967297' (an int past the 32-bit range)"), std::string::npos) << wrapped;
+    const std::string words = read_error(dir, "x.obj", obj_with("# groom detail c float 1.5 cm\n"));
+    EXPECT_NE(words.find("x.obj:3:"), std::string::npos) << words;
+    EXPECT_NE(words.find("(words after the value)"), std::string::npos) << words;
+    const std::string type = read_error(dir, "t.obj", obj_with("# groom detail c double 1.5\n"));
+    EXPECT_NE(type.find("(expected a type: float, int, int64, float3 or string)"), std::string::npos) << type;
+    const std::string ply = read_error(dir, "w.ply", ply_with("comment groom detail shard int 4294967297\n"));
+    EXPECT_NE(ply.find("w.ply: malformed 'comment groom detail shard int 4294967297' (an int past the 32-bit range)"), std::string::npos) << ply;
+}
+
+TEST(DetailText, ANameGivenTwiceIsRefused)
+{
+    test::TempDir dir;
+    const std::string obj = read_error(dir, "twice.obj", obj_with("# groom detail shard string 0/2 run1\n# groom detail shard string 1/2 run1\n"));
+    EXPECT_NE(obj.find("twice.obj:4:"), std::string::npos) << obj;
+    EXPECT_NE(obj.find("(detail 'shard' given twice)"), std::string::npos) << obj;
+    const std::string ply = read_error(dir, "twice.ply", ply_with("comment groom detail n int 1\ncomment groom detail n int 2\n"));
+    EXPECT_NE(ply.find("(detail 'n' given twice)"), std::string::npos) << ply;
+}

@@ -3,6 +3,7 @@
 #include "cli/render_options.h"
 #include "fields/scalp_field.h"
 #include "kernel/error.h"
+#include "kernel/io/atomic_file.h"
 #include "kernel/io/curve_io.h"
 #include "kernel/io/mesh_io.h"
 #include "kernel/io/png.h"
@@ -103,7 +104,7 @@ void setup(CommandContext& ctx)
     ctx.run = [args, camera, &common] {
         Args& a = *args;
         if (a.inputs.empty() && a.scalp.empty()) throw InvalidParam("render: nothing to draw: give curve FILES and/or --scalp MESH");
-        if (!ends_with(a.output, ".png")) throw InvalidParam("render: -o must name a .png file (got '" + a.output + "')");
+        if (!ends_with(a.output, ".png") && !written_in_place(a.output)) throw InvalidParam("render: -o must name a .png file (got '" + a.output + "')");
         for (const std::string& in : a.inputs) check_output(a.output, {in}, common);
         check_output(a.output, {a.scalp}, common);
         parse_size(a.size, a.params.width, a.params.height);

@@ -182,7 +182,7 @@ void setup(CommandContext& ctx)
                 }
             }
         }
-        if (std::filesystem::path(a.output).extension() != ".vdb") {
+        if (std::filesystem::path(a.output).extension() != ".vdb" && !written_in_place(a.output)) {
             throw InvalidParam("scalp: -o must name a .vdb file (got '" + a.output + "')");
         }
         if (voxel->count() > 0 && !(a.voxel > 0.0f)) {

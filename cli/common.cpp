@@ -137,7 +137,22 @@ namespace {
 void check_one_output(const std::string& option, const std::string& output, std::span<const std::string> inputs, const CommonOptions& o)
 {
     if (output.empty()) throw InvalidParam(option + ": an output path is required");
-    if (output == "-" || o.force) return;
+    if (output == "-") return;
+    // Refused before any work, and before any other output is written: a directory output was
+    // found only at the rename, after a command's first output had already replaced the user's
+    // file (a trial: `cornrow-guides -o cg.usda --tails-out DIR.usda`).
+    struct stat st {};
+    const bool exists = ::stat(output.c_str(), &st) == 0;
+    if (exists && S_ISDIR(st.st_mode)) {
+        throw InvalidParam(option + " " + output + " is a folder; expected a file to write (e.g. " +
+                           (std::filesystem::path(output) / "out.usda").string() + ")");
+    }
+    const std::filesystem::path folder = std::filesystem::path(output).parent_path();
+    std::error_code ec;
+    if (!exists && !folder.empty() && output.find('#') == std::string::npos && !std::filesystem::is_directory(folder, ec)) {
+        throw InvalidParam(option + " " + output + ": the folder " + folder.string() + " does not exist; create it first");
+    }
+    if (o.force) return;
     for (const std::string& in : inputs) {
         if (!in.empty() && in != "-" && same_file(in, output)) {
             throw InvalidParam(option + " " + output + " is also an input file; refusing to overwrite it (pass --force to allow)");
@@ -147,9 +162,8 @@ void check_one_output(const std::string& option, const std::string& output, std:
     // user made read-only would be replaced without a word: ask for --force, as `mv` asks. Read-only
     // by its mode as well as by access(): root may write any file, and render farms and containers
     // run as root (a `chmod 444` output was replaced there).
-    struct stat st {};
     const auto read_only = [&] { return (st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(output.c_str(), W_OK) != 0; };
-    if (::stat(output.c_str(), &st) == 0 && S_ISREG(st.st_mode) && read_only()) {
+    if (exists && S_ISREG(st.st_mode) && read_only()) {
         throw InvalidParam(option + " " + output + " exists and is read-only; refusing to replace it (pass --force to replace it)");
     }
 }

@@ -156,6 +156,12 @@ void remove_temporaries_on_signal() noexcept
     }
 }
 
+bool written_in_place(const std::string& path)
+{
+    struct stat st {};
+    return path != "-" && ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
 AtomicOutput::AtomicOutput(std::string path, bool binary) : path_(std::move(path))
 {
     if (path_ == "-") {
@@ -166,7 +172,10 @@ AtomicOutput::AtomicOutput(std::string path, bool binary) : path_(std::move(path
     // A device, a FIFO or a socket is written into as it is (`-o /dev/null`): renamed over, it was
     // replaced by a regular file (as root, /dev/null itself: a trial). Nothing can be undone there.
     struct stat st {};
-    if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+    const bool exists = ::stat(path_.c_str(), &st) == 0;
+    // A folder is refused at open, not at the rename: by then a batch's earlier outputs had landed.
+    if (exists && S_ISDIR(st.st_mode)) throw IoError(path_ + ": is a folder; expected a file to write");
+    if (exists && !S_ISREG(st.st_mode)) {
         const int fd = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
         if (fd < 0) {
             const int err = errno;

@@ -68,6 +68,10 @@ private:
     std::vector<std::function<void()>> deferred_;
 };
 
+/// True when `path` is a device, FIFO or socket: an output AtomicOutput writes into as it is, which
+/// needs no extension to be written (`-o /dev/null` writes what `-o -` would).
+bool written_in_place(const std::string& path);
+
 /// Removes every temporary still in flight, with unlink() only: async-signal-safe, for a signal
 /// handler (cli/main.cpp installs it for SIGINT, SIGTERM and SIGHUP).
 void remove_temporaries_on_signal() noexcept;

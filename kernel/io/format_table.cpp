@@ -1,5 +1,6 @@
 #include "kernel/io/format_table.h"
 
+#include "kernel/io/atomic_file.h"
 #include "kernel/io/detail_text.h"
 
 #include "kernel/io/formats.h"
@@ -166,11 +167,18 @@ const Format& format_for(const std::string& path, unsigned cap, std::string_view
     const std::string ext = extension_of(path);
     const Format* f = format_by_extension(ext);
     const bool writing = cap & (kWriteCurves | kWriteMesh);
+    if (!f && writing && written_in_place(path)) {
+        // A device or FIFO with no extension (`-o /dev/null`, `/dev/stdout`) is written as stdout
+        // is: it had been refused as "unknown format '.'" though every output writes into one.
+        for (const Format& g : kFormats)
+            if (g.can(cap) && g.refusal.empty() && g.write_refusal.empty()) return g;
+    }
     if (f && writing && !f->write_refusal.empty()) return fail(path + ": " + std::string(f->write_refusal));
     if (f && !f->refusal.empty()) return fail(path + ": " + std::string(f->refusal));
     if (!f || !f->can(cap)) {
         return fail(path + ": " + (f ? std::string(f->name) + " files are not " + (writing ? "written" : "read") + " as " + std::string(what) + (std::string_view(what) == "mesh" ? "es" : "s")
-                                     : "unknown " + std::string(what) + " format '." + ext + "'") +
+                                     : ext.empty() ? "no extension to tell the " + std::string(what) + " format by"
+                                                   : "unknown " + std::string(what) + " format '." + ext + "'") +
                     " (expected " + format_list(cap, ", ") + ")");
     }
     return *f;

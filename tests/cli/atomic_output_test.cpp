@@ -145,8 +145,10 @@ TEST(AtomicOutput, OutputIntoAMissingFolderCreatesNothing)
     for (const Case& c : cases()) {
         const std::string out = dir.file(std::string("missing/out.") + c.output_ext);
         const auto r = run_groom(expand(c, guides, out));
-        EXPECT_EQ(r.exit_code, 1) << c.command << ": " << r.err;
-        EXPECT_NE(r.err.find("missing/out"), std::string::npos) << c.command << ": " << r.err;
+        // Refused before any work, as a parameter (exit 2), naming the folder.
+        EXPECT_EQ(r.exit_code, 2) << c.command << ": " << r.err;
+        EXPECT_NE(r.err.find("missing/out." + std::string(c.output_ext) + ": the folder " + dir.file("missing") + " does not exist"), std::string::npos)
+            << c.command << ": " << r.err;
         EXPECT_FALSE(fs::exists(dir.file("missing"))) << c.command;
     }
 }
@@ -226,6 +228,32 @@ TEST(AtomicOutput, SpecialFilesAreWrittenIntoAndLinksFollowed)
         }
         EXPECT_TRUE(temporaries(dir).empty()) << c.command;
     }
+}
+
+// A device or FIFO needs no extension: `-o /dev/null` runs every command (it had been refused as
+// "unknown curve format '.'", a trial), and a FIFO named without one receives what `-o -` writes.
+// A regular file without one is refused, saying there is no extension (not "format '.'").
+TEST(AtomicOutput, DevicesNeedNoExtension)
+{
+    test::TempDir dir;
+    const std::string in = write_guides(dir, "in.usda");
+    for (const Case& c : cases()) {
+        const auto r = run_groom(expand(c, in, "/dev/null"));
+        EXPECT_EQ(r.exit_code, 0) << c.command << ": " << r.err;
+    }
+    const std::string fifo = dir.file("fifo");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+    std::string got;
+    std::thread reader([&] { got = test::read_bytes(fifo); });
+    const auto r = run_groom({"convert", in, "-o", fifo});
+    reader.join();
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const auto out = run_groom({"convert", in, "-o", "-"});
+    ASSERT_EQ(out.exit_code, 0) << out.err;
+    EXPECT_EQ(got, out.out);
+    const auto plain = run_groom({"convert", in, "-o", dir.file("noext")});
+    EXPECT_EQ(plain.exit_code, 2);
+    EXPECT_NE(plain.err.find("noext: no extension to tell the curve format by (expected .usda, .obj, .ply, .hair)"), std::string::npos) << plain.err;
 }
 
 // `-o` naming the --scalp mesh is refused as for any input (curl had overwritten its scalp with curves).

@@ -89,8 +89,13 @@ TEST(Outputs, AFailedSecondOutputLeavesTheFirstUntouched)
     const std::string out = dir.file("out.usda"), vdb = dir.file("out.vdb");
     test::write_text(out, kPrevious);
     test::write_text(vdb, kPrevious);
-    // The second output goes into a folder that does not exist: it fails after the first is written.
+    // The second output goes into a folder that does not exist, or is a folder: refused before any
+    // work (exit 2, a parameter error). A folder had been found only at the rename, after the first
+    // output had replaced the user's file (a trial).
+    fs::create_directory(dir.file("folder.usda"));
     const std::vector<std::vector<std::string>> cases = {
+        {"cornrow-guides", "--scalp", mesh, "-o", out, "--tails-out", dir.file("folder.usda")},
+        {"sections", "--scalp", mesh, "-o", out, "--roots-out", dir.file("folder.usda")},
         {"cornrow-guides", "--scalp", mesh, "-o", out, "--tails-out", dir.file("missing/tails.usda")},
         {"scalp", mesh, "-o", vdb, "--report", dir.file("missing/report.json")},
         {"puff", "--scalp", mesh, "-o", out, "--guides-out", dir.file("missing/guides.usda"), "--center", "0,10,0", "--radius", "3",
@@ -98,8 +103,10 @@ TEST(Outputs, AFailedSecondOutputLeavesTheFirstUntouched)
     };
     for (const auto& args : cases) {
         const auto r = run_groom(args);
-        EXPECT_EQ(r.exit_code, 1) << args[0] << ": " << r.err;
-        EXPECT_NE(r.err.find("missing/"), std::string::npos) << args[0] << ": the message should name the output: " << r.err;
+        EXPECT_EQ(r.exit_code, 2) << args[0] << ": " << r.err;
+        const bool folder = args.back() == dir.file("folder.usda") || args[args.size() - 2] == dir.file("folder.usda");
+        EXPECT_NE(r.err.find(folder ? "folder.usda is a folder; expected a file to write" : "missing does not exist; create it first"), std::string::npos)
+            << args[0] << ": the message should name the output: " << r.err;
         EXPECT_EQ(test::read_bytes(out), kPrevious) << args[0] << ": the first output was replaced although the second failed";
         EXPECT_EQ(test::read_bytes(vdb), kPrevious) << args[0];
         EXPECT_TRUE(temporaries(dir).empty()) << args[0] << " left " << temporaries(dir).front();

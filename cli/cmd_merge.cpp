@@ -7,6 +7,7 @@
 #include "kernel/io/curve_io.h"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace groom::cli {
 namespace {
@@ -92,6 +93,96 @@ std::vector<size_t> shard_order(const std::vector<std::string>& paths, const std
     return order;
 }
 
+/// A detail's value as text, for comparing parts ("" when absent).
+std::string detail_text(const CurveSet& cs, const Attribute& a)
+{
+    if (a.type() == AttrType::String) return cs.detail_string(a.name);
+    std::string t;
+    std::visit([&](const auto& v) {
+        using T = typename std::decay_t<decltype(v)>::value_type;
+        if constexpr (std::is_same_v<T, float3>) t = format_number(v[0].x) + "," + format_number(v[0].y) + "," + format_number(v[0].z);
+        else if constexpr (!std::is_same_v<T, std::string>) t = format_number(double(v[0]));
+    }, a.data);
+    return t;
+}
+
+/// Refuses parts that cannot be one groom, and says what a merge fills in. join() fills a column a
+/// part lacks with -1 (ints) or 0 (floats), and keeps the first part's detail values: a trial's
+/// merge of a .usda and an .obj part (OBJ keeps no widths) made a third of the hair width 0,
+/// invisible, without a word, and a Y-up millimetre file joined a Z-up centimetre one as Z-up.
+void check_parts_agree(const std::vector<std::string>& paths, const std::vector<CurveSet>& parts, const std::vector<size_t>& order,
+                       bool shards, const CommonOptions& common)
+{
+    auto has_width = [](const CurveSet& cs) {
+        return cs.attributes(Domain::Point).find(attr::width) || cs.attributes(Domain::Curve).find(attr::width);
+    };
+    // Columns: every name of any part, and the parts without it.
+    std::string filled;
+    for (Domain d : {Domain::Point, Domain::Curve}) {
+        std::vector<std::string> names;
+        for (const CurveSet& cs : parts)
+            for (const Attribute& a : cs.attributes(d).all())
+                if (std::find(names.begin(), names.end(), a.name) == names.end()) names.push_back(a.name);
+        for (const std::string& name : names) {
+            if (name == attr::width) continue;  // checked below, in either domain
+            for (size_t k : order) {
+                if (parts[k].attributes(d).find(name)) continue;
+                if (shards) {
+                    throw InvalidParam("merge: " + paths[k] + " has no " + domain_name(d) + " attribute '" + name +
+                                       "', which other shards of its run have (its format cannot hold it?): write every shard in one format that keeps it, such as .usda");
+                }
+                filled += (filled.empty() ? "" : ", ") + ("'" + name + "' (" + domain_name(d) + ", not in " + paths[k] + ")");
+                break;
+            }
+        }
+    }
+    size_t with = parts.size();
+    for (size_t k : order)
+        if (has_width(parts[k])) with = k;
+    if (with != parts.size()) {
+        for (size_t k : order) {
+            if (has_width(parts[k])) {
+                if (bool(parts[k].attributes(Domain::Point).find(attr::width)) != bool(parts[with].attributes(Domain::Point).find(attr::width))) {
+                    throw InvalidParam("merge: " + paths[with] + " and " + paths[k] +
+                                       " keep widths differently (one per point, one per curve): joined, each would get width 0 where it has none");
+                }
+                continue;
+            }
+            throw InvalidParam("merge: " + paths[k] + " has no widths but " + paths[with] +
+                               " has: its hair would get width 0, invisible (.obj and .hair keep none; .usda and .ply do): give it widths "
+                               "(every op that makes hair takes --root-width) or merge it on its own");
+        }
+    }
+    if (!filled.empty()) warn(common, "merge: columns not in every file are filled with -1 (integers) or 0 where missing: " + filled);
+    // Details: the units and up axis must agree; others keep the first file's value, said when they differ.
+    const size_t first = order[0];
+    for (size_t k : order) {
+        if (k == first) continue;
+        for (std::string_view name : {std::string_view("units"), std::string_view("up_axis")}) {
+            // An up axis unsaid is Y (USD's default, which the .usda reader leaves unsaid, and OBJ's).
+            const std::string none = name == "up_axis" ? "Y" : "";
+            const std::string a = parts[first].detail_string(name, none), b = parts[k].detail_string(name, none);
+            if (a != b && !a.empty() && !b.empty()) {
+                throw InvalidParam("merge: " + paths[first] + " has " + std::string(name) + " '" + a + "' but " + paths[k] + " has '" + b +
+                                   "': the curves would be joined in different " + (name == "units" ? "units" : "axes") + "; bring them to one first (`groom transform " +
+                                   paths[k] + (name == "units" ? " --units " : " --up-axis ") + a + " -o FILE`)");
+            }
+            if (a != b) {
+                warn(common, "merge: " + (a.empty() ? paths[first] : paths[k]) + " does not say its " + std::string(name) + "; taken as " +
+                                 (a.empty() ? paths[k] : paths[first]) + "'s ('" + (a.empty() ? b : a) + "')");
+            }
+        }
+        for (const Attribute& col : parts[k].attributes(Domain::Detail).all()) {
+            if (col.name == "units" || col.name == "up_axis" || col.name == attr::closed || col.name == kShardDetail || col.name == kShardRunDetail) continue;
+            const Attribute* mine = parts[first].attributes(Domain::Detail).find(col.name);
+            if (mine && detail_text(parts[first], *mine) != detail_text(parts[k], col)) {
+                warn(common, "merge: detail '" + col.name + "' is '" + detail_text(parts[first], *mine) + "' in " + paths[first] + " but '" +
+                                 detail_text(parts[k], col) + "' in " + paths[k] + "; the output keeps the first");
+            }
+        }
+    }
+}
+
 void setup(CommandContext& ctx)
 {
     auto args = std::make_shared<Args>();
@@ -104,6 +195,7 @@ void setup(CommandContext& ctx)
         std::vector<CurveSet> parts;
         for (const std::string& in : args->inputs) parts.push_back(read_curves(in));
         const std::vector<size_t> order = shard_order(args->inputs, parts, common);
+        check_parts_agree(args->inputs, parts, order, !parts[order[0]].detail_string(kShardDetail).empty(), common);
         CurveSet all = std::move(parts[order[0]]);
         for (size_t k = 1; k < order.size(); ++k) all = join(all, parts[order[k]]);
         all.attributes(Domain::Detail).remove(kShardDetail);

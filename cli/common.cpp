@@ -4,6 +4,7 @@
 #include "kernel/io/curve_io.h"
 #include "kernel/io/format_table.h"
 #include "kernel/io/io_util.h"
+#include "kernel/io/memory_files.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -137,7 +138,7 @@ namespace {
 void check_one_output(const std::string& option, const std::string& output, std::span<const std::string> inputs, const CommonOptions& o)
 {
     if (output.empty()) throw InvalidParam(option + ": an output path is required");
-    if (output == "-") return;
+    if (output == "-" || is_memory_path(output)) return;  // (a --shard or --frames run's in-memory stage)
     // Refused before any work, and before any other output is written: a directory output was
     // found only at the rename, after a command's first output had already replaced the user's
     // file (a trial: `cornrow-guides -o cg.usda --tails-out DIR.usda`).

@@ -233,3 +233,55 @@ TEST(Shard, MergeRefusesPartsOfAnotherRunOrFrame)
         EXPECT_FALSE(std::filesystem::exists(dir.file("m.usda"))) << why;
     }
 }
+
+// Parts that cannot be one groom are refused; what a merge fills in is said. A trial merged a shard
+// written as .obj (no widths, no ids) with two .usda shards: a third of the hair came out width 0,
+// invisible, ids -1, without a word; and a Y-up millimetre file joined a Z-up centimetre one.
+TEST(Shard, MergeRefusesPartsThatDisagree)
+{
+    test::TempDir dir;
+    const std::string guides = write_guides(dir);
+    auto populate = [&](const std::string& shard, const std::string& out) {
+        const auto r = run_groom({"populate", guides, "-o", dir.file(out), "--count", "4", "--radius", "0.1", "--shard", shard});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+    };
+    populate("0/2", "p0.usda");
+    populate("1/2", "p1.obj");
+    populate("1/2", "p1.usda");
+    auto r = run_groom({"merge", dir.file("p0.usda"), dir.file("p1.obj"), "-o", dir.file("m.usda")});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("p1.obj has no"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("m.usda")));
+    ASSERT_EQ(run_groom({"merge", dir.file("p0.usda"), dir.file("p1.usda"), "-o", dir.file("m.usda")}).exit_code, 0);
+
+    // Not shards: widths missing from one file are refused; other columns are filled, and said.
+    ASSERT_EQ(run_groom({"convert", dir.file("m.usda"), "-o", dir.file("plain.obj")}).exit_code, 0);
+    r = run_groom({"merge", dir.file("m.usda"), dir.file("plain.obj"), "-o", dir.file("w.usda")});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("plain.obj has no widths but"), std::string::npos) << r.err;
+    test::write_text(dir.file("strand.usda"), "#usda 1.0\ndef BasisCurves \"c\" {\n uniform token type = \"linear\"\n int[] curveVertexCounts = [2]\n"
+                                              " point3f[] points = [(0,0,0),(0,1,0)]\n int[] primvars:strand = [4] (interpolation = \"uniform\")\n}\n");
+    r = run_groom({"merge", dir.file("strand.usda"), guides, "-o", dir.file("g.usda")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("columns not in every file are filled with -1 (integers) or 0 where missing: 'strand' (curve, not in " + guides + ")"),
+              std::string::npos) << r.err;
+
+    // Units and up axes must agree; a file that says none is taken as the other's, said.
+    auto layer = [&](const std::string& name, const std::string& axis, const std::string& mpu) {
+        test::write_text(dir.file(name), "#usda 1.0\n(\n upAxis = \"" + axis + "\"\n metersPerUnit = " + mpu +
+                                             "\n)\ndef BasisCurves \"c\" {\n uniform token type = \"linear\"\n int[] curveVertexCounts = [2]\n"
+                                             " point3f[] points = [(0,0,0),(0,1,0)]\n}\n");
+    };
+    layer("ymm.usda", "Y", "0.001");
+    layer("zcm.usda", "Z", "0.01");
+    layer("ycm.usda", "Y", "0.01");
+    r = run_groom({"merge", dir.file("ymm.usda"), dir.file("ycm.usda"), "-o", dir.file("u.usda")});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("ymm.usda has units 'mm' but " + dir.file("ycm.usda") + " has 'cm'"), std::string::npos) << r.err;
+    r = run_groom({"merge", dir.file("zcm.usda"), dir.file("ycm.usda"), "-o", dir.file("u.usda")});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("has up_axis 'Z' but"), std::string::npos) << r.err;
+    r = run_groom({"merge", dir.file("ycm.usda"), guides, "-o", dir.file("u.usda")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find(guides + " does not say its units; taken as " + dir.file("ycm.usda") + "'s ('cm')"), std::string::npos) << r.err;
+}

@@ -359,11 +359,16 @@ TEST(Partition, PlaneRootsAtTheMediatedFractionAndSegmentsAreStraight)
                 EXPECT_NEAR3(last_point(out, curves[i]), tip, 1e-5f);
                 // Left roots lie at larger x (normal +Y x tangent +Z = +X).
                 EXPECT_EQ(root.x > xs[g], side == 0);
-                // Above the plane the straight line already follows the rising height: no push.
+                // The straight line follows the rising height, lifted between root and end by half
+                // the hair's width (the default taper, 0.008 to 0.004) so that its surface, not its
+                // centreline, rests on the plane.
                 const IndexRange r = out.points_of(curves[i]);
                 for (int64_t p = r.begin; p < r.end; ++p) {
                     const float u = float(p - r.begin) / float(r.size() - 1);
-                    EXPECT_NEAR3(P[p], lerp(root, tip, u), 1e-5f);
+                    // (The half width one sample rootwards, so the arc-length taper never exceeds it.)
+                    const float v = std::max(0.0f, u - 1.0f / float(r.size() - 1));
+                    const float half = p == r.begin || p == r.end - 1 ? 0.0f : 0.5f * (0.008f * (1.0f - v) + 0.004f * v);
+                    EXPECT_NEAR3(P[p], lerp(root, tip, u) + float3(0.0f, half, 0.0f), 1e-5f);
                 }
             }
         }
@@ -384,6 +389,37 @@ TEST(Partition, SegmentsFollowTheScalpInsteadOfCuttingThroughIt)
     for (const float3& p : out.positions()) lowest = std::min(lowest, sphere.distance(p));
     EXPECT_GE(lowest, -1e-5f);
     EXPECT_LE(lowest, 1e-5f);  // and they lie on it, since the source is on it too
+}
+
+// What a person sees: edge hairs resting on the skin, not in it. Guides on the unit sphere, so every
+// chord between root and end dips inside: each point between them ends with its surface on the
+// sphere, its centre half its written width out (it was on the sphere, half the hair under the
+// skin: renderers drew broken dashes, a trial). Roots grow from the surface.
+TEST(Partition, EdgeHairsRestOnTheScalpNotInIt)
+{
+    const std::vector<Arc> arcs = {{0.0f, -0.5f, 0.5f}, {0.6f, -0.5f, 0.5f}};
+    PartitionParams params;
+    params.count = 7;
+    params.samples = 10;
+    params.widths.root = 0.02f;
+    params.widths.tip = 0.01f;
+    const AnalyticSphere sphere({0, 0, 0}, 1.0f);
+    const CurveSet out = partition(meridian_guides(arcs), sphere, params);
+    ASSERT_EQ(out.num_curves(), 14u);
+    const auto P = out.positions();
+    const auto W = out.find<float>(Domain::Point, attr::width);
+    ASSERT_EQ(W.size(), P.size());
+    for (size_t c = 0; c < out.num_curves(); ++c) {
+        const IndexRange r = out.points_of(c);
+        EXPECT_NEAR(sphere.distance(P[size_t(r.begin)]), 0.0f, 1e-5f) << "root off the surface";
+        for (int64_t p = r.begin + 1; p < r.end - 1; ++p) {
+            // Its surface clear of the sphere, and resting on it: no more than a tenth of its
+            // width above.
+            const float d = sphere.distance(P[size_t(p)]), half = 0.5f * W[size_t(p)];
+            EXPECT_GE(d, half - 1e-6f) << "curve " << c << " point " << p - r.begin << ": the hair's surface cuts the skin";
+            EXPECT_LE(d, half + 0.1f * W[size_t(p)]) << "curve " << c << " point " << p - r.begin << ": the hair floats";
+        }
+    }
 }
 
 TEST(Partition, EndsOnACoarseGuidesChordsAreLiftedOntoTheScalp)

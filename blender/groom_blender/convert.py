@@ -19,10 +19,73 @@ def _world(points, matrix):
     return (points @ m[:3, :3].T + m[:3, 3]).astype(np.float32)
 
 
+def _evaluated_splines(ob):
+    """A legacy curve object's splines as Blender draws them, in object space: a list of (points
+    (n, 3), cyclic). Bezier and NURBS splines are evaluated at their resolution (a 3-point Bezier
+    arc is 25 points along the arc, not its 3 control points off it; Blender's default Bezier is a
+    curve, not a 2-point line); POLY splines are their points as they are. The object's modifiers
+    are not applied."""
+    data = ob.data.copy()
+    # Blender's own evaluation, on a copy without what would make a surface of the centre line
+    # (a bevel, an extrusion, a 2D curve's fill): then the mesh is each spline's points in order,
+    # joined by edges, a cyclic spline's last point joined back to its first.
+    data.bevel_mode = 'ROUND'
+    data.bevel_depth = 0.0
+    data.bevel_object = None
+    data.extrude = 0.0
+    if data.dimensions == '2D':
+        data.fill_mode = 'NONE'
+    temp = bpy.data.objects.new("groom_evaluate", data)
+    try:
+        mesh = temp.to_mesh()
+        verts = np.empty(len(mesh.vertices) * 3, np.float32)
+        mesh.vertices.foreach_get('co', verts)
+        edges = np.empty(len(mesh.edges) * 2, np.int32)
+        mesh.edges.foreach_get('vertices', edges)
+    finally:
+        temp.to_mesh_clear()
+        bpy.data.objects.remove(temp)
+        bpy.data.curves.remove(data)
+    verts, edges = verts.reshape(-1, 3), np.sort(edges.reshape(-1, 2), axis=1)
+    n = len(verts)
+    if n == 0:
+        return []
+    # A spline ends where no edge joins a point to the next; an edge between the first and last
+    # points of one run closes it.
+    step = edges[:, 1] - edges[:, 0] == 1
+    joined = np.zeros(n, bool)
+    joined[edges[step, 0]] = True
+    starts = np.r_[0, np.flatnonzero(~joined[:-1]) + 1]
+    ends = np.r_[starts[1:], n]
+    closing = {(int(a), int(b)) for a, b in edges[~step]}
+    return [(verts[a:b], (int(a), int(b) - 1) in closing) for a, b in zip(starts, ends)]
+
+
+def _closing_points(counts, cyclic):
+    """For np.insert(array, at, array[first], axis=0): each cyclic curve of 3 or more points gets its
+    first point repeated at its end, as groom's readers give a closed curve (detail `closed`)."""
+    counts = np.asarray(counts, np.int64)
+    ends = np.cumsum(counts)
+    loop = np.asarray(cyclic, bool) & (counts >= 3)
+    return ends[loop], (ends - counts)[loop], loop
+
+
+def _curves_cyclic(data):
+    """Per curve of a hair Curves datablock: whether it is cyclic (its `cyclic` attribute)."""
+    attribute = data.attributes.get('cyclic')
+    cyclic = np.zeros(len(data.curves), bool)
+    if attribute is not None and attribute.domain == 'CURVE' and attribute.data_type == 'BOOLEAN':
+        attribute.data.foreach_get('value', cyclic)
+    return cyclic
+
+
 def guides_from_objects(objects):
-    """A groom.CurveSet from hair Curves objects and legacy curve objects (every spline's control
-    points, poly or not, root first). Raises ValueError naming the object when it has no curves."""
-    chunks, counts = [], []
+    """A groom.CurveSet from hair Curves objects and legacy curve objects, root first, in world
+    space. Legacy curves are read as Blender evaluates them (_evaluated_splines). A cyclic curve
+    comes with its first point repeated at its end, and where every curve is one the set is marked
+    closed (detail `closed` = 1), as groom reads a closed curve from a file: a Bezier circle drawn
+    as the hairline is the whole loop. Raises ValueError naming the objects when they hold no curves."""
+    chunks, counts, loops = [], [], []
     for ob in objects:
         if ob.type == 'CURVES':
             data = ob.data
@@ -31,40 +94,72 @@ def guides_from_objects(objects):
             data.attributes['position'].data.foreach_get('vector', pos)
             offsets = np.empty(len(data.curves) + 1, np.int32)
             data.curve_offset_data.foreach_get('value', offsets)
-            chunks.append(_world(pos.reshape(-1, 3), ob.matrix_world))
-            counts.extend(np.diff(offsets).tolist())
+            curve_counts = np.diff(offsets)
+            at, first, loop = _closing_points(curve_counts, _curves_cyclic(data))
+            pos = np.insert(pos.reshape(-1, 3), at, pos.reshape(-1, 3)[first], axis=0)
+            chunks.append(_world(pos, ob.matrix_world))
+            counts.extend((curve_counts + loop).tolist())
+            loops.extend(loop.tolist())
         elif ob.type == 'CURVE':
-            for spline in ob.data.splines:
-                pts = spline.points if spline.type in {'POLY', 'NURBS'} else spline.bezier_points
-                n = len(pts)
-                if n == 0:
-                    continue
-                if spline.type == 'BEZIER':
-                    co = np.empty(n * 3, np.float32)
-                    pts.foreach_get('co', co)
-                else:
-                    co4 = np.empty(n * 4, np.float32)
-                    pts.foreach_get('co', co4)
-                    co = co4.reshape(-1, 4)[:, :3].ravel()
-                chunks.append(_world(co.reshape(-1, 3), ob.matrix_world))
-                counts.append(n)
+            for co, cyclic in _evaluated_splines(ob):
+                loop = cyclic and len(co) >= 3
+                if loop:
+                    co = np.vstack([co, co[:1]])
+                chunks.append(_world(co, ob.matrix_world))
+                counts.append(len(co))
+                loops.append(loop)
     if not counts:
-        names = ", ".join(ob.name for ob in objects) or "nothing"
-        raise ValueError(f"guides: no curves in the selection ({names}); select hair Curves or curve objects")
-    return groom.CurveSet(np.concatenate(chunks), np.array(counts, np.int64))
+        names = ", ".join(f"{ob.name} ({ob.type})" for ob in objects) or "nothing"
+        raise ValueError(f"guides: expected curves to read; {names} hold none (a curve object with no splines, "
+                         "or a hair object with no curves)")
+    curves = groom.CurveSet(np.concatenate(chunks), np.array(counts, np.int64))
+    if all(loops):
+        curves.detail_attributes["closed"] = np.array([1], np.int32)
+    return curves
 
 
 _BLENDER_NAMES = {"position", "radius", "curve_type", "resolution", "cyclic", "tilt", "handle_left", "handle_right"}
 _DETAIL = "groom_"  # prefix of the object properties that hold groom's detail attributes
+# Set on a hair object whose curves had no width: its radius only draws them thin (curves_object),
+# so it is not written back as a width. Not groom_*: that would read back as a detail attribute.
+_NO_WIDTH = "_groom_no_width"
+
+
+def _width_from_radius(ob):
+    """A hair Curves object's point `radius` as groom's `width`, in world space: curves_object sets
+    radius = width / 2 on an object at the origin, unscaled, so width = 2 radius there; an object
+    scaled since draws its hair scaled, by the cube root of its axes' scales (as Cycles scales a
+    curve's radius), and its points are written in world space, so its widths are scaled alike.
+    None where the object has no radius, or only the thin one drawn for curves without a width."""
+    radius = ob.data.attributes.get('radius')
+    if radius is None or radius.domain != 'POINT' or radius.data_type != 'FLOAT' or ob.get(_NO_WIDTH):
+        return None
+    width = np.empty(len(ob.data.points), np.float32)
+    radius.data.foreach_get('value', width)
+    width *= 2
+    axes = np.linalg.norm(np.array(ob.matrix_world, np.float64)[:3, :3], axis=0)
+    scale = float(np.cbrt(np.prod(axes)))
+    if scale != 1.0:
+        width *= np.float32(scale)
+    return width
 
 
 def curveset_from_object(ob):
-    """A groom.CurveSet from one object, with what curves_object kept of groom's attributes: 32-bit
-    integer, float and vector curve attributes (Blender attributes on the CURVE domain) and the
-    detail attributes (object properties named groom_NAME), so a puff made here can be gathered."""
+    """A groom.CurveSet from one object, with what curves_object kept of groom's attributes: the
+    point width (from the radius, _width_from_radius), 32-bit integer, float and vector curve
+    attributes (Blender attributes on the CURVE domain) and the detail attributes (object
+    properties named groom_NAME), so a puff made here can be gathered and a file written from a
+    hair object renders at its widths. A legacy curve object's radius is a bevel's scale, not a
+    width, and is not read."""
     curves = guides_from_objects([ob])
     if ob.type != 'CURVES':
         return curves
+    width = _width_from_radius(ob)
+    if width is not None:
+        offsets = np.empty(len(ob.data.curves) + 1, np.int32)
+        ob.data.curve_offset_data.foreach_get('value', offsets)
+        at, first, _ = _closing_points(np.diff(offsets), _curves_cyclic(ob.data))
+        curves.point_attributes["width"] = np.insert(width, at, width[first])
     for attribute in ob.data.attributes:
         if attribute.domain != 'CURVE' or attribute.name in _BLENDER_NAMES or attribute.name.startswith("."):
             continue
@@ -165,6 +260,7 @@ def curves_object(curves, name, collection):
         # 2 cm thick on a head in centimetres, 2 m in metres. A thousandth of their extent draws them thin.
         extent = float(np.max(points.max(axis=0) - points.min(axis=0)))
         radius.data.foreach_set('value', np.full(len(points), max(1e-3 * extent, 1e-6), np.float32))
+        ob[_NO_WIDTH] = True
     _keep_attributes(curves, ob)
     return ob
 

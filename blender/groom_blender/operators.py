@@ -5,9 +5,15 @@ Each setting is named like the command-line option it feeds (knot_length -> --kn
 settings the artist changed are passed on, so an untouched panel runs with groom's own defaults; the
 defaults shown here are the CLI's (`groom COMMAND --help`). Two settings are always passed: the head's up
 and forward directions, because Blender is Z-up with the face toward -Y where groom's own defaults
-(+Y up, face +Z) are those of the DCCs that export Y-up."""
+(+Y up, face +Z) are those of the DCCs that export Y-up.
+
+Where the panel offers a choice the CLI makes by which options are given (Partition's density, count
+or spacing; the Puff's place), it is a mode setting, and the fields of the other modes are hidden:
+the panel shows what will run. Setting a mode's field from Python picks that mode."""
 
 import warnings
+
+import numpy as np
 
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, PointerProperty
@@ -34,12 +40,39 @@ LAYOUTS = [
 ]
 
 
+PARTITION_BY = [
+    ("density", "Density", "groom's default: a segment every 1/200 of the typical gap between guides, on each side of "
+                           "every guide (many: Sintel's 228 guides made 1.5 M hairs)"),
+    ("count", "Count", "Segments per side: this many on each side of every guide"),
+    ("spacing", "Spacing", "Arc length between segments along the guide, scene units"),
+]
+PUFF_PLACES = [
+    ("top", "Top of the head", "The region centred where Up leaves the scalp, sized from the head's width near its top "
+                               "(radius 0.15 of it), the puff's sphere above it (radius 0.25, centre 0.4 of it higher)"),
+    ("custom", "Custom", "The region and sphere given below, scene units"),
+]
+
+
+def _picks(mode, value):
+    """An update callback: setting this field picks the mode it belongs to, so a script that sets
+    `count` (as before the mode existed) gets that count, not the density."""
+    def update(self, context):
+        if getattr(self, mode) != value:
+            setattr(self, mode, value)
+    return update
+
+
 def _mesh_poll(self, ob):
     return ob.type == 'MESH'
 
 
 def _curves_poll(self, ob):
     return ob.type in {'CURVES', 'CURVE'}
+
+
+# The lengths whose defaults are groom's centimetres (the panel says what an untouched one runs as).
+_CM = ("; untouched, groom's default in centimetres x Units per cm; a value typed is scene units")
+CM_LENGTHS = ("parting_gap", "edge_length", "edge_radius", "section_length", "lift")
 
 
 class GroomSettings(bpy.types.PropertyGroup):
@@ -61,22 +94,39 @@ class GroomSettings(bpy.types.PropertyGroup):
                                                ("scalp", "Scalp", "Cornrows: the normal is the scalp's")], default="frame")
     fibers: IntProperty(name="Fibers", default=0, min=0, description="Hair fibers per strand (0 = strand centrelines)")
     rest: BoolProperty(name="Rest on scalp", default=False)
-    # partition
-    count: IntProperty(name="Segments per side", default=24, min=1)
+    # partition: how many segments is one choice (the CLI's --count, --spacing or neither), shown as one
+    partition_by: EnumProperty(name="Segments", items=PARTITION_BY, default="density",
+                               description="How many edge hairs: groom's density, a count per side, or a spacing")
+    count: IntProperty(name="Segments per side", default=24, min=1, update=_picks("partition_by", "count"),
+                       description="Segments on each side of every guide (Segments: Count)")
+    spacing: FloatProperty(name="Spacing", default=0.1, min=1e-6, update=_picks("partition_by", "spacing"),
+                           description="Arc length between segments along the guide, scene units (Segments: Spacing)")
     samples: IntProperty(name="Points per segment", default=8, min=2)
-    width: FloatProperty(name="Hair width", default=0.01, min=0.0)
+    width: FloatProperty(name="Hair width", default=0.0, min=0.0,
+                         description="One hair diameter root to tip, scene units; 0 = groom's: 0.008 cm at the root "
+                                     "tapering to 0.004 cm at the tip, x Units per cm")
     # curl
-    type: EnumProperty(name="Hair type", items=HAIR_TYPES, default="3a")
-    uniformity: FloatProperty(name="Uniformity", default=0.7, min=0.0, max=1.0)
+    type: EnumProperty(name="Hair type", items=HAIR_TYPES, default="3a", description="Curl's hair type")
+    uniformity: FloatProperty(name="Uniformity", default=0.7, min=0.0, max=1.0,
+                              description="Curl: probability a cycle takes the type's dominant shape")
     # generate
     hairs: IntProperty(name="Hairs", default=1000, min=1)
     neighbours: IntProperty(name="Neighbours", default=4, min=1)
-    # puff
-    center: FloatVectorProperty(name="Region centre", default=(0.0, 1.0, 0.0), subtype='XYZ')
-    radius: FloatProperty(name="Region radius", default=0.3, min=0.0)
-    sphere_center: FloatVectorProperty(name="Puff centre", default=(0.0, 1.5, 0.0), subtype='XYZ')
-    sphere_radius: FloatProperty(name="Puff radius", default=0.5, min=0.0)
-    puff_hairs: IntProperty(name="Puff hairs", default=0, min=0)
+    # puff: where is one choice (the top of the head, or the values given), shown as one
+    puff_place: EnumProperty(name="Place", items=PUFF_PLACES, default="top", description="Where the puff grows")
+    center: FloatVectorProperty(name="Region centre", default=(0.0, 0.0, 1.0), subtype='XYZ', update=_picks("puff_place", "custom"),
+                                description="The region's centre, projected onto the scalp (Place: Custom)")
+    radius: FloatProperty(name="Region radius", default=0.3, min=0.0, update=_picks("puff_place", "custom"),
+                          description="Region radius around the projected centre, scene units (Place: Custom)")
+    sphere_center: FloatVectorProperty(name="Puff centre", default=(0.0, 0.0, 1.6), subtype='XYZ', update=_picks("puff_place", "custom"),
+                                       description="Centre of the puff's sphere (Place: Custom)")
+    sphere_radius: FloatProperty(name="Puff radius", default=0.5, min=0.0, update=_picks("puff_place", "custom"),
+                                 description="Radius of the puff's sphere, scene units (Place: Custom)")
+    puff_hairs: IntProperty(name="Puff hairs", default=0, min=0, description="Curled hairs grown in the region (0 = the guides only)")
+    puff_type: EnumProperty(name="Puff hair type", items=HAIR_TYPES, default="3a",
+                            description="The curls of the Puff's hairs and of the hair Gather pulls into the puffs")
+    puff_uniformity: FloatProperty(name="Puff uniformity", default=0.7, min=0.0, max=1.0,
+                                   description="Puff and Gather: probability a cycle takes the type's dominant shape")
     # the head, for hairline, edges, sections and gather
     up: FloatVectorProperty(name="Up", default=(0.0, 0.0, 1.0), subtype='XYZ', description="The head's up direction")
     forward: FloatVectorProperty(name="Forward", default=(0.0, -1.0, 0.0), subtype='XYZ', description="The direction the face looks")
@@ -84,21 +134,23 @@ class GroomSettings(bpy.types.PropertyGroup):
                               description="One closed curve around the head (Groom Hairline makes one); none = groom's default")
     parting: PointerProperty(name="Parting", type=bpy.types.Object, poll=_curves_poll,
                              description="Parting curves on the scalp: bare lines no hair crosses")
-    parting_gap: FloatProperty(name="Parting gap", default=0.3, min=0.0, description="Bare width along each parting")
+    parting_gap: FloatProperty(name="Parting gap", default=0.3, min=0.0, description="Bare width along each parting" + _CM)
     # edges
     edge_count: IntProperty(name="Edge hairs", default=0, min=0, description="Exact number of baby hairs (0 = from the density)")
-    edge_length: FloatProperty(name="Edge length", default=2.4, min=0.0, description="Arc length of one baby hair")
-    edge_radius: FloatProperty(name="Swirl radius", default=0.15, min=0.0, description="Tightest radius of curvature of a baby hair")
+    edge_length: FloatProperty(name="Edge length", default=2.4, min=0.0, description="Arc length of one baby hair" + _CM)
+    edge_radius: FloatProperty(name="Swirl radius", default=0.15, min=0.0,
+                               description="Tightest radius of curvature of a baby hair" + _CM)
     units_per_cm: FloatProperty(name="Units per cm", default=1.0, min=0.0,
-                                description="Scene units per centimetre, for groom's centimetre defaults: Generate's widths, "
-                                            "Curl's radius, Edges' sizes (0.01 for a scene in metres, Blender's default)")
+                                description="Scene units per centimetre, for groom's centimetre defaults: the widths, curl radii "
+                                            "and default lengths of Partition, Curl, Generate, Puff, Edges, Sections and Gather "
+                                            "(0.01 for a scene in metres, Blender's default)")
     # sections
     layout: EnumProperty(name="Layout", items=LAYOUTS, default="grid")
     cols: IntProperty(name="Columns", default=8, min=1, max=256, description="grid: bands across the head; rows: rows")
-    section_length: FloatProperty(name="Guide length", default=30.0, min=0.0, description="Length of each section guide's free part")
+    section_length: FloatProperty(name="Guide length", default=30.0, min=0.0, description="Length of each section guide's free part" + _CM)
     # gather
     gather_hairs: IntProperty(name="Gathered hairs", default=20000, min=1, description="Hairs over the scalp outside the puffs' bases")
-    lift: FloatProperty(name="Lift", default=0.08, min=0.0, description="Greatest height of the gathered hair above the scalp")
+    lift: FloatProperty(name="Lift", default=0.08, min=0.0, description="Greatest height of the gathered hair above the scalp" + _CM)
 
 
 def _given(settings, names, rename=None):
@@ -131,6 +183,45 @@ def _region(settings):
     return kw
 
 
+def _selected_guides(op, context, scalp):
+    """The selected hair Curves and curve objects (not the scalp). Raises ValueError naming what is
+    selected when none is: "no curves in the selection (nothing)" had not said a mesh was selected
+    and curves were needed."""
+    chosen = [ob for ob in context.selected_objects if ob.type in {'CURVES', 'CURVE'} and ob != scalp]
+    if not chosen:
+        found = ", ".join(f"{ob.name} ({'the scalp' if ob == scalp else ob.type.lower()})" for ob in context.selected_objects)
+        raise ValueError(f"{op.bl_label.split()[-1].lower()}: expected guide curves selected (hair Curves or curve objects); "
+                         f"selected: {found or 'nothing'}")
+    return chosen
+
+
+def _puff_place(settings, context):
+    """center, radius, sphere_center, sphere_radius for the Puff: the panel's with Place = Custom;
+    with Top of the head, from the scalp mesh: the region centred where Up leaves it (groom projects
+    the centre onto the scalp), sized from the head's width across Up over the top 15% of its
+    height (a head there, not the shoulders of a bust or body), the sphere above it. Fixed
+    defaults had put a Z-up head's puff at (0, 1, 0), the back of a unit head and nowhere on a real one."""
+    if settings.puff_place == 'custom':
+        return tuple(settings.center), settings.radius, tuple(settings.sphere_center), settings.sphere_radius
+    up = np.array(settings.up, np.float64)
+    if not np.linalg.norm(up) > 0:
+        raise ValueError(f"puff: Up must be a direction to find the top of the head; found {tuple(settings.up)}")
+    up /= np.linalg.norm(up)
+    verts, _ = convert._world_triangles(settings.scalp, context.evaluated_depsgraph_get())
+    height = verts @ up
+    top, depth = float(height.max()), 0.15 * float(height.max() - height.min())
+    across = verts[height >= top - depth] - np.outer(height[height >= top - depth], up)
+    middle = across.mean(axis=0)
+    width = 2.0 * float(np.linalg.norm(across - middle, axis=1).max())
+    center = middle + top * up
+    return tuple(center), 0.15 * width, tuple(center + 0.4 * width * up), 0.25 * width
+
+
+def _in_blender_words(message):
+    """groom's warning as the artist sets it here: the Units per cm setting, not the keyword."""
+    return message.replace("pass units_per_cm", "set Units per cm (Groom panel)").replace("units_per_cm", "Units per cm")
+
+
 class _GroomOperator:
     bl_options = {'REGISTER', 'UNDO'}
     needs_guides = True
@@ -146,8 +237,7 @@ class _GroomOperator:
         try:
             guides = None
             if self.needs_guides:
-                chosen = [ob for ob in context.selected_objects if ob.type in {'CURVES', 'CURVE'} and ob != settings.scalp]
-                guides = convert.guides_from_objects(chosen)
+                guides = convert.guides_from_objects(_selected_guides(self, context, settings.scalp))
             scalp = None
             if settings.scalp is not None:
                 extras = settings.scalp_extras.all_objects if settings.scalp_extras else ()
@@ -169,7 +259,7 @@ class _GroomOperator:
         # do not show) in the status bar and the Info editor, where an artist looks.
         for w in caught:
             if issubclass(w.category, groom.GroomWarning):
-                self.report({'WARNING'}, str(w.message))
+                self.report({'WARNING'}, _in_blender_words(str(w.message)))
         ob = convert.curves_object(result, self.bl_label.split()[-1].lower(), context.collection)
         self.report({'INFO'}, f"groom: {result.num_curves} curves, {result.num_points} points -> {ob.name}")
         return {'FINISHED'}
@@ -192,7 +282,11 @@ class GROOM_OT_partition(_GroomOperator, bpy.types.Operator):
     bl_label = "Groom Partition"
 
     def run(self, s, guides, scalp, kw):
-        kw.update(_given(s, ("count", "samples", "width", "seed")))
+        kw.update(_given(s, ("samples", "units_per_cm", "seed")))
+        if s.partition_by != 'density':
+            kw[s.partition_by] = getattr(s, s.partition_by)
+        if s.width > 0:  # 0: groom's tapered default widths
+            kw["width"] = s.width
         return groom.partition(guides, scalp=scalp, **kw)
 
 
@@ -224,9 +318,16 @@ class GROOM_OT_puff(_GroomOperator, bpy.types.Operator):
     needs_guides = False
 
     def run(self, s, guides, scalp, kw):
-        kw.update(_given(s, ("type", "seed")))
-        return groom.puff(scalp=scalp, center=tuple(s.center), radius=s.radius, sphere_center=tuple(s.sphere_center),
-                          sphere_radius=s.sphere_radius, hairs=s.puff_hairs, **kw)
+        # Its own hair type and uniformity: it had taken Curl's type and no uniformity at all.
+        kw.update(_given(s, ("puff_type", "puff_uniformity", "units_per_cm", "seed"),
+                         {"puff_type": "type", "puff_uniformity": "uniformity"}))
+        center, radius, sphere_center, sphere_radius = _puff_place(s, bpy.context)
+        if s.puff_place != 'custom':
+            self.report({'INFO'}, "groom: puff on the top of the head: region centre ({:.4g}, {:.4g}, {:.4g}) radius {:.4g}, "
+                                  "sphere centre ({:.4g}, {:.4g}, {:.4g}) radius {:.4g} (Place: Custom to change them)"
+                        .format(*center, radius, *sphere_center, sphere_radius))
+        return groom.puff(scalp=scalp, center=center, radius=radius, sphere_center=sphere_center,
+                          sphere_radius=sphere_radius, hairs=s.puff_hairs, **kw)
 
 
 class GROOM_OT_hairline(_GroomOperator, bpy.types.Operator):
@@ -264,7 +365,7 @@ class GROOM_OT_sections(_GroomOperator, bpy.types.Operator):
         kw.update(_head(s))
         kw.update(_region(s))
         kw.pop("parting", None)  # sections make their own partings
-        kw.update(_given(s, ("layout", "cols", "section_length", "seed"), {"section_length": "length"}))
+        kw.update(_given(s, ("layout", "cols", "section_length", "units_per_cm", "seed"), {"section_length": "length"}))
         return groom.sections(scalp=scalp, **kw)
 
 
@@ -280,7 +381,9 @@ class GROOM_OT_gather(_GroomOperator, bpy.types.Operator):
             raise ValueError("gather: select the puffs (hair objects made by Groom Puff) to gather the hair into")
         kw.update(_head(s))  # forward too: with no Hairline object, gather makes the head's default one
         kw.update(_region(s))
-        kw.update(_given(s, ("gather_hairs", "lift", "type", "seed"), {"gather_hairs": "hairs"}))
+        # The Puff's hair type: the hair gathered into a puff curls as the puff's own.
+        kw.update(_given(s, ("gather_hairs", "lift", "puff_type", "puff_uniformity", "units_per_cm", "seed"),
+                         {"gather_hairs": "hairs", "puff_type": "type", "puff_uniformity": "uniformity"}))
         return groom.gather([convert.curveset_from_object(ob) for ob in chosen], scalp=scalp, **kw)
 
 

@@ -2,6 +2,17 @@
 
 import bpy
 
+from .operators import CM_LENGTHS
+
+
+def _prop(layout, s, name):
+    """A setting; under one of groom's centimetre lengths left untouched in a scene not in
+    centimetres, what it runs as (the field shows the centimetres)."""
+    layout.prop(s, name)
+    if name in CM_LENGTHS and not s.is_property_set(name) and s.units_per_cm != 1.0:
+        cm = getattr(s, name)
+        layout.label(text=f"untouched: {cm:g} cm = {cm * s.units_per_cm:g} scene units")
+
 
 class GROOM_PT_panel(bpy.types.Panel):
     bl_label = "Groom"
@@ -29,7 +40,11 @@ class GROOM_PT_panel(bpy.types.Panel):
 
         box = self.layout.box()
         box.label(text="Edge hairs (selected guides)")
-        for name in ("count", "samples", "width"):
+        # Only the chosen mode's field: a count shown while the density ran had read as the count.
+        box.prop(s, "partition_by")
+        if s.partition_by != 'density':
+            box.prop(s, s.partition_by)
+        for name in ("samples", "width"):
             box.prop(s, name)
         box.operator("groom.partition")
 
@@ -46,24 +61,28 @@ class GROOM_PT_panel(bpy.types.Panel):
         box.operator("groom.generate")
 
         box = self.layout.box()
-        box.label(text="Puff")
-        for name in ("center", "radius", "sphere_center", "sphere_radius", "puff_hairs"):
+        box.label(text="Puff (its hair type also Gather's)")
+        box.prop(s, "puff_place")
+        if s.puff_place == 'custom':
+            for name in ("center", "radius", "sphere_center", "sphere_radius"):
+                box.prop(s, name)
+        for name in ("puff_hairs", "puff_type", "puff_uniformity"):
             box.prop(s, name)
         box.operator("groom.puff")
 
         box = self.layout.box()
         box.label(text="Whole scalp")
         for name in ("up", "forward", "hairline", "parting", "parting_gap"):
-            box.prop(s, name)
+            _prop(box, s, name)
         box.operator("groom.hairline")
         for name in ("edge_count", "edge_length", "edge_radius"):
-            box.prop(s, name)
+            _prop(box, s, name)
         box.operator("groom.edges")
         for name in ("layout", "cols", "section_length"):
-            box.prop(s, name)
+            _prop(box, s, name)
         box.operator("groom.sections")
         for name in ("gather_hairs", "lift"):
-            box.prop(s, name)
+            _prop(box, s, name)
         box.operator("groom.gather", text="Groom Gather (selected puffs)")
 
 

@@ -44,8 +44,9 @@ struct CurveReadOptions {
     std::function<void(const std::string&)> warn;
     /// OBJ and PLY edges: a closed loop of edges (what Blender exports for a closed curve) is read as
     /// one closed curve, its first point repeated at the end as a USD periodic curve reads; false: a
-    /// ParseError (curves are open: a hair has a root and a tip). For hairlines (kernel/io/edge_chains.h).
-    bool closed_loops = false;
+    /// ParseError. True everywhere: refused outside `--hairline`, a hairline exported from Blender
+    /// could not even be read by `groom info` or `convert` (a trial); ops that need a root say so.
+    bool closed_loops = true;
 };
 
 /// Reads a curve file. Throws ParseError (file, line or byte offset, expected vs found) or IoError.

@@ -35,7 +35,7 @@ ObjData parse_obj(const FileBytes& file);
 /// Curves: an `l` record with 3 or more points is one curve; two-point records (what Blender's OBJ
 /// exporters write, one per edge) are joined into chains where they share vertices (edge_chains.h).
 /// `closed_loops`: a closed loop of edges is one closed curve (CurveReadOptions::closed_loops), else an error.
-CurveSet read_obj_curves(const FileBytes& file, bool closed_loops = false);
+CurveSet read_obj_curves(const FileBytes& file, bool closed_loops = true);
 /// `closed`: each `l` record ends with its first vertex again (CurveWriteOptions::closed).
 std::string write_obj_curves(const CurveSet& curves, bool closed = false);
 /// The faces of the whole file, or (group not empty) only those inside an `o` object or `g` group
@@ -49,7 +49,7 @@ CurveSet read_usda(const FileBytes& file, const CurveReadOptions& options);
 std::string write_usda(const CurveSet& curves, bool closed = false);
 
 // --- PLY (ply_parse, ply_curves, ply_mesh, ply_writer) ---------------------------------------------
-CurveSet read_ply_curves(const FileBytes& file, bool closed_loops = false);
+CurveSet read_ply_curves(const FileBytes& file, bool closed_loops = true);
 std::string write_ply_curves(const CurveSet& curves, PlyEncoding encoding);
 /// Whether write_ply_curves keeps a column: every one but an int64 column with a value beyond
 /// +-2^53 (stored as double, which would round it; left out instead).

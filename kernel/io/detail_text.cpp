@@ -2,6 +2,7 @@
 
 #include "kernel/error.h"
 #include "kernel/io/io_util.h"
+#include "kernel/units.h"
 
 #include <cmath>
 #include <cstdint>
@@ -85,6 +86,13 @@ void set_detail_from_text(CurveSet& cs, const std::string& name, std::string_vie
     if (cs.attributes(Domain::Detail).find(name)) throw ParseError(bad_message + " (detail '" + name + "' given twice)");
     TextCursor cur(text);
     const auto type = attr_type_named(cur.token());
+    // The details groom itself reads have one type and meaning: `up_axis z` had turned transform's
+    // axis while the .usda writer wrote Y, and `up_axis int 1` failed later naming no file (a trial).
+    auto known = [&](std::string_view want) {
+        if (type && type_name(*type) != want) throw ParseError(bad_message + " (detail '" + name + "' is " + std::string(want) + ")");
+    };
+    if (name == "up_axis" || name == "units") known("string");
+    if (name == attr::closed) known("int");
     auto bad = [&](const char* why) { throw ParseError(bad_message + " (" + why + ")"); };
     if (!type) bad("expected a type: float, int, int64, float3 or string");
     auto end_of_value = [&] {
@@ -94,7 +102,10 @@ void set_detail_from_text(CurveSet& cs, const std::string& name, std::string_vie
         case AttrType::String: {
             std::string_view rest = cur.rest_of_line();
             if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
-            cs.set_detail_string(name, unescape_line(rest));
+            const std::string value = unescape_line(rest);
+            if (name == "up_axis" && value != "Y" && value != "Z") bad("up_axis is Y or Z");
+            if (name == "units" && !(meters_per_unit(value) > 0.0)) bad("units is mm, cm, m, in or metres per unit");
+            cs.set_detail_string(name, value);
             break;
         }
         case AttrType::Float: {

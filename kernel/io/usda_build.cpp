@@ -514,13 +514,7 @@ void apply_layer_units(const Layer& layer, const std::string& file, CurveSet& cu
     else if (!layer.up_axis.empty() && layer.up_axis != "Y" && warn) {
         warn(file + ": upAxis '" + layer.up_axis + "' is neither Y nor Z (USD's two); taken as Y");
     }
-    if (layer.meters_per_unit > 0.0) {
-        if (const std::string_view name = unit_named(layer.meters_per_unit); !name.empty()) curves.set_detail_string("units", name);
-        else if (warn) {
-            warn(file + ": metersPerUnit " + format_number(layer.meters_per_unit) +
-                 " is none of mm, cm, m, in: groom transform --units needs --from-units for these curves");
-        }
-    }
+    if (layer.meters_per_unit > 0.0) curves.set_detail_string("units", unit_text(layer.meters_per_unit));
 }
 
 /// Concatenates the prims' CurveSets in one pass (linear in the total). Point and curve columns present

@@ -177,11 +177,19 @@ private:
             if (is_list_op(key.text)) key = lex_.next();
             if (!lex_.accept_punct('=')) continue;
             if (key.text == "defaultPrim" && lex_.peek().kind == Tok::String) layer_.default_prim = string_value();
-            else if (key.text == "upAxis" && lex_.peek().kind == Tok::String) layer_.up_axis = string_value();
-            else if (key.text == "metersPerUnit" && lex_.peek().kind == Tok::Number) {
+            // The two that change what the numbers mean are refused when malformed, as USD's own
+            // parser refuses them: skipped, `upAxis = Z` (unquoted) had read as Y-up and
+            // `metersPerUnit = "cm"` as no unit, without a word (a trial).
+            else if (key.text == "upAxis") {
+                if (lex_.peek().kind != Tok::String) lex_.fail(lex_.peek(), "expected upAxis = \"Y\" or \"Z\" (a quoted token)");
+                layer_.up_axis = string_value();
+            }
+            else if (key.text == "metersPerUnit") {
                 const Token n = lex_.next();
                 double v = 0.0;
-                if (!parse_double(n.text, v) || !(v > 0.0) || !std::isfinite(v)) lex_.fail(n, "expected metersPerUnit > 0");
+                if (n.kind != Tok::Number || !parse_double(n.text, v) || !(v > 0.0) || !std::isfinite(v)) {
+                    lex_.fail(n, "expected metersPerUnit > 0, a finite number");
+                }
                 layer_.meters_per_unit = v;
             }
             else skip_value();

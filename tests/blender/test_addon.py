@@ -1,11 +1,16 @@
 """The Blender add-on, headless: a sphere scalp and three guides made in Blender, every operator run
 from bpy.ops.groom, and each new hair object checked against the groom module's own output for the
-same inputs (curve count, point count, positions, radius = width / 2).
+same inputs (curve count, point count, positions, radius = width / 2). Then what the panel shows
+against what runs, legacy curves as Blender draws them, widths written back from a hair object, and
+the reports an artist gets for a wrong selection.
 
 Run by tests/blender/run.sh: blender -b --factory-startup --python-exit-code 1 --python THIS."""
 import math
 import os
 import sys
+import tempfile
+import traceback
+import types
 
 import bpy
 import numpy as np
@@ -23,6 +28,76 @@ def check(what, ok, detail=""):
     print(("ok   " if ok else "FAIL ") + what + (": " + detail if detail else ""))
     if not ok:
         failures.append(what)
+
+
+def part(what):
+    """Runs a block of checks at once; an exception in it fails the block by name instead of ending
+    the run, so every later block still reports."""
+    def run(fn):
+        try:
+            fn()
+        except Exception as e:
+            traceback.print_exc()
+            check(f"{what}: ran to the end", False, f"{type(e).__name__}: {e}")
+        return fn
+    return run
+
+
+def unset(settings, *names):
+    """Back to the panel's defaults (names this add-on does not have are skipped)."""
+    for name in names:
+        if name in settings.bl_rna.properties:
+            settings.property_unset(name)
+
+
+def select_only(*obs):
+    for ob in bpy.context.view_layer.objects:
+        ob.select_set(ob in obs)
+    bpy.context.view_layer.objects.active = obs[0] if obs else None
+
+
+def point_positions(ob):
+    pos = np.empty(len(ob.data.points) * 3, np.float32)
+    ob.data.attributes['position'].data.foreach_get('vector', pos)
+    return pos.reshape(-1, 3)
+
+
+def run_report(opname):
+    """bpy.ops.groom.OPNAME(): (result, error text); background Blender raises an ERROR report."""
+    try:
+        return getattr(bpy.ops.groom, opname)(), ""
+    except RuntimeError as e:
+        return {'CANCELLED'}, str(e)
+
+
+class PanelRecorder:
+    """A stand-in for the panel's layout: which settings and labels it draws."""
+    def __init__(self):
+        self.props, self.labels = [], []
+
+    def column(self, *args, **kw):
+        return self
+
+    box = row = column
+
+    def prop(self, data, name, **kw):
+        self.props.append(name)
+
+    def label(self, text="", **kw):
+        self.labels.append(text)
+
+    def operator(self, *args, **kw):
+        pass
+
+    def separator(self, *args, **kw):
+        pass
+
+
+def panel_draws():
+    from groom_blender import panel
+    rec = PanelRecorder()
+    panel.GROOM_PT_panel.draw(types.SimpleNamespace(layout=rec), types.SimpleNamespace(scene=bpy.context.scene))
+    return rec
 
 
 # The scene: a unit sphere (the scalp) and three cornrow-like guides lying 0.02 above it, arcs from
@@ -140,40 +215,57 @@ cases = [
     ("curl", lambda: groom.curl(guides, scalp=field, type="4a", units_per_cm=0.1), dict(type="4a", units_per_cm=0.1)),
     ("puff", lambda: groom.puff(scalp=field, center=(0, 0, 1), radius=0.3, sphere_center=(0, 0, 1.6), sphere_radius=0.4, hairs=20),
      dict(center=(0, 0, 1), radius=0.3, sphere_center=(0, 0, 1.6), sphere_radius=0.4, puff_hairs=20)),
+    # ... and Partition and Puff too (a trial in metres: Partition's and Puff's hairs 4-8 mm thick).
+    ("partition", lambda: groom.partition(guides, scalp=field, count=6, units_per_cm=0.1), dict(count=6, units_per_cm=0.1)),
+    ("puff", lambda: groom.puff(scalp=field, center=(0, 0, 1), radius=0.3, sphere_center=(0, 0, 1.6), sphere_radius=0.4, hairs=20,
+                                units_per_cm=0.1),
+     dict(center=(0, 0, 1), radius=0.3, sphere_center=(0, 0, 1.6), sphere_radius=0.4, puff_hairs=20, units_per_cm=0.1)),
+    # The Puff's own hair type and uniformity, not Curl's type (it had ignored uniformity).
+    ("puff", lambda: groom.puff(scalp=field, center=(0, 0, 1), radius=0.3, sphere_center=(0, 0, 1.6), sphere_radius=0.4, hairs=20,
+                                type="2a", uniformity=0.2),
+     dict(center=(0, 0, 1), radius=0.3, sphere_center=(0, 0, 1.6), sphere_radius=0.4, puff_hairs=20, type="4c", puff_type="2a",
+          puff_uniformity=0.2)),
 ]
-for name, expected_fn, props in cases:
-    for key in ("fibers", "knot_length", "count", "type", "hairs", "puff_hairs", "center", "radius", "sphere_center", "sphere_radius",
-                "units_per_cm"):
-        settings.property_unset(key)
+SETTINGS_USED = ("fibers", "knot_length", "count", "partition_by", "spacing", "width", "type", "hairs", "puff_hairs", "puff_place",
+                 "center", "radius", "sphere_center", "sphere_radius", "puff_type", "puff_uniformity", "units_per_cm")
+made = {}  # label -> the object the case made
+
+
+def run_case(name, expected_fn, props):
+    label = f"{name} ({', '.join(f'{k}={v}' for k, v in props.items())})"
+    unset(settings, *SETTINGS_USED)
     for key, value in props.items():
         setattr(settings, key, value)
     select_guides()
-    result = getattr(bpy.ops.groom, name)()
+    result, error = run_report(name)
     ob = bpy.context.view_layer.objects.active
-    check(f"{name}: operator finished", result == {'FINISHED'}, str(result))
+    check(f"{label}: operator finished", result == {'FINISHED'}, str(result) + error)
     if result != {'FINISHED'}:
-        continue
+        return
+    made[label] = ob
     expected = expected_fn()
-    check(f"{name}: makes hair", expected.num_curves > 0, str(expected))
-    check(f"{name}: a new hair Curves object", ob.type == 'CURVES' and ob != guides_ob, ob.type)
+    check(f"{label}: makes hair", expected.num_curves > 0, str(expected))
+    check(f"{label}: a new hair Curves object", ob.type == 'CURVES' and ob != guides_ob, ob.type)
     counts = (len(ob.data.curves), len(ob.data.points))
-    check(f"{name}: curve and point counts", counts == (expected.num_curves, expected.num_points), f"{counts} vs {expected}")
+    check(f"{label}: curve and point counts", counts == (expected.num_curves, expected.num_points), f"{counts} vs {expected}")
     if counts == (expected.num_curves, expected.num_points):
         pos = np.empty(expected.num_points * 3, np.float32)
         ob.data.attributes['position'].data.foreach_get('vector', pos)
         err = np.abs(pos.reshape(-1, 3) - expected.points).max() if expected.num_points else 0.0
-        check(f"{name}: positions", err == 0.0, f"max difference {err}")
+        check(f"{label}: positions", err == 0.0, f"max difference {err}")
         if "width" in expected.point_attributes:
             radius = np.empty(expected.num_points, np.float32)
             ob.data.attributes['radius'].data.foreach_get('value', radius)
-            check(f"{name}: radius is half the width", np.array_equal(radius, 0.5 * expected.point_attributes["width"]))
+            check(f"{label}: radius is half the width", np.array_equal(radius, 0.5 * expected.point_attributes["width"]))
+
+
+for name, expected_fn, props in cases:
+    part(name)(lambda: run_case(name, expected_fn, props))
 
 # The whole scalp, Z-up as Blender is: a head-sized sphere (radius 10, centimetres like groom's
 # defaults), its hairline, edges along it, grid sections, and two puffs gathered. Each object must
 # equal the module's output for the same inputs with up = +Z and the face toward -Y.
-for key in ("fibers", "knot_length", "count", "type", "hairs", "puff_hairs", "center", "radius", "sphere_center", "sphere_radius",
-            "units_per_cm"):
-    settings.property_unset(key)
+unset(settings, *SETTINGS_USED)
 bpy.ops.mesh.primitive_uv_sphere_add(radius=10.0, segments=96, ring_count=48, location=(0, 0, 0))
 head = bpy.context.active_object
 head.name = "head"

@@ -60,6 +60,20 @@ TEST(DetailText, ValuesThatDoNotFitTheirTypeAreRefusedByLine)
     EXPECT_NE(ply.find("w.ply: malformed 'comment groom detail shard int 4294967297' (an int past the 32-bit range)"), std::string::npos) << ply;
 }
 
+// The details groom reads itself keep their type and meaning: `up_axis z` had turned transform's
+// axis while .usda was written Y-up; `up_axis int 1` failed later, naming no file.
+TEST(DetailText, KnownDetailsMustMeanWhatGroomReads)
+{
+    test::TempDir dir;
+    EXPECT_NE(read_error(dir, "a.obj", obj_with("# groom detail up_axis string z\n")).find("a.obj:3:"), std::string::npos);
+    EXPECT_NE(read_error(dir, "b.obj", obj_with("# groom detail up_axis int 1\n")).find("(detail 'up_axis' is string)"), std::string::npos);
+    EXPECT_NE(read_error(dir, "c.obj", obj_with("# groom detail units string furlong\n")).find("(units is mm, cm, m, in or metres per unit)"),
+              std::string::npos);
+    EXPECT_NE(read_error(dir, "d.obj", obj_with("# groom detail closed float 1\n")).find("(detail 'closed' is int)"), std::string::npos);
+    ASSERT_EQ(read_error(dir, "e.obj", obj_with("# groom detail up_axis string Z\n# groom detail units string 0.3048\n")), "");
+    EXPECT_EQ(read_curves(dir.file("e.obj")).detail_string("units"), "0.3048");
+}
+
 TEST(DetailText, ANameGivenTwiceIsRefused)
 {
     test::TempDir dir;

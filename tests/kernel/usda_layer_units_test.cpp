@@ -44,15 +44,29 @@ TEST(UsdaLayerUnits, UpAxisAndMetersPerUnitAreKeptThroughReadAndWrite)
     }
 }
 
-TEST(UsdaLayerUnits, YUpAndUnnamedUnitsSetNothingAndOthersAreWarnedOf)
+TEST(UsdaLayerUnits, YUpSetsNothingAndOtherUnitsAreKeptAsNumbers)
 {
     // Y-up and no unit: nothing (files groom writes say Y and read back must write the same bytes).
     const auto y = read_usda_text(layer("    upAxis = \"Y\"\n"));
     EXPECT_TRUE(y.curves.detail_string("up_axis").empty());
     EXPECT_TRUE(y.curves.detail_string("units").empty());
-    const auto dm = read_usda_text(layer("    metersPerUnit = 0.1\n"));
-    EXPECT_TRUE(dm.curves.detail_string("units").empty());
-    EXPECT_TRUE(dm.warned("metersPerUnit 0.1 is none of mm, cm, m, in")) << (dm.warnings.empty() ? "" : dm.warnings[0]);
+    // A unit no name fits is kept as its number of metres, written back, and converted from by
+    // transform: feet had been dropped, the file written without a unit read as cm, 30x off (a trial).
+    const auto ft = read_usda_text(layer("    metersPerUnit = 0.3048\n"));
+    EXPECT_EQ(ft.curves.detail_string("units"), "0.3048");
+    TempDir feet;
+    write_curves(ft.curves, feet.file("ft.usda"));
+    EXPECT_NE(read_bytes(feet.file("ft.usda")).find("metersPerUnit = 0.3048\n"), std::string::npos) << read_bytes(feet.file("ft.usda"));
+    EXPECT_EQ(read_curves(feet.file("ft.usda")).detail_string("units"), "0.3048");  // (transform converts from it: TransformTest)
+    // Malformed, refused by line, as USD's parser refuses them (they had been skipped: an unquoted Z
+    // read as Y-up).
+    EXPECT_NE(test::usda_error(layer("    upAxis = Z\n")).find("expected upAxis = \"Y\" or \"Z\" (a quoted token)"), std::string::npos);
+    EXPECT_NE(test::usda_error(layer("    upAxis = 1\n")).find("expected upAxis"), std::string::npos);
+    for (const char* bad : {"nan", "inf", "\"cm\"", "0"}) {
+        const std::string e = test::usda_error(layer(std::string("    metersPerUnit = ") + bad + "\n"));
+        EXPECT_NE(e.find(":3:"), std::string::npos) << bad << ": " << e;
+        EXPECT_NE(e.find("expected metersPerUnit > 0, a finite number"), std::string::npos) << bad << ": " << e;
+    }
     // An up_axis said Y (by transform) is kept through a write and a read (a review: it was dropped).
     CurveSet said = read_usda_text(layer("")).curves;
     said.set_detail_string("up_axis", "Y");

@@ -136,6 +136,11 @@ TEST(Transform, UnitsScalePointsAndWidths)
     EXPECT_NEAR(in.positions()[4].y, 0.04f / 0.0254f, 1e-6f);
     q.units = "mm";
     EXPECT_NEAR(transform(in, q).positions()[4].y, 40.0f, 1e-4f);
+    // A unit no name fits, as a USD layer's metersPerUnit gives it (feet): its number of metres.
+    CurveSet ft = straight_guide();
+    ft.set_detail_string("units", "0.3048");
+    q.units = "cm";
+    EXPECT_NEAR(transform(ft, q).positions()[4].y, 4.0f * 30.48f, 1e-3f);
 }
 
 TEST(Transform, RejectsBadParamsNamingTheField)

@@ -7,6 +7,7 @@
 #include "kernel/io/curve_io.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <type_traits>
 
 namespace groom::cli {
@@ -50,7 +51,16 @@ std::vector<size_t> shard_order(const std::vector<std::string>& paths, const std
         index[k] = i;
         ++tagged;
     }
-    if (tagged == 0) return order;
+    if (tagged == 0) {
+        // .hair cannot carry the tag: parts of a --shard run written as .hair are joined unchecked.
+        size_t hair = 0;
+        for (const std::string& p : paths) hair += std::filesystem::path(p).extension() == ".hair";
+        if (hair > 1) {
+            warn(common, "merge: warning: .hair files carry no shard tag, so a part missing, given twice or of another run cannot be told: joined in "
+                         "the order given, unchecked (write --shard parts as .usda, .obj or .ply for a checked merge)");
+        }
+        return order;
+    }
     // Parts of one run carry the same run key (parts written before it was kept carry none).
     const std::string first_run = parts[first_tagged].detail_string(kShardRunDetail);
     for (size_t k = 0; k < parts.size(); ++k) {
@@ -153,7 +163,7 @@ void check_parts_agree(const std::vector<std::string>& paths, const std::vector<
                                "(every op that makes hair takes --root-width) or merge it on its own");
         }
     }
-    if (!filled.empty()) warn(common, "merge: columns not in every file are filled with -1 (integers) or 0 where missing: " + filled);
+    if (!filled.empty()) warn(common, "merge: warning: columns not in every file are filled with -1 (integers) or 0 where missing: " + filled);
     // Details: the units and up axis must agree; others keep the first file's value, said when they differ.
     const size_t first = order[0];
     for (size_t k : order) {
@@ -168,7 +178,7 @@ void check_parts_agree(const std::vector<std::string>& paths, const std::vector<
                                    paths[k] + (name == "units" ? " --units " : " --up-axis ") + a + " -o FILE`)");
             }
             if (a != b) {
-                warn(common, "merge: " + (a.empty() ? paths[first] : paths[k]) + " does not say its " + std::string(name) + "; taken as " +
+                warn(common, "merge: warning: " + (a.empty() ? paths[first] : paths[k]) + " does not say its " + std::string(name) + "; taken as " +
                                  (a.empty() ? paths[k] : paths[first]) + "'s ('" + (a.empty() ? b : a) + "')");
             }
         }
@@ -176,7 +186,7 @@ void check_parts_agree(const std::vector<std::string>& paths, const std::vector<
             if (col.name == "units" || col.name == "up_axis" || col.name == attr::closed || col.name == kShardDetail || col.name == kShardRunDetail) continue;
             const Attribute* mine = parts[first].attributes(Domain::Detail).find(col.name);
             if (mine && detail_text(parts[first], *mine) != detail_text(parts[k], col)) {
-                warn(common, "merge: detail '" + col.name + "' is '" + detail_text(parts[first], *mine) + "' in " + paths[first] + " but '" +
+                warn(common, "merge: warning: detail '" + col.name + "' is '" + detail_text(parts[first], *mine) + "' in " + paths[first] + " but '" +
                                  detail_text(parts[k], col) + "' in " + paths[k] + "; the output keeps the first");
             }
         }
@@ -201,6 +211,7 @@ void setup(CommandContext& ctx)
         all.attributes(Domain::Detail).remove(kShardDetail);
         all.attributes(Domain::Detail).remove(kShardRunDetail);
         write_curves(all, args->output);
+        warn_up_axis_unsaid("merge", all, args->output, common);
         note(common, "merge: " + std::to_string(all.num_curves()) + " curves, " + std::to_string(all.num_points()) + " points from " +
                          std::to_string(args->inputs.size()) + " files -> " + args->output);
     };

@@ -40,6 +40,7 @@ void setup(CommandContext& ctx)
         a.params.validate();
         const CurveSet out = transform(read_curves(a.input), a.params);
         write_curves(out, a.output);
+        warn_up_axis_unsaid("transform", out, a.output, common);
         note(common, "transform: " + std::to_string(out.num_curves()) + " curves -> " + a.output);
     };
 }

@@ -86,6 +86,10 @@ void detail(const CommonOptions& o, const std::string& message);
 /// a model in metres, got straight "curls" with no word why).
 void warn(const CommonOptions& o, const std::string& message);
 
+/// Warns when Z-up curves go to a format with no up axis (.obj, .ply, .hair): Blender's importers
+/// take those as Y-up, and a trial's `transform --up-axis z` then `.obj` lay on its side there.
+void warn_up_axis_unsaid(const std::string& command, const CurveSet& curves, const std::string& output, const CommonOptions& o);
+
 /// Throws InvalidParam when `output` names the same file as one of `inputs` (by any spelling: a
 /// link, `dir/./file`) or names an existing file this user may not write, and --force is absent
 /// (so a typo cannot overwrite the user's input, nor a file protected on purpose), or when output

@@ -171,6 +171,15 @@ void check_one_output(const std::string& option, const std::string& output, std:
 
 }  // namespace
 
+void warn_up_axis_unsaid(const std::string& command, const CurveSet& curves, const std::string& output, const CommonOptions& o)
+{
+    if (curves.detail_string("up_axis") != "Z") return;
+    const std::string ext = std::filesystem::path(output).extension().string();
+    if (ext != ".obj" && ext != ".ply" && ext != ".hair") return;
+    warn(o, command + ": warning: " + output + ": these curves are Z-up, and " + ext + " has no up axis: Blender's importer takes it as Y-up (turning it to Z-up), so "
+                     "they will lie on their side there; write .usda (its upAxis says Z) or keep them Y-up for " + ext);
+}
+
 void check_output(const std::string& output, std::initializer_list<std::string> inputs, const CommonOptions& o)
 {
     check_one_output("-o", output, std::span<const std::string>(inputs.begin(), inputs.size()), o);

@@ -12,6 +12,10 @@
 
 namespace groom::io {
 
+/// The most detail comments a file may carry: groom writes a few (a --shard part's tag, units, up
+/// axis, `closed`); each is looked up among those before it.
+inline constexpr size_t kMaxDetailComments = 4096;
+
 /// Whether a detail column's name can be one word of a comment (printable ASCII, no spaces).
 bool plain_detail_name(std::string_view name);
 

@@ -29,7 +29,7 @@ struct GroomComments {
     std::vector<std::pair<std::string, std::string>> details;  ///< name, "TYPE VALUE..."
 };
 
-GroomComments groom_comments(const PlyData& ply)
+GroomComments groom_comments(const PlyData& ply, const std::string& file)
 {
     GroomComments g;
     for (const std::string& c : ply.comments) {
@@ -48,6 +48,10 @@ GroomComments groom_comments(const PlyData& ply)
             std::string_view rest = cur.rest_of_line();
             if (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
             g.details.emplace_back(name, std::string(rest));
+            if (g.details.size() > kMaxDetailComments) {
+                throw ParseError(file + ": more than " + std::to_string(kMaxDetailComments) +
+                                 " 'comment groom detail' lines (groom writes a few: a shard's tag, the units)");
+            }
         }
     }
     return g;
@@ -144,7 +148,7 @@ CurveSet read_ply_curves(const FileBytes& file, bool closed_loops)
     const PlyElement* v = ply.find("vertex");
     if (!v) throw ParseError(file.name + ": expected a 'vertex' element, found none");
     const std::vector<float3> pts = read_positions(file, *v);
-    const GroomComments g = groom_comments(ply);
+    const GroomComments g = groom_comments(ply, file.name);
     const PlyElement* curve = ply.find("curve");
     const PlyElement* edge = ply.find("edge");
 

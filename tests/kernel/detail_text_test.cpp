@@ -4,6 +4,7 @@
 #include "kernel/curve_set.h"
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/detail_text.h"
 #include "tests/test_support.h"
 
 #include <gtest/gtest.h>
@@ -82,4 +83,17 @@ TEST(DetailText, ANameGivenTwiceIsRefused)
     EXPECT_NE(obj.find("(detail 'shard' given twice)"), std::string::npos) << obj;
     const std::string ply = read_error(dir, "twice.ply", ply_with("comment groom detail n int 1\ncomment groom detail n int 2\n"));
     EXPECT_NE(ply.find("(detail 'n' given twice)"), std::string::npos) << ply;
+}
+
+// Lines are counted on from the last comment (200,000 comments took 224 s: a trial), and past
+// io::kMaxDetailComments a file is refused naming the line.
+TEST(DetailText, ManyCommentsAreReadInLinearTimeAndBounded)
+{
+    test::TempDir dir;
+    std::string many;
+    for (size_t i = 0; i < io::kMaxDetailComments; ++i) many += "# groom detail k" + std::to_string(i) + " int " + std::to_string(i) + "\n";
+    ASSERT_EQ(read_error(dir, "many.obj", obj_with(many)), "");
+    EXPECT_EQ(read_curves(dir.file("many.obj")).find<int32_t>(Domain::Detail, "k4095")[0], 4095);
+    const std::string e = read_error(dir, "more.obj", obj_with(many + "# groom detail one_more int 1\n"));
+    EXPECT_NE(e.find("more.obj:" + std::to_string(io::kMaxDetailComments + 3) + ": more than 4096"), std::string::npos) << e;
 }

@@ -47,8 +47,8 @@ PARTITION_BY = [
     ("spacing", "Spacing", "Arc length between segments along the guide, scene units"),
 ]
 PUFF_PLACES = [
-    ("top", "Top of the head", "The region centred where Up leaves the scalp, sized from the head's width near its top "
-                               "(radius 0.15 of it), the puff's sphere above it (radius 0.25, centre 0.4 of it higher)"),
+    ("top", "Top of the head", "The region centred where Up leaves the scalp, sized from the head's width near its top: "
+                               "region radius 0.15 of it, the puff's sphere radius 0.25 of it, its centre 0.4 of it above"),
     ("custom", "Custom", "The region and sphere given below, scene units"),
 ]
 
@@ -71,7 +71,7 @@ def _curves_poll(self, ob):
 
 
 # The lengths whose defaults are groom's centimetres (the panel says what an untouched one runs as).
-_CM = ("; untouched, groom's default in centimetres x Units per cm; a value typed is scene units")
+_CM = "; untouched, groom's default in centimetres x Units per cm; a value typed is scene units"
 CM_LENGTHS = ("parting_gap", "edge_length", "edge_radius", "section_length", "lift")
 
 
@@ -142,8 +142,8 @@ class GroomSettings(bpy.types.PropertyGroup):
                                description="Tightest radius of curvature of a baby hair" + _CM)
     units_per_cm: FloatProperty(name="Units per cm", default=1.0, min=0.0,
                                 description="Scene units per centimetre, for groom's centimetre defaults: the widths, curl radii "
-                                            "and default lengths of Partition, Curl, Generate, Puff, Edges, Sections and Gather "
-                                            "(0.01 for a scene in metres, Blender's default)")
+                                            "and default lengths of Partition, Curl, Generate, Puff, Edges, Sections and Gather; "
+                                            "values typed are scene units (0.01 for a scene in metres, Blender's default)")
     # sections
     layout: EnumProperty(name="Layout", items=LAYOUTS, default="grid")
     cols: IntProperty(name="Columns", default=8, min=1, max=256, description="grid: bands across the head; rows: rows")
@@ -273,6 +273,8 @@ class GROOM_OT_braid(_GroomOperator, bpy.types.Operator):
 
     def run(self, s, guides, scalp, kw):
         kw.update(_given(s, ("pattern", "strands", "knot_length", "orient", "fibers", "rest", "seed")))
+        if kw.get("knot_length") == 0:  # the panel's "0 = groom's default frequency", typed back: groom refuses 0
+            del kw["knot_length"]
         return groom.braid(guides, scalp=scalp, **kw)
 
 

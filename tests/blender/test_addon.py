@@ -15,6 +15,9 @@ import types
 import bpy
 import numpy as np
 
+# No __pycache__ written into the add-on's folder in the checkout: bytecode is not source, and a
+# commit of everything had taken it in.
+sys.dont_write_bytecode = True
 sys.path.insert(0, os.environ["GROOM_BLENDER_ADDON_DIR"])
 import groom  # noqa: E402
 import groom_blender  # noqa: E402
@@ -54,12 +57,6 @@ def select_only(*obs):
     for ob in bpy.context.view_layer.objects:
         ob.select_set(ob in obs)
     bpy.context.view_layer.objects.active = obs[0] if obs else None
-
-
-def point_positions(ob):
-    pos = np.empty(len(ob.data.points) * 3, np.float32)
-    ob.data.attributes['position'].data.foreach_get('vector', pos)
-    return pos.reshape(-1, 3)
 
 
 def run_report(opname):
@@ -206,6 +203,8 @@ bpy.data.objects.remove(open_ob)
 
 cases = [
     ("braid", lambda: groom.braid(guides, scalp=field, fibers=4, knot_length=0.6), dict(fibers=4, knot_length=0.6)),
+    # Knot length typed back to the panel's "0 = groom's default frequency": groom's default, not refused.
+    ("braid", lambda: groom.braid(guides, scalp=field, fibers=4), dict(fibers=4, knot_length=0.0)),
     ("partition", lambda: groom.partition(guides, scalp=field, count=6), dict(count=6)),
     ("curl", lambda: groom.curl(guides, scalp=field, type="4a"), dict(type="4a")),
     ("generate", lambda: groom.generate(guides, scalp=field, count=40), dict(hairs=40)),
@@ -287,8 +286,8 @@ def same_as(name, ob, expected):
 
 
 def run_op(name):
-    result = getattr(bpy.ops.groom, name)()
-    check(f"{name}: operator finished", result == {'FINISHED'}, str(result))
+    result, error = run_report(name)
+    check(f"{name}: operator finished", result == {'FINISHED'}, str(result) + error)
     return bpy.context.view_layer.objects.active if result == {'FINISHED'} else None
 
 
@@ -314,6 +313,31 @@ if hairline_ob is not None:
     sections_ob = run_op("sections")
     if sections_ob is not None:
         same_as("sections", sections_ob, groom.sections(scalp=head_field, up=up, forward=forward, hairline=hairline, cols=4))
+    # Units per cm reaches Sections (its default lengths): in metres it was refused or put guides
+    # 1.35 m off the scalp (a trial).
+    settings.units_per_cm = 0.5
+    sections_ob = run_op("sections")
+    if sections_ob is not None:
+        same_as("sections, units per cm 0.5", sections_ob,
+                groom.sections(scalp=head_field, up=up, forward=forward, hairline=hairline, cols=4, units_per_cm=0.5))
+    settings.property_unset("units_per_cm")
+
+    @part("a Bezier circle as the hairline")
+    def _():
+        # Read as its 4 control points it was refused: "hairline must have at least 8 points; found 4".
+        bpy.ops.curve.primitive_bezier_circle_add(radius=7.0, location=(0.0, 0.0, 7.1))
+        circle = bpy.context.active_object
+        settings.hairline = circle
+        try:
+            loop = convert.curveset_from_object(circle)
+            check("Bezier circle hairline: the whole loop, closed", loop.num_points == 49 and "closed" in loop.detail_attributes, str(loop))
+            edges_ob = run_op("edges")
+            if edges_ob is not None:
+                same_as("edges along a Bezier circle", edges_ob,
+                        groom.edges(scalp=head_field, up=up, forward=forward, hairline=loop, count=40))
+        finally:
+            settings.hairline = hairline_ob
+            bpy.data.objects.remove(circle)
     puffs = []
     for side in (-1, 1):
         settings.center, settings.radius = (6.0 * side, 0.0, 8.0), 2.5
@@ -343,6 +367,15 @@ if hairline_ob is not None:
             if unbounded is not None:
                 same_as("gather without a hairline", unbounded, groom.gather(puff_sets, scalp=head_field, up=up, forward=forward, hairs=200))
             settings.hairline = hairline_ob
+            # Units per cm reaches Gather (its lift, step, band and curls): in metres its hair
+            # reached 0.9 m from a 0.43 m head (a trial).
+            settings.units_per_cm = 0.5
+            select_only(*puffs)
+            scaled = run_op("gather")
+            if scaled is not None:
+                same_as("gather, units per cm 0.5", scaled,
+                        groom.gather(puff_sets, scalp=head_field, up=up, hairline=hairline, hairs=200, units_per_cm=0.5))
+            settings.property_unset("units_per_cm")
     for ob in bpy.context.view_layer.objects:
         ob.select_set(False)
     r = None
@@ -351,6 +384,191 @@ if hairline_ob is not None:
         check("gather with no puff selected: cancelled", r == {'CANCELLED'}, str(r))
     except RuntimeError as e:
         check("gather with no puff selected: reported", "select the puffs" in str(e), str(e))
+
+# Back on the unit sphere and its three guides.
+unset(settings, *SETTINGS_USED)
+settings.scalp = scalp
+settings.scalp_voxel = 0.02
+
+
+@part("legacy curves as Blender draws them")
+def _():
+    import mathutils
+    before = (len(bpy.data.objects), len(bpy.data.curves), len(bpy.data.meshes))
+    # A 3-point Bezier arc, automatic handles, moved off the origin: groom got its 3 control points,
+    # 0.5-2.5 cm above a scalp the drawn arc touched (a trial).
+    cu = bpy.data.curves.new("arc", 'CURVE')
+    cu.dimensions = '3D'
+    spline = cu.splines.new('BEZIER')
+    spline.bezier_points.add(2)
+    for bp, co in zip(spline.bezier_points, [(0.0, -0.9, 0.5), (0.0, 0.0, 1.1), (0.0, 0.9, 0.5)]):
+        bp.co = co
+        bp.handle_left_type = bp.handle_right_type = 'AUTO'
+    cu.bevel_depth = 0.05  # drawn as a tube: still its centre line
+    arc = bpy.data.objects.new("arc", cu)
+    bpy.context.scene.collection.objects.link(arc)
+    arc.location = (0.5, 0.0, 0.0)
+    bpy.context.view_layer.update()
+    bp, res = spline.bezier_points, spline.resolution_u
+    drawn = []
+    for i in range(2):
+        drawn += [tuple(v) for v in mathutils.geometry.interpolate_bezier(bp[i].co, bp[i].handle_right, bp[i + 1].handle_left,
+                                                                           bp[i + 1].co, res + 1)[:-1]]
+    drawn = np.array(drawn + [tuple(bp[2].co)]) + (0.5, 0.0, 0.0)
+    got = convert.guides_from_objects([arc])
+    check("Bezier arc: its points at the spline's resolution", list(got.counts) == [2 * res + 1], str(got.counts))
+    if got.num_points == len(drawn):
+        err = np.abs(got.points - drawn).max()
+        check("Bezier arc: on the drawn arc, in world space", err < 1e-5, f"max difference {err}")
+    check("Bezier arc: its bevel left as it was", abs(cu.bevel_depth - 0.05) < 1e-7, str(cu.bevel_depth))
+    # Blender's default Bezier: an S curve, read as a 2-point straight line (a trial).
+    bpy.ops.curve.primitive_bezier_curve_add(location=(0.0, 0.0, 0.0))
+    default = bpy.context.active_object
+    got = convert.guides_from_objects([default])
+    p = got.points
+    chord = (p[-1] - p[0]) / np.linalg.norm(p[-1] - p[0])
+    off = np.linalg.norm((p - p[0]) - np.outer((p - p[0]) @ chord, chord), axis=1).max()
+    check("default Bezier: a curve, not its 2 control points", got.num_points == 13 and off > 0.1, f"{got} {off}")
+    # A NURBS path: the points of Blender's own evaluation (the evaluated object's mesh).
+    bpy.ops.curve.primitive_nurbs_path_add(location=(0.0, 0.3, 0.0))
+    path = bpy.context.active_object
+    mesh = path.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh()
+    shown = np.array([path.matrix_world @ v.co for v in mesh.vertices], np.float32)
+    path.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh_clear()
+    got = convert.guides_from_objects([path])
+    check("NURBS path: the evaluated curve", got.num_curves == 1 and got.num_points == len(shown) > 5 and
+          np.abs(got.points - shown).max() < 1e-6, f"{got} vs {len(shown)} points")
+    # Cyclic: a Bezier circle and a cyclic poly triangle come back as loops, their first point at
+    # their end, and the set marked closed (groom's detail `closed`).
+    bpy.ops.curve.primitive_bezier_circle_add(radius=0.8, location=(0.0, 0.0, 0.6))
+    circle = bpy.context.active_object
+    got = convert.curveset_from_object(circle)
+    p = got.points
+    r = np.linalg.norm(p - (0.0, 0.0, 0.6), axis=1)
+    check("Bezier circle: the round loop, closed", got.num_points == 49 and np.array_equal(p[0], p[-1]) and
+          np.abs(r - 0.8).max() < 1e-3 and "closed" in got.detail_attributes and np.asarray(got.detail_attributes["closed"])[0] == 1,
+          f"{got}, radius {r.min()}..{r.max()}, details {list(got.detail_attributes.keys())}")
+    cu = bpy.data.curves.new("loops", 'CURVE')
+    cu.dimensions = '3D'
+    tri = cu.splines.new('POLY')
+    tri.points.add(2)
+    tri.points.foreach_set('co', np.array([[0, 0, 2, 1], [1, 0, 2, 1], [0, 1, 2, 1]], np.float32).ravel())
+    tri.use_cyclic_u = True
+    loops = bpy.data.objects.new("loops", cu)
+    bpy.context.scene.collection.objects.link(loops)
+    got = convert.guides_from_objects([loops])
+    check("cyclic poly: its points as they are, closed", np.array_equal(got.points, np.array([[0, 0, 2], [1, 0, 2], [0, 1, 2], [0, 0, 2]],
+                                                                                               np.float32)) and "closed" in got.detail_attributes)
+    # One open curve among them: each loop still closed, the set not marked.
+    cu.splines.new('POLY').points.add(1)
+    got = convert.guides_from_objects([loops])
+    check("open and cyclic together: loops closed, not marked", list(got.counts) == [4, 2] and "closed" not in got.detail_attributes,
+          f"{got.counts} {list(got.detail_attributes.keys())}")
+    for ob in (arc, default, path, circle, loops):
+        data = ob.data
+        bpy.data.objects.remove(ob)
+        bpy.data.curves.remove(data)
+    check("evaluation leaves no data behind", (len(bpy.data.objects), len(bpy.data.curves), len(bpy.data.meshes)) == before,
+          f"{before} -> {(len(bpy.data.objects), len(bpy.data.curves), len(bpy.data.meshes))}")
+
+
+@part("widths written back from a hair object")
+def _():
+    # Exported from Blender, the hair had no width and rendered at the default (a trial).
+    settings.hairs = 40
+    select_guides()
+    result, error = run_report("generate")
+    ob = bpy.context.view_layer.objects.active
+    expected = groom.generate(guides, scalp=field, count=40)
+    got = convert.curveset_from_object(ob)
+    width = np.asarray(got.point_attributes["width"]) if "width" in got.point_attributes else None
+    check("export: width = 2 radius, the module's widths exactly", width is not None and np.array_equal(width, expected.point_attributes["width"]))
+    with tempfile.TemporaryDirectory() as folder:
+        groom.write(got, os.path.join(folder, "hair.usda"))
+        back = groom.read(os.path.join(folder, "hair.usda"))
+        check("export: the file keeps the widths", "width" in back.point_attributes and
+              np.allclose(back.point_attributes["width"], expected.point_attributes["width"], rtol=1e-6, atol=0))
+    # Scaled since, the hair is drawn scaled and its points written scaled: its widths too.
+    ob.scale = (2.0, 2.0, 2.0)
+    bpy.context.view_layer.update()
+    got = convert.curveset_from_object(ob)
+    check("export: a scaled object's widths scaled", np.array_equal(got.point_attributes["width"], 2 * expected.point_attributes["width"]) and
+          np.allclose(got.points, 2 * expected.points))
+    bpy.data.objects.remove(ob)
+    # The hairline had no width: its thin radius only draws it, and is not written as one.
+    if hairline_ob is not None:
+        check("export: no width where groom made none", "width" not in convert.curveset_from_object(hairline_ob).point_attributes)
+
+
+@part("partition: the panel shows what runs")
+def _():
+    # It showed "Segments per side 24" and ran groom's density (Sintel's 228 guides: 1.5 M hairs, 5.3 GB).
+    unset(settings, *SETTINGS_USED)
+    drawn = panel_draws().props
+    check("partition: groom's density by default, no count shown", settings.partition_by == 'density' and "partition_by" in drawn and
+          "count" not in drawn and "spacing" not in drawn, str(drawn))
+    select_guides()
+    ob = run_op("partition")
+    if ob is not None:
+        same_as("partition by density", ob, groom.partition(guides, scalp=field))
+        bpy.data.objects.remove(ob)
+    settings.partition_by = 'spacing'
+    settings.spacing = 0.1
+    check("partition: the spacing shown in Spacing mode", "spacing" in panel_draws().props and "count" not in panel_draws().props)
+    select_guides()
+    ob = run_op("partition")
+    if ob is not None:
+        same_as("partition by spacing", ob, groom.partition(guides, scalp=field, spacing=0.1))
+    unset(settings, "partition_by", "spacing")
+    settings.count = 5  # as a script did before the mode: the count is run
+    check("partition: a count set picks Count", settings.partition_by == 'count' and "count" in panel_draws().props)
+    unset(settings, *SETTINGS_USED)
+
+
+@part("a selection without curves says what it has")
+def _():
+    light = bpy.data.objects.new("lamp", bpy.data.lights.new("lamp", 'POINT'))
+    bpy.context.scene.collection.objects.link(light)
+    for op, selected, named in (("generate", (scalp,), "scalp (the scalp)"), ("braid", (light,), "lamp (light)"), ("braid", (), "nothing")):
+        select_only(*selected)
+        result, error = run_report(op)
+        check(f"{op} with {named} selected: says so and what is needed", result == {'CANCELLED'} and "expected guide curves" in error and
+              f"selected: {named}" in error, error)
+    bpy.data.objects.remove(light)
+
+
+@part("puff: on the top of the head by default")
+def _():
+    # Its fixed default centre (0, 1, 0) was +Y up: the back of a Z-up head (a trial).
+    unset(settings, *SETTINGS_USED)
+    from groom_blender import operators
+    drawn = panel_draws().props
+    check("puff: Top of the head, no centre shown", settings.puff_place == 'top' and "center" not in drawn, str(drawn))
+    select_only()
+    ob = run_op("puff")
+    if ob is not None:
+        base = np.array(ob["groom_puff_base"])
+        check("puff: its base on the top of the sphere", base[2] > 0.95, str(base))
+        center, radius, sphere_center, sphere_radius = operators._puff_place(settings, bpy.context)
+        check("puff: the sphere above the region", sphere_center[2] - sphere_radius > 1.0 and 0.1 < radius < sphere_radius,
+              f"{center} {radius} {sphere_center} {sphere_radius}")
+        same_as("puff on the top", ob, groom.puff(scalp=field, center=center, radius=radius, sphere_center=sphere_center,
+                                                  sphere_radius=sphere_radius, hairs=0))
+    settings.center = (0.0, 0.5, 0.9)
+    check("puff: a centre set picks Custom", settings.puff_place == 'custom' and "center" in panel_draws().props)
+    unset(settings, *SETTINGS_USED)
+
+
+@part("panel: an untouched centimetre length says what it runs as")
+def _():
+    settings.units_per_cm = 0.01
+    labels = panel_draws().labels
+    check("panel: Guide length untouched in metres", "untouched: 30 cm = 0.3 scene units" in labels, str(labels))
+    settings.section_length = 0.25
+    check("panel: a length typed is scene units", not any(t.startswith("untouched: 30 cm") for t in panel_draws().labels))
+    unset(settings, "units_per_cm", "section_length")
+    check("panel: nothing added in centimetres", not any(t.startswith("untouched") for t in panel_draws().labels))
+
 
 # Errors reach the artist as a report, not a traceback: a partition with no scalp.
 settings.scalp = None

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -180,8 +181,10 @@ TEST(Braid, StrandsDoNotFlipOnSCurve)
             const double t = j / 300.0;
             const float3 off = point(out, i, j) - C[j];
             const float3 b = cross(T[j], float3(0, 0, 1));
-            EXPECT_NEAR(off.z, lissajous_y(0.15, 6.0, t, i, 3), 1e-5) << i << " " << j;
-            EXPECT_NEAR(dot(off, b), lissajous_x(0.3, 6.0, t, i, 3), 1e-5) << i << " " << j;
+            // (The braid's centre is a spline through the 401-point guide, off its chords by at
+            // most their sagitta at the S's crests, h^2 kappa / 8 = 0.0314^2 * 2 / 8 = 2.5e-4.)
+            EXPECT_NEAR(off.z, lissajous_y(0.15, 6.0, t, i, 3), 3e-4) << i << " " << j;
+            EXPECT_NEAR(dot(off, b), lissajous_x(0.3, 6.0, t, i, 3), 3e-4) << i << " " << j;
         }
     }
 }
@@ -368,6 +371,7 @@ TEST(Braid, CornrowsOnSphereFollowScalp)
         const std::vector<float3>& src = g == 0 ? great : small;
         const std::vector<float3> C = resample_by_count(src, 193);
         const std::vector<float3> T = polyline_tangents(C);
+        std::vector<double> lowest_all;
         int crossings = 0, checked = 0;
         float prev_x = 0.0f;
         for (int j = 0; j < 193; ++j) {
@@ -389,8 +393,11 @@ TEST(Braid, CornrowsOnSphereFollowScalp)
                 EXPECT_GT(sphere.distance(q), 0.0f);
                 lowest = std::min(lowest, d);
             }
-            // Lifted just enough: the lowest strand rests at the clearance.
-            EXPECT_NEAR(lowest, 0.05, 1e-4) << "guide " << g << " sample " << j;
+            // Lifted just enough: the lowest strand rests at the clearance, but where the lowest
+            // strand changes (a corner of the least lift, eased so fibers do not kink) the braid
+            // may ride up by a quarter of its half height B = 0.25 at most (measured: 0.031).
+            EXPECT_LE(lowest, 0.05 + 0.25 * 0.25) << "guide " << g << " sample " << j;
+            lowest_all.push_back(lowest);
             float3 b, n;
             const float3 ns = sphere.normal(C[j]);
             if (solve_frame(o, x, y, 0.05 * 0.5 * 0.25, b, n)) {
@@ -405,6 +412,9 @@ TEST(Braid, CornrowsOnSphereFollowScalp)
         }
         EXPECT_GT(checked, 150);
         EXPECT_EQ(crossings, 2 * 6) << "x cycles on guide " << g;
+        // Most sections rest exactly at the clearance.
+        std::nth_element(lowest_all.begin(), lowest_all.begin() + long(lowest_all.size() / 2), lowest_all.end());
+        EXPECT_NEAR(lowest_all[lowest_all.size() / 2], 0.05, 1e-4) << "the median section floats, guide " << g;
     }
 }
 
@@ -430,12 +440,21 @@ TEST(Braid, RestLowersFloatingCornrowsOntoTheScalp)
         const BraidResult res = braid(guides, p, &sphere);
         EXPECT_EQ(res.report.lifted_sections, 0);
         EXPECT_EQ(res.report.lowered_sections, rest ? 65 : 0);
+        std::vector<double> lows;
         for (int j = 0; j < 65; ++j) {
             double lowest = 1e30;
             for (int i = 0; i < 3; ++i) lowest = std::min(lowest, double(sphere.distance(point(res.curves, i, j))) - 0.05);
-            if (rest) EXPECT_NEAR(lowest, 0.02, 1e-4) << j;
+            lows.push_back(lowest);
+            // Resting: never nearer than the clearance, at most a quarter of the half height B = 0.2
+            // above it where the lowest strand changes (the eased corners of the lift).
+            if (rest) {
+                EXPECT_GE(lowest, 0.02 - 1e-5) << j;
+                EXPECT_LE(lowest, 0.02 + 0.25 * 0.2) << j;
+            }
             else EXPECT_GT(lowest, 0.5) << j;
         }
+        std::nth_element(lows.begin(), lows.begin() + 32, lows.end());
+        if (rest) EXPECT_NEAR(lows[32], 0.02, 1e-4) << "the median section floats";
         if (rest) EXPECT_NEAR(res.report.max_lower, 1.0f, 0.25f);
     }
 }
@@ -777,4 +796,73 @@ TEST(Braid, GuideThroughTheHeadIsNamedAndItsBraidFollowsIt)
     EXPECT_EQ(issue.id, 42);
     EXPECT_GT(issue.deep, 0);
     EXPECT_NEAR(issue.depth, R, 0.1f);
+}
+
+namespace {
+
+/// Turn angles (degrees) between consecutive segments of every curve of `cs`.
+std::vector<double> turn_angles(const CurveSet& cs)
+{
+    std::vector<double> out;
+    const auto P = cs.positions();
+    for (size_t c = 0; c < cs.num_curves(); ++c) {
+        const IndexRange r = cs.points_of(c);
+        for (int64_t k = r.begin + 1; k + 1 < r.end; ++k) {
+            const float3 a = P[size_t(k)] - P[size_t(k - 1)], b = P[size_t(k + 1)] - P[size_t(k)];
+            const double cosine = dot(a, b) / std::max(double(length(a)) * double(length(b)), 1e-30);
+            out.push_back(std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / kPi);
+        }
+    }
+    return out;
+}
+
+double percentile(std::vector<double> v, double q)
+{
+    const size_t k = std::min(v.size() - 1, size_t(q * double(v.size())));
+    std::nth_element(v.begin(), v.begin() + long(k), v.end());
+    return v[k];
+}
+
+}  // namespace
+
+// What a close-up shows: strands that bend smoothly. A cornrow along a coarse guide (9 points over
+// 120 degrees of the sphere it lies on, 15-degree corners) at 600 samples: on the guide's polyline
+// each corner turned the frames within one sample, and the section lifts followed whichever strand
+// was lowest, corners and all; both kinked the strands (a trial counted 7,030 fiber joints past 90
+// degrees on the demo's rows at 1,000 samples, 26,000 with the scalp at 672). Before: joints of 104
+// degrees without a scalp and 70 on it; now no joint turns by more than 45 degrees (12 and 35
+// measured), and without a scalp nine in ten by less than a quarter of that.
+TEST(Braid, StrandsBendSmoothlyAtGuideCornersAndOnTheScalp)
+{
+    const float R = 5.0f;
+    const AnalyticSphere sphere({0, 0, 0}, R);
+    std::vector<float3> coarse;
+    for (int k = 0; k <= 8; ++k) {
+        const double a = (30.0 + 15.0 * k) * kPi / 180.0;
+        coarse.emplace_back(float(R * std::cos(a)), float(R * std::sin(a)), 0.0f);
+    }
+    const CurveSet guides = make_curves({coarse});
+    BraidParams p;
+    p.orient = BraidOrient::Scalp;
+    p.frequency = 6.0f;
+    p.width = 0.4f;
+    p.height = 0.2f;
+    p.samples = 600;
+    p.clearance = 0.02f;
+    p.rest = true;
+    const CurveSet on_scalp = braid(guides, p, &sphere).curves;
+    p.orient = BraidOrient::Frame;
+    p.initial_normal = {0, 0, 1};
+    p.rest = false;
+    p.clearance = 0.0f;
+    const CurveSet free = braid(guides, p).curves;
+    for (const CurveSet* cs : {&free, &on_scalp}) {
+        const std::vector<double> turns = turn_angles(*cs);
+        ASSERT_FALSE(turns.empty());
+        const char* what = cs == &free ? "without a scalp" : "on the scalp";
+        EXPECT_LT(*std::max_element(turns.begin(), turns.end()), 45.0) << what;
+        // Without a scalp the weave alone (8.5 degrees measured); on it the section also rides
+        // over whichever strand is under, a real bob of up to the braid's height per crossing.
+        if (cs == &free) EXPECT_LT(percentile(turns, 0.9), 45.0 / 4.0) << what;
+    }
 }

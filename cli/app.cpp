@@ -235,6 +235,7 @@ int run_one(int argc, char** argv)
                     g_options = parsed_options();
                 }
                 try {
+                    const DroppedColumnsListener listen([&](const std::string& m) { note(common, std::string(commands[i].name) + ": " + m); });
                     contexts[i].run();
                 }
                 catch (const std::bad_alloc&) {

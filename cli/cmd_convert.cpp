@@ -31,9 +31,6 @@ void setup(CommandContext& ctx)
         wo.ply_encoding = args->ascii ? PlyEncoding::Ascii : PlyEncoding::Binary;
         write_curves(cs, args->output, wo);
         warn_up_axis_unsaid("convert", cs, args->output, common);
-        std::string lost;
-        for (const std::string& a : attributes_dropped(cs, args->output)) lost += (lost.empty() ? "" : ", ") + a;
-        if (!lost.empty()) note(common, "convert: the output format cannot hold these attributes, dropped: " + lost);
         note(common, "convert: " + std::to_string(cs.num_curves()) + " curves, " + std::to_string(cs.num_points()) + " points -> " + args->output);
     };
 }

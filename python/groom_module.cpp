@@ -603,10 +603,13 @@ PYBIND11_MODULE(groom, m)
         "write",
         [](const CurveSetPtr& cs, const std::filesystem::path& path) {
             if (!cs) throw py::type_error("write: curves is None; expected a groom.CurveSet");
+            std::string dropped;
             guarded([&] {
+                const DroppedColumnsListener listen([&](const std::string& m) { dropped = m; });
                 write_curves(*cs, path.string());
                 return 0;
             });
+            if (!dropped.empty()) warn("write: " + dropped);  // (ids past 2^53 had left a .ply without a word: a trial)
         },
         py::arg("curves"), py::arg("path"), "Writes curves atomically (format by extension)");
 

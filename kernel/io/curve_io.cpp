@@ -20,6 +20,9 @@ bool is_curve_path(const std::string& path)
 
 namespace {
 
+thread_local DroppedColumnsListener* g_dropped_listener = nullptr;  // the innermost, per thread
+
+
 /// The `closed` mark kept only where every curve is a loop (its first point repeated at its end): a
 /// file's mark cannot make an open curve a loop.
 CurveSet& checked_loops(CurveSet& cs)
@@ -78,6 +81,7 @@ void write_curves(const CurveSet& given, const std::string& path, OutputBatch& b
     }
     const io::Format& fmt = io::format_for(path, io::kWriteCurves, "curve", {}, /*error_is_param=*/true);
     curves.validate("writing " + path);
+    if (g_dropped_listener) DroppedColumnsListener::tell(DroppedColumnsListener::message(curves, path));
     if (fmt.stream_curves) {
         // Straight into the batch's temporary, which an error part-way removes (nothing lands).
         fmt.stream_curves(curves, options, batch.open(path));
@@ -93,6 +97,28 @@ void write_curves(const CurveSet& given, const std::string& path, OutputBatch& b
         throw InvalidParam("writing " + path + ": " + e.what());
     }
     batch.open(path).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+DroppedColumnsListener::DroppedColumnsListener(std::function<void(const std::string&)> hear) : hear_(std::move(hear)), previous_(g_dropped_listener)
+{
+    g_dropped_listener = this;
+}
+
+DroppedColumnsListener::~DroppedColumnsListener() { g_dropped_listener = previous_; }
+
+std::string DroppedColumnsListener::message(const CurveSet& curves, const std::string& path)
+{
+    if (path == "-") return {};
+    const std::vector<std::string> lost = attributes_dropped(curves, path);
+    if (lost.empty()) return {};
+    std::string list;
+    for (const std::string& a : lost) list += (list.empty() ? "" : ", ") + a;
+    return path + ": " + std::filesystem::path(path).extension().string() + " cannot hold these attributes, dropped: " + list;
+}
+
+void DroppedColumnsListener::tell(const std::string& message)
+{
+    if (g_dropped_listener && !message.empty()) g_dropped_listener->hear_(message);
 }
 
 bool writes_curve_blocks(const std::string& path)
@@ -118,10 +144,19 @@ CurveBlockWriter::~CurveBlockWriter() = default;
 void CurveBlockWriter::write(const CurveSet& block)
 {
     block.validate("writing " + path_);
+    if (!seen_) {
+        // Told at finish(), on the caller's thread (blocks may be written on another).
+        dropped_ = DroppedColumnsListener::message(block, path_);
+        seen_ = true;
+    }
     sink_->write(block);
 }
 
-void CurveBlockWriter::finish() { sink_->finish(); }
+void CurveBlockWriter::finish()
+{
+    sink_->finish();
+    DroppedColumnsListener::tell(dropped_);
+}
 
 CurveBlockCounts write_curve_blocks(const std::string& path, const std::function<void(const CurveBlockStart&, const CurveBlockEmit&)>& run)
 {

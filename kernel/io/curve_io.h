@@ -77,6 +77,27 @@ void write_curves(const CurveSet& curves, const std::string& path, OutputBatch& 
 /// exact up to 2^53: such a column is left out, never rounded), named with that reason.
 std::vector<std::string> attributes_dropped(const CurveSet& curves, const std::string& path);
 
+/// Who hears which columns an output's format could not hold: while one is alive on a thread,
+/// write_curves (and a CurveBlockWriter at finish) called there tell it "PATH: .ply cannot hold these
+/// attributes, dropped: curve id (...)". The CLI listens while a command runs, the Python module
+/// while groom.write runs; with none the loss goes unsaid (ops writing ids to .ply, beyond 2^53,
+/// lost them without a word: a trial). Listeners nest; the innermost hears.
+class DroppedColumnsListener {
+public:
+    explicit DroppedColumnsListener(std::function<void(const std::string&)> hear);
+    ~DroppedColumnsListener();
+    DroppedColumnsListener(const DroppedColumnsListener&) = delete;
+    DroppedColumnsListener& operator=(const DroppedColumnsListener&) = delete;
+    /// What writing `curves` to `path` drops, as the listener hears it; "" when nothing.
+    static std::string message(const CurveSet& curves, const std::string& path);
+    /// Tells the thread's listener `message` (unless it is empty or there is none).
+    static void tell(const std::string& message);
+
+private:
+    std::function<void(const std::string&)> hear_;
+    DroppedColumnsListener* previous_;
+};
+
 /// Whether the format of `path` can be written a block of curves at a time (CurveBlockWriter):
 /// its row in the format table has open_blocks (.hair); the others are written from the whole set.
 bool writes_curve_blocks(const std::string& path);
@@ -98,6 +119,8 @@ public:
 private:
     std::string path_;
     std::unique_ptr<io::CurveBlockSink> sink_;
+    bool seen_ = false;
+    std::string dropped_;  ///< what the first block's columns lose, told at finish() on the caller's thread
 };
 
 /// What write_curve_blocks wrote.

@@ -507,3 +507,16 @@ def test_scalp_fill_holes_and_joined_meshes():
     both = groom.Scalp.from_mesh(np.concatenate([v, eye_v]), np.concatenate([f, f + len(v)]), voxel=0.02)
     d = both.distance(np.array([[0.5, 0, 0], [1.1, 0, 0]], np.float32))
     assert d[0] < -0.45 and -0.12 < d[1] < -0.08, d
+
+
+def test_write_warns_of_the_columns_the_format_cannot_hold(tmp_path):
+    """groom.write to .obj dropped width and ids without a word (a trial); now a GroomWarning names them."""
+    import warnings
+    guides = straight_guides(points=4, length=1.0)
+    guides.point_attributes["width"] = np.full(guides.num_points, 0.01, np.float32)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        groom.write(guides, tmp_path / "g.obj")
+        groom.write(guides, tmp_path / "g.usda")
+    texts = [str(w.message) for w in caught if issubclass(w.category, groom.GroomWarning)]
+    assert len(texts) == 1 and "g.obj: .obj cannot hold these attributes, dropped: point width" in texts[0], texts

@@ -4,6 +4,8 @@
 #include "kernel/io/curve_io.h"
 #include "kernel/io/format_table.h"
 
+#include <filesystem>
+
 namespace groom::cli {
 namespace {
 
@@ -29,6 +31,11 @@ void setup(CommandContext& ctx)
         const CurveSet cs = read_curve_input(args->input, common, true, args->samples);
         CurveWriteOptions wo;
         wo.ply_encoding = args->ascii ? PlyEncoding::Ascii : PlyEncoding::Binary;
+        if (args->ascii && std::filesystem::path(args->output).extension() != ".ply") {
+            // (`-o - --ascii` had written .usda without a word: a trial.)
+            warn(common, "convert: warning: --ascii is for .ply outputs; " + (args->output == "-" ? std::string("stdout gets .usda") : args->output + " is not one") +
+                             ", written as its format is");
+        }
         write_curves(cs, args->output, wo);
         warn_up_axis_unsaid("convert", cs, args->output, common);
         note(common, "convert: " + std::to_string(cs.num_curves()) + " curves, " + std::to_string(cs.num_points()) + " points -> " + args->output);

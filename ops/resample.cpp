@@ -28,6 +28,13 @@ CurveSet resample(const CurveSet& src, const ResampleParams& params)
     params.validate();
     const auto P = src.positions();
     const size_t nc = src.num_curves();
+    // A loop's points include its first again at the end: 3 are a line there and back, 2 one point
+    // twice (a trial's `--count 2` wrote a periodic curve of length 0). At least a triangle.
+    const bool loops = is_closed(src);
+    if (loops && params.count != 0 && params.count < 4) {
+        throw InvalidParam("resample: these curves are closed loops (detail `closed`), whose last point is their first again: `count` must be >= 4 "
+                           "for a loop of 3 points (got " + std::to_string(params.count) + ")");
+    }
 
     // Count -> scan -> fill: each curve's new point count first, then offsets, then points. The counts
     // are taken in double and summed before anything is allocated: a 1e30-long curve asked llround
@@ -40,7 +47,7 @@ CurveSet resample(const CurveSet& src, const ResampleParams& params)
             if (r.empty()) wanted[c] = 0.0;
             else if (!std::isfinite(length)) wanted[c] = length;
             else if (params.count) wanted[c] = params.count;
-            else wanted[c] = std::max(2.0, std::round(length / double(params.segment_length)) + 1.0);
+            else wanted[c] = std::max(loops ? 4.0 : 2.0, std::round(length / double(params.segment_length)) + 1.0);
         }
     });
     double total = 0.0;

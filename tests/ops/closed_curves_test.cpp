@@ -4,6 +4,7 @@
 // of each other: a trial), and curves made from loops are not loops.
 #include "kernel/curve_set_edit.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/math/polyline.h"
 #include "ops/resample.h"
 #include "test_support.h"
 
@@ -133,6 +134,17 @@ TEST(ClosedCurves, OpsThatKeepEachCurvesEndsKeepLoopsOthersDoNot)
     const CurveSet fine = resample(loop, rp);
     EXPECT_TRUE(is_closed(fine));
     EXPECT_EQ(fine.positions().front(), fine.positions().back());
+    // At least a triangle: 2 or 3 points would be a point, or a line there and back (a trial's
+    // `--count 2` wrote a periodic curve of length 0); a long segment length gives 4 points.
+    for (const int64_t n : {2, 3}) {
+        rp.count = n;
+        EXPECT_THROW(resample(loop, rp), InvalidParam) << n;
+    }
+    rp.count = 0;
+    rp.segment_length = 1e6f;
+    const CurveSet coarse = resample(loop, rp);
+    ASSERT_EQ(coarse.num_points(), 4u);
+    EXPECT_GT(polyline_length(coarse.positions()), 0.5f * polyline_length(loop.positions()));
     // Selected: the same loops. Joined to an open curve: not all loops.
     EXPECT_TRUE(is_closed(remove_curves(loop, std::vector<char>{0})));
     EXPECT_FALSE(is_closed(join(loop, CurveSet::from_counts(std::vector<int64_t>{2}))));

@@ -278,6 +278,11 @@ void append_options(std::vector<std::string>& args, const py::kwargs& kw, const 
         if (v.is_none()) continue;
         if (name == "help") raise(true, "help: the keywords are the command's options; help(groom.FUNCTION) lists them, as `groom COMMAND -h` does");
         if (name == "output" || name == "o") raise(true, name + ": the result is returned; write it with groom.write(result, path)");
+        if (name == "frames") {
+            // (It ran, and said every frame "would write over this file", a file the call has not: a trial.)
+            raise(true, "frames: a call returns one result, for one frame; call it once per frame (a Python loop), or run the "
+                        "command from a shell with a frame range and an output pattern such as out.####.usda");
+        }
         if (py::isinstance<CurveSet>(v)) {
             const std::string path = prefix + name;
             store_memory_curves(path, *v.cast<CurveSetPtr>());
@@ -423,6 +428,17 @@ std::shared_ptr<CurveSet> run_command(const std::string& command, const std::vec
                 std::string type = m[2];
                 std::transform(type.begin(), type.end(), type.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
                 raise(true, command + ": " + key + " takes a value (" + type + "), not True/False; only flags take a bool");
+            }
+        }
+        // A flag given a number (keep_extent=0) went on as the flag and the number as a stray word:
+        // CLI11 says "unexpected argument: 0", naming no keyword (a trial).
+        static const std::regex stray(R"(unexpected argument: (\S+))");
+        if (std::regex_search(message, m, stray)) {
+            for (auto item : kw) {
+                if (is_bool(item.second) || item.second.is_none() || py::isinstance<CurveSet>(item.second)) continue;
+                if (std::string(py::str(item.second)) == m[1].str()) {
+                    raise(true, command + ": " + item.first.cast<std::string>() + " is a flag: pass True or False (got " + m[1].str() + ")");
+                }
             }
         }
         raise(code == 2, message);

@@ -520,3 +520,13 @@ def test_write_warns_of_the_columns_the_format_cannot_hold(tmp_path):
         groom.write(guides, tmp_path / "g.usda")
     texts = [str(w.message) for w in caught if issubclass(w.category, groom.GroomWarning)]
     assert len(texts) == 1 and "g.obj: .obj cannot hold these attributes, dropped: point width" in texts[0], texts
+
+
+def test_flags_given_numbers_and_frames_are_named():
+    """keep_extent=0 said "unexpected argument: 0"; frames= said every frame "would write over this
+    file", a file the call does not have (a trial)."""
+    guides = straight_guides(points=8, length=1.5)
+    with pytest.raises(groom.ParamError, match=r"curl: keep_extent is a flag: pass True or False \(got 0\)"):
+        groom.curl(guides, keep_extent=0, units_per_cm=0.1)
+    with pytest.raises(groom.ParamError, match="frames: a call returns one result, for one frame"):
+        groom.curl(guides, frames="1:3", units_per_cm=0.1)

@@ -84,7 +84,12 @@ void write_curves(const CurveSet& given, const std::string& path, OutputBatch& b
     if (g_dropped_listener) DroppedColumnsListener::tell(DroppedColumnsListener::message(curves, path));
     if (fmt.stream_curves) {
         // Straight into the batch's temporary, which an error part-way removes (nothing lands).
-        fmt.stream_curves(curves, options, batch.open(path));
+        try {
+            fmt.stream_curves(curves, options, batch.open(path));
+        }
+        catch (const InvalidParam& e) {
+            throw InvalidParam("writing " + path + ": " + e.what());
+        }
         return;
     }
     // Encode fully before opening the output, so an encoding error leaves no file behind; the error

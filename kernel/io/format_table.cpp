@@ -26,7 +26,9 @@ CurveSet read_ply_curves_row(const FileBytes& f, const CurveReadOptions& o) { re
 CurveSet read_hair_row(const FileBytes& f, const CurveReadOptions&) { return read_hair(f); }
 CurveSet read_hair_file_row(const std::string& path, const CurveReadOptions&) { return read_hair_file(path); }
 std::string write_usda_row(const CurveSet& c, const CurveWriteOptions& o) { return write_usda(c, o.closed); }
+void stream_usda_row(const CurveSet& c, const CurveWriteOptions& o, std::ostream& out) { stream_usda(c, o.closed, out); }
 std::string write_obj_curves_row(const CurveSet& c, const CurveWriteOptions& o) { return write_obj_curves(c, o.closed); }
+void stream_obj_curves_row(const CurveSet& c, const CurveWriteOptions& o, std::ostream& out) { stream_obj_curves(c, o.closed, out); }
 std::string write_ply_curves_row(const CurveSet& c, const CurveWriteOptions& o) { return write_ply_curves(c, o.ply_encoding); }
 std::string write_hair_row(const CurveSet& c, const CurveWriteOptions&) { return write_hair(c); }
 void stream_hair_row(const CurveSet& c, const CurveWriteOptions&, std::ostream& out) { write_hair(c, out); }
@@ -83,10 +85,10 @@ Format row(std::string_view ext, std::string_view name) { return Format{ext, nam
 
 const std::array<Format, 10> kFormats = [] {
     Format usda = row("usda", "USD ASCII BasisCurves");
-    usda.sniff = sniff_usda, usda.read_curves = read_usda, usda.write_curves = write_usda_row;
+    usda.sniff = sniff_usda, usda.read_curves = read_usda, usda.write_curves = write_usda_row, usda.stream_curves = stream_usda_row;
 
     Format obj = row("obj", "Wavefront OBJ (l polylines, f faces)");
-    obj.read_curves = read_obj_curves_row, obj.write_curves = write_obj_curves_row;
+    obj.read_curves = read_obj_curves_row, obj.write_curves = write_obj_curves_row, obj.stream_curves = stream_obj_curves_row;
     obj.read_mesh = [](const FileBytes& f) { return read_obj_mesh(f); }, obj.write_mesh = write_obj_mesh;
     obj.content_is_curves = obj_holds_curves, obj.keeps = obj_keeps;
 

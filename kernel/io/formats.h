@@ -38,6 +38,8 @@ ObjData parse_obj(const FileBytes& file);
 CurveSet read_obj_curves(const FileBytes& file, bool closed_loops = true);
 /// `closed`: each `l` record ends with its first vertex again (CurveWriteOptions::closed).
 std::string write_obj_curves(const CurveSet& curves, bool closed = false);
+/// The same text written to `out` as it is made, a few MiB at a time.
+void stream_obj_curves(const CurveSet& curves, bool closed, std::ostream& out);
 /// The faces of the whole file, or (group not empty) only those inside an `o` object or `g` group
 /// of that name; ParseError naming the names the file has when none matches.
 PolygonSoup read_obj_mesh(const FileBytes& file, const std::string& group = {});
@@ -47,6 +49,8 @@ std::string write_obj_mesh(const PolygonSoup& soup);
 CurveSet read_usda(const FileBytes& file, const CurveReadOptions& options);
 /// `closed`: `wrap = "periodic"` (CurveWriteOptions::closed), else "nonperiodic".
 std::string write_usda(const CurveSet& curves, bool closed = false);
+/// The same text written to `out` as it is made, a few MiB at a time (never held whole).
+void stream_usda(const CurveSet& curves, bool closed, std::ostream& out);
 
 // --- PLY (ply_parse, ply_curves, ply_mesh, ply_writer) ---------------------------------------------
 CurveSet read_ply_curves(const FileBytes& file, bool closed_loops = true);

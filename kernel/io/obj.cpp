@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <ostream>
 
 namespace groom::io {
 
@@ -271,14 +272,24 @@ CurveSet read_obj_curves(const FileBytes& file, bool closed_loops)
     return cs;
 }
 
-std::string write_obj_curves(const CurveSet& given, bool closed)
+namespace {
+
+/// The text of write_obj_curves; with `to`, all but the returned tail is written there a few MiB at
+/// a time as it is made (held whole, a 21 M-hair file had doubled the memory of the curves: a trial).
+std::string obj_curves_text(const CurveSet& given, bool closed, std::ostream* to)
 {
     // Closed loops: each point once, the record back to its first vertex (as USD periodic).
     closed = closed || is_closed(given);
     const CurveSet opened = closed ? without_closing_points(given) : CurveSet();
     const CurveSet& curves = closed ? opened : given;
     std::string out;
-    out.reserve(curves.num_points() * 36 + curves.num_curves() * 8 + 128);
+    out.reserve(to ? (size_t(5) << 20) : curves.num_points() * 36 + curves.num_curves() * 8 + 128);
+    auto spill = [&] {
+        if (to && out.size() >= (size_t(4) << 20)) {
+            to->write(out.data(), static_cast<std::streamsize>(out.size()));
+            out.clear();
+        }
+    };
     out += "# groom curves: " + std::to_string(curves.num_curves()) + " curves, " + std::to_string(curves.num_points()) +
            " points (OBJ keeps positions, and detail values in these comments)\n";
     // (A name with spaces cannot be one comment word: left out, as format_table's obj_keeps tells the command.)
@@ -286,6 +297,7 @@ std::string write_obj_curves(const CurveSet& given, bool closed)
         if (plain_detail_name(a.name)) out += "# groom detail " + a.name + " " + detail_value_text(a, "obj") + "\n";
     }
     for (const float3& p : curves.positions()) {
+        spill();
         out += "v ";
         append_number(out, p.x);
         out += ' ';
@@ -297,6 +309,7 @@ std::string write_obj_curves(const CurveSet& given, bool closed)
     for (size_t c = 0; c < curves.num_curves(); ++c) {
         const IndexRange r = curves.points_of(c);
         if (r.empty()) continue;  // OBJ cannot hold an empty polyline
+        spill();
         out += 'l';
         for (int64_t i = r.begin; i < r.end; ++i) {
             out += ' ';
@@ -309,6 +322,16 @@ std::string write_obj_curves(const CurveSet& given, bool closed)
         out += '\n';
     }
     return out;
+}
+
+}  // namespace
+
+std::string write_obj_curves(const CurveSet& curves, bool closed) { return obj_curves_text(curves, closed, nullptr); }
+
+void stream_obj_curves(const CurveSet& curves, bool closed, std::ostream& to)
+{
+    const std::string rest = obj_curves_text(curves, closed, &to);
+    to.write(rest.data(), static_cast<std::streamsize>(rest.size()));
 }
 
 PolygonSoup read_obj_mesh(const FileBytes& file, const std::string& group)

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <ostream>
 
 namespace groom::io {
 
@@ -58,14 +59,30 @@ void append_value(std::string& out, const float3& v)
 }
 void append_value(std::string& out, const std::string& v) { append_escaped(out, v); }
 
+/// Where the text goes as it is made: with a stream, the text so far is handed to it every few MiB,
+/// so a file of 21 M hairs is not held whole beside the curves (a trial's groom.write of one to
+/// .usda grew to 23.8 GB and was killed); without one, it all stays in `out`.
+struct Spill {
+    std::string& out;
+    std::ostream* to = nullptr;
+    void operator()() const
+    {
+        if (to && out.size() >= (size_t(4) << 20)) {
+            to->write(out.data(), static_cast<std::streamsize>(out.size()));
+            out.clear();
+        }
+    }
+};
+
 /// `[a, b, ...]`, with a line break after each curve for point columns (per_line = curve offsets) or
 /// every 16 values otherwise, so the file stays readable and diffable.
 template <class T>
-void append_array(std::string& out, std::span<const T> values, std::span<const int64_t> breaks, const char* indent)
+void append_array(std::string& out, std::span<const T> values, std::span<const int64_t> breaks, const char* indent, const Spill* spill = nullptr)
 {
     out += "[";
     size_t next_break = 1;
     for (size_t i = 0; i < values.size(); ++i) {
+        if (spill && (i & 4095) == 0) (*spill)();
         bool brk = false;
         if (!breaks.empty()) {
             while (next_break < breaks.size() && breaks[next_break] <= static_cast<int64_t>(i)) {
@@ -102,7 +119,7 @@ const char* usd_scalar_type(AttrType t)
 
 namespace {
 
-std::string write_usda_text(const CurveSet& curves, bool closed);
+std::string write_usda_text(const CurveSet& curves, bool closed, std::ostream* to);
 
 }  // namespace
 
@@ -111,13 +128,21 @@ std::string write_usda(const CurveSet& curves, bool closed)
     // Closed loops are written periodic, each point once (read back, the first point is repeated
     // at the end again): `groom convert` of a hairline had written it open, its ends on top of
     // each other (a trial).
-    if (closed || is_closed(curves)) return write_usda_text(without_closing_points(curves), true);
-    return write_usda_text(curves, false);
+    if (closed || is_closed(curves)) return write_usda_text(without_closing_points(curves), true, nullptr);
+    return write_usda_text(curves, false, nullptr);
+}
+
+void stream_usda(const CurveSet& curves, bool closed, std::ostream& to)
+{
+    const std::string rest = closed || is_closed(curves) ? write_usda_text(without_closing_points(curves), true, &to)
+                                                         : write_usda_text(curves, false, &to);
+    to.write(rest.data(), static_cast<std::streamsize>(rest.size()));
 }
 
 namespace {
 
-std::string write_usda_text(const CurveSet& curves, bool closed)
+/// The file's text; with `to`, all but the returned tail is written there as it is made.
+std::string write_usda_text(const CurveSet& curves, bool closed, std::ostream* to)
 {
     // Check names first so no partial text is produced for an attribute USD cannot name.
     std::map<std::string, Domain> seen;
@@ -141,7 +166,8 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
     }
 
     std::string out;
-    out.reserve(curves.num_points() * 40 + curves.num_curves() * 6 + 1024);
+    out.reserve(to ? (size_t(5) << 20) : curves.num_points() * 40 + curves.num_curves() * 6 + 1024);
+    const Spill spill{out, to};
     // Layer metadata from the detail strings `groom transform` sets: the up axis (Y unless the curves
     // say Z) and the unit, which USD gives as metres per unit.
     const std::string up = curves.detail_string("up_axis") == "Z" ? "Z" : "Y";
@@ -166,9 +192,9 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
         counts[c] = static_cast<int32_t>(n);
     }
     out += "    int[] curveVertexCounts = ";
-    append_array<int32_t>(out, counts, {}, "        ");
+    append_array<int32_t>(out, counts, {}, "        ", &spill);
     out += "\n    point3f[] points = ";
-    append_array<float3>(out, curves.positions(), curves.offsets(), "        ");
+    append_array<float3>(out, curves.positions(), curves.offsets(), "        ", &spill);
     out += "\n";
 
     // Extent: the bounds grown by the largest radius, as UsdGeomBasisCurves::ComputeExtent does.
@@ -187,7 +213,7 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
     }
     if (!width.empty()) {
         out += "    float[] widths = ";
-        append_array<float>(out, width, curves.offsets(), "        ");
+        append_array<float>(out, width, curves.offsets(), "        ", &spill);
         out += " (\n        interpolation = \"vertex\"\n    )\n";
     }
     for (Domain d : {Domain::Point, Domain::Curve, Domain::Detail}) {
@@ -207,7 +233,7 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
                 [&](const auto& v) {
                     using T = typename std::decay_t<decltype(v)>::value_type;
                     if (d == Domain::Detail) append_value(out, v[0]);
-                    else append_array<T>(out, v, d == Domain::Point ? curves.offsets() : std::span<const int64_t>(), "        ");
+                    else append_array<T>(out, v, d == Domain::Point ? curves.offsets() : std::span<const int64_t>(), "        ", &spill);
                 },
                 a.data);
             out += " (\n        interpolation = \"";
@@ -222,6 +248,7 @@ std::string write_usda_text(const CurveSet& curves, bool closed)
                                                                        !curves.attributes(Domain::Detail).find("st")) {
         out += "    texCoord2f[] primvars:st = [";
         for (size_t c = 0; c < uv.size(); ++c) {
+            if ((c & 4095) == 0) spill();
             if (c > 0) out += c % 8 == 0 ? ",\n        " : ", ";
             out += '(';
             append_number(out, uv[c].x);

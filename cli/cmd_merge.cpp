@@ -5,10 +5,10 @@
 #include "cli/frame_options.h"
 #include "kernel/curve_set_edit.h"
 #include "kernel/io/curve_io.h"
+#include "kernel/io/detail_text.h"
 
 #include <algorithm>
 #include <filesystem>
-#include <type_traits>
 
 namespace groom::cli {
 namespace {
@@ -103,17 +103,10 @@ std::vector<size_t> shard_order(const std::vector<std::string>& paths, const std
     return order;
 }
 
-/// A detail's value as text, for comparing parts ("" when absent).
-std::string detail_text(const CurveSet& cs, const Attribute& a)
+/// A detail's value as a message shows it (the .obj/.ply comment text: "TYPE VALUE").
+std::string detail_text(const Attribute& a)
 {
-    if (a.type() == AttrType::String) return cs.detail_string(a.name);
-    std::string t;
-    std::visit([&](const auto& v) {
-        using T = typename std::decay_t<decltype(v)>::value_type;
-        if constexpr (std::is_same_v<T, float3>) t = format_number(v[0].x) + "," + format_number(v[0].y) + "," + format_number(v[0].z);
-        else if constexpr (!std::is_same_v<T, std::string>) t = format_number(double(v[0]));
-    }, a.data);
-    return t;
+    return io::plain_detail_name(a.name) ? io::detail_value_text(a, "merge") : std::string("(a value)");
 }
 
 /// Refuses parts that cannot be one groom, and says what a merge fills in. join() fills a column a
@@ -185,9 +178,9 @@ void check_parts_agree(const std::vector<std::string>& paths, const std::vector<
         for (const Attribute& col : parts[k].attributes(Domain::Detail).all()) {
             if (col.name == "units" || col.name == "up_axis" || col.name == attr::closed || col.name == kShardDetail || col.name == kShardRunDetail) continue;
             const Attribute* mine = parts[first].attributes(Domain::Detail).find(col.name);
-            if (mine && detail_text(parts[first], *mine) != detail_text(parts[k], col)) {
-                warn(common, "merge: warning: detail '" + col.name + "' is '" + detail_text(parts[first], *mine) + "' in " + paths[first] + " but '" +
-                                 detail_text(parts[k], col) + "' in " + paths[k] + "; the output keeps the first");
+            if (mine && mine->data != col.data) {
+                warn(common, "merge: warning: detail '" + col.name + "' is '" + detail_text(*mine) + "' in " + paths[first] + " but '" +
+                                 detail_text(col) + "' in " + paths[k] + "; the output keeps the first");
             }
         }
     }

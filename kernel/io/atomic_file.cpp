@@ -171,11 +171,10 @@ AtomicOutput::AtomicOutput(std::string path, bool binary) : path_(std::move(path
     if (path_.empty()) throw IoError("output path is empty");
     // A device, a FIFO or a socket is written into as it is (`-o /dev/null`): renamed over, it was
     // replaced by a regular file (as root, /dev/null itself: a trial). Nothing can be undone there.
-    struct stat st {};
-    const bool exists = ::stat(path_.c_str(), &st) == 0;
     // A folder is refused at open, not at the rename: by then a batch's earlier outputs had landed.
-    if (exists && S_ISDIR(st.st_mode)) throw IoError(path_ + ": is a folder; expected a file to write");
-    if (exists && !S_ISREG(st.st_mode)) {
+    std::error_code dir_ec;
+    if (std::filesystem::is_directory(path_, dir_ec)) throw IoError(path_ + ": is a folder; expected a file to write");
+    if (written_in_place(path_)) {
         const int fd = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
         if (fd < 0) {
             const int err = errno;

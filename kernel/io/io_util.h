@@ -8,6 +8,7 @@
 
 #include <charconv>
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <string_view>
 
@@ -34,6 +35,22 @@ std::string extension_of(const std::string& path);
 /// only `available` bytes follow from byte `offset`: refused before anything is allocated.
 void check_claimed_count(const std::string& name, std::string_view what, uint64_t count, uint64_t min_bytes_each,
                          uint64_t available, size_t offset);
+
+/// Where a text writer's output goes as it is made: with a stream, the text so far is handed to it
+/// once it passes a few MiB, so a large file is never held whole beside the curves (a trial's
+/// 21 M-segment groom.write to .usda grew to 23.8 GB and was killed); without one, it all stays in
+/// `out` for the caller. Call it between items; write what is left in `out` at the end.
+struct TextSpill {
+    std::string& out;
+    std::ostream* to = nullptr;
+    void operator()() const
+    {
+        if (to && out.size() >= (size_t(4) << 20)) {
+            to->write(out.data(), static_cast<std::streamsize>(out.size()));
+            out.clear();
+        }
+    }
+};
 
 /// Shortest text that parses back to exactly `v` (std::to_chars), appended to `out`.
 inline void append_number(std::string& out, float v)

@@ -274,8 +274,8 @@ CurveSet read_obj_curves(const FileBytes& file, bool closed_loops)
 
 namespace {
 
-/// The text of write_obj_curves; with `to`, all but the returned tail is written there a few MiB at
-/// a time as it is made (held whole, a 21 M-hair file had doubled the memory of the curves: a trial).
+/// The text of write_obj_curves; with `to`, all but the returned tail is written there as it is
+/// made (io_util.h's TextSpill).
 std::string obj_curves_text(const CurveSet& given, bool closed, std::ostream* to)
 {
     // Closed loops: each point once, the record back to its first vertex (as USD periodic).
@@ -284,12 +284,7 @@ std::string obj_curves_text(const CurveSet& given, bool closed, std::ostream* to
     const CurveSet& curves = closed ? opened : given;
     std::string out;
     out.reserve(to ? (size_t(5) << 20) : curves.num_points() * 36 + curves.num_curves() * 8 + 128);
-    auto spill = [&] {
-        if (to && out.size() >= (size_t(4) << 20)) {
-            to->write(out.data(), static_cast<std::streamsize>(out.size()));
-            out.clear();
-        }
-    };
+    const TextSpill spill{out, to};
     out += "# groom curves: " + std::to_string(curves.num_curves()) + " curves, " + std::to_string(curves.num_points()) +
            " points (OBJ keeps positions, and detail values in these comments)\n";
     // (A name with spaces cannot be one comment word: left out, as format_table's obj_keeps tells the command.)

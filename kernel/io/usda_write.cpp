@@ -59,25 +59,10 @@ void append_value(std::string& out, const float3& v)
 }
 void append_value(std::string& out, const std::string& v) { append_escaped(out, v); }
 
-/// Where the text goes as it is made: with a stream, the text so far is handed to it every few MiB,
-/// so a file of 21 M hairs is not held whole beside the curves (a trial's groom.write of one to
-/// .usda grew to 23.8 GB and was killed); without one, it all stays in `out`.
-struct Spill {
-    std::string& out;
-    std::ostream* to = nullptr;
-    void operator()() const
-    {
-        if (to && out.size() >= (size_t(4) << 20)) {
-            to->write(out.data(), static_cast<std::streamsize>(out.size()));
-            out.clear();
-        }
-    }
-};
-
 /// `[a, b, ...]`, with a line break after each curve for point columns (per_line = curve offsets) or
 /// every 16 values otherwise, so the file stays readable and diffable.
 template <class T>
-void append_array(std::string& out, std::span<const T> values, std::span<const int64_t> breaks, const char* indent, const Spill* spill = nullptr)
+void append_array(std::string& out, std::span<const T> values, std::span<const int64_t> breaks, const char* indent, const TextSpill* spill = nullptr)
 {
     out += "[";
     size_t next_break = 1;
@@ -167,7 +152,7 @@ std::string write_usda_text(const CurveSet& curves, bool closed, std::ostream* t
 
     std::string out;
     out.reserve(to ? (size_t(5) << 20) : curves.num_points() * 40 + curves.num_curves() * 6 + 1024);
-    const Spill spill{out, to};
+    const TextSpill spill{out, to};
     // Layer metadata from the detail strings `groom transform` sets: the up axis (Y unless the curves
     // say Z) and the unit, which USD gives as metres per unit.
     const std::string up = curves.detail_string("up_axis") == "Z" ? "Z" : "Y";

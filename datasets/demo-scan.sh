@@ -42,6 +42,15 @@ run groom gather "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" --scalp 
 run groom edges --scalp "$out/scan.vdb" --hairline "$out/hairline.usda" --parting "$out/parting.usda" --parting-gap 0.05 \
     -o "$out/izzy_baby_hairs.usda" --direction alternate --units-per-cm 0.175 --seed 2
 
+echo "2b. Alisha's cornrows on the scan: 12 straight-back rows from the hairline to the nape, edge hairs between them"
+knot=0.385  # 2.2 cm per knot, as the demo head's
+run groom cornrow-guides --scalp "$out/scan.vdb" --hairline "$out/hairline.usda" --center 0,2.3,0 --radius 1.7 --count 12 \
+    -o "$out/alisha_guides.usda" --tails-out "$out/alisha_tails.usda" --tail-length 2.4
+run groom braid "$out/alisha_guides.usda" --scalp "$out/scan.vdb" -o "$out/alisha_braids.usda" --orient scalp --strands 3 \
+    --knot-length "$knot" --rest --clearance 0.009 --fibers 40 --feed-in 0.8 --width 0.1
+run groom partition "$out/alisha_guides.usda" --scalp "$out/scan.vdb" -o "$out/alisha_edges.usda" --centroids knots \
+    --knot-length "$knot" --samples 6 --max-height 0.175 --hairline "$out/hairline.usda" --units-per-cm 0.175
+
 echo "3. box braids on the scan: sections about 3.4 cm square, a plait each"
 run groom sections --scalp "$out/scan.vdb" --hairline "$out/hairline.usda" --layout grid --cols 8 --length 4.2 \
     --parting-gap 0.05 --step 0.045 --bend 0.175 --clearance 0.05 --layer 0.026 \
@@ -53,6 +62,10 @@ run groom braid "$out/box_guides.usda" --scalp "$out/scan.vdb" -o "$out/box_brai
 echo "4. pictures"
 run groom render "$out/izzy_puff_left.usda" "$out/izzy_puff_right.usda" "$out/izzy_gathered.usda" "$out/izzy_baby_hairs.usda" --scalp "$scan" \
     -o "$out/izzy_scan.png" --views front,left,back --size 420x420
+run groom render "$out/alisha_braids.usda" "$out/alisha_edges.usda" --scalp "$scan" \
+    -o "$out/alisha_scan.png" --views front,left,back --size 420x420
+run groom render "$out/alisha_braids.usda" "$out/alisha_edges.usda" --scalp "$scan" \
+    -o "$out/alisha_scan_back.png" --camera 0,-3,-12,0,1.2,0 --fov 25 --size 600x600
 run groom render "$out/box_braids.usda" "$out/box_roots.usda" "$out/box_partings.usda" --scalp "$scan" \
     -o "$out/box_braids_scan.png" --views front,left,back --size 420x420
 echo "demo-scan: done -> $out"

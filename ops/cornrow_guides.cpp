@@ -31,6 +31,11 @@ constexpr float kDeg = kPi / 180.0f;
 /// A dense path whose largest chord is this many times its median has jumped across a fold (its
 /// even parts differ by a few percent; ICT's forehead jumped 14 times the median).
 constexpr float kJumpRatio = 4.0f;
+/// Straight-back rows end on the hairline between its points this far round from the face either
+/// way, degrees (azimuth about its centroid): behind the ears. At the outer rows' own ends (their
+/// planes' cuts) the outermost two pairs of rows on Lee Perry-Smith came within 0.05 of each other
+/// behind the ears, a tenth of their spacing.
+constexpr float kBackArcStart = 120.0f;
 
 std::string fmt(float v) { return format_number(v); }
 
@@ -105,16 +110,150 @@ void CornrowGuidesParams::validate(bool hairline) const
 
 namespace {
 
+/// The circle a row is laid along, where its plane cuts the sphere round the cranium: the point at
+/// angle a is base + upward (s0 + rho sin a) + front (rho cos a), a = 0 towards the face, pi/2 the
+/// top. (The fan's planes keep base at the pivot and s0 along their lean, as they were first
+/// written, so their rows are the same bits.)
+struct RowCircle {
+    float3 base, front, upward;  ///< front and upward: unit, perpendicular, in the plane
+    float s0 = 0.0f, rho = 0.0f;
+    float3 point(float a) const { return base + upward * (s0 + rho * std::sin(a)) + front * (rho * std::cos(a)); }
+    float3 centre() const { return base + upward * s0; }
+    float3 direction(float a) const { return normalize(upward * std::sin(a) + front * std::cos(a)); }
+    /// The angle of p's direction from the centre, in the plane, (-pi, pi].
+    float angle_of(const float3& p) const { return std::atan2(dot(p - centre(), upward), dot(p - centre(), front)); }
+};
+
+/// The circle's point at an angle, on the scalp.
+auto on_circle(const Surface& scalp, const RowCircle& circle)
+{
+    return [&scalp, circle](float a) { return on_scalp(scalp, circle.point(a), 0.0f); };
+}
+
+/// One way along a row from the top of its circle, walked on the scalp (see trace_row).
+struct Walk {
+    std::vector<float3> points;  ///< after the start, in walking order
+    double length = 0.0;
+    bool left_hairline = false;  ///< it ended where it leaves the hairline (else it stalled or ran its full length)
+};
+
+/// Walks on the scalp from `start` (on it, inside the hairline) in steps of `step`, along the cut of
+/// the row's plane with the scalp (the direction in both the plane and the scalp's tangent plane
+/// that goes on the way `heading` points), until it leaves the hairline; the last point is on the
+/// hairline (bisected to 2^-20 of a step). With a `target`, the heading turns from the plane's way
+/// towards the target as the walk goes, by smoothstep(length / steer_length), and the walk ends at
+/// the target when it comes within a step of it. Stops after `max_length`, or where a step gains
+/// less than a quarter of a step (a crease).
+Walk walk_row(const Surface& scalp, const HairRegion& region, const RowCircle& circle, const float3& start, float3 heading, float step,
+              double max_length, const float3* target = nullptr, double steer_length = 0.0)
+{
+    // The plane parallel to the row's through the start: a row projected to its nearest scalp
+    // points lies up to a tenth of a radius off its plane where the scalp slopes across it.
+    const float3 normal = normalize(cross(circle.front, circle.upward));
+    const float3 centre = start;
+    // Onto the scalp and, while the walk keeps to its plane, the plane: alternating projections.
+    const auto onto = [&](float3 q, bool plane) {
+        for (int it = 0; plane && it < 4; ++it) {
+            q = scalp.closest_point(q);
+            q = q - normal * dot(q - centre, normal);
+        }
+        return scalp.closest_point(q);
+    };
+    Walk walk;
+    float3 p = start;
+    while (walk.length < max_length) {
+        const float3 n = scalp.normal(p);
+        float3 t = cross(normal, n);
+        if (dot(t, heading) < 0.0f) t = -t;
+        t = normalize(t, heading);
+        bool plane = true;
+        if (target != nullptr && steer_length > 0.0) {
+            const float x = float(std::min(walk.length / steer_length, 1.0));
+            const float w = x * x * (3.0f - 2.0f * x);
+            float3 to = *target - p;
+            to = to - n * dot(to, n);
+            if (w > 0.0f && length(to) > 0.0f) {
+                t = normalize(t * (1.0f - w) + normalize(to) * w, t);
+                plane = false;
+            }
+        }
+        // A step that lands more than two steps away has crossed to another sheet of the scalp (an
+        // ear's rim): it is taken again shorter, and the walk stops where that does not help.
+        float3 q = onto(p + t * step, plane);
+        for (float part = 0.5f; part > 0.05f && distance(q, p) > 2.0f * step; part *= 0.5f) q = onto(p + t * (step * part), plane);
+        const float gained = distance(q, p);
+        if (!(gained > 0.25f * step) || gained > 2.0f * step) break;
+        if (!region.inside_hairline(q)) {
+            float3 in = p, out = q;
+            for (int it = 0; it < 20; ++it) {
+                const float3 mid = onto((in + out) * 0.5f, plane);
+                (region.inside_hairline(mid) ? in : out) = mid;
+            }
+            if (distance(in, p) > 0.0f) walk.points.push_back(in);
+            walk.left_hairline = true;
+            break;
+        }
+        walk.points.push_back(q);
+        walk.length += double(gained);
+        heading = (q - p) * (1.0f / gained);
+        p = q;
+        if (target != nullptr && distance(p, *target) < step) {
+            walk.points.push_back(scalp.closest_point(*target));
+            walk.left_hairline = true;
+            break;
+        }
+    }
+    return walk;
+}
+
+/// `n` points spread evenly in arc length along the closed `loop`, the first its point nearest
+/// `first` and the last its point nearest `last`, going the way that does not pass its frontmost
+/// point (largest along Z): round the back of the head.
+std::vector<float3> spread_along_hairline(std::span<const float3> loop, const float3& first, const float3& last, const float3& Z, int n)
+{
+    std::vector<float3> closed(loop.begin(), loop.end());
+    closed.push_back(loop.front());
+    const std::vector<double> cum = cumulative_lengths(closed);
+    const double total = cum.back();
+    // Arc length of the loop's point nearest p.
+    const auto nearest = [&](const float3& p) {
+        double best = std::numeric_limits<double>::infinity(), at = 0.0;
+        for (size_t k = 0; k + 1 < closed.size(); ++k) {
+            const float3 seg = closed[k + 1] - closed[k];
+            const float len2 = dot(seg, seg);
+            const float t = len2 > 0.0f ? std::clamp(dot(p - closed[k], seg) / len2, 0.0f, 1.0f) : 0.0f;
+            const float3 off = closed[k] + seg * t - p;
+            const double d = double(dot(off, off));
+            if (d < best) best = d, at = cum[k] + double(t) * (cum[k + 1] - cum[k]);
+        }
+        return at;
+    };
+    size_t frontmost = 0;
+    for (size_t k = 1; k < loop.size(); ++k) {
+        if (dot(loop[k], Z) > dot(loop[frontmost], Z)) frontmost = k;
+    }
+    const auto ahead = [&](double from, double to) { return std::fmod(std::fmod(to - from, total) + total, total); };
+    const double s0 = nearest(first), s1 = nearest(last);
+    // Forward from s0 to s1 unless that passes the front; then backward.
+    const double sign = ahead(s0, cum[frontmost]) < ahead(s0, s1) ? -1.0 : 1.0;
+    const double span = sign > 0.0 ? ahead(s0, s1) : ahead(s1, s0);
+    std::vector<float3> out(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        const double s = s0 + sign * span * double(i) / double(n - 1);
+        out[size_t(i)] = point_at_length(closed, cum, std::fmod(std::fmod(s, total) + total, total));
+    }
+    return out;
+}
+
 /// The part of a row's arc inside the hairline, as arc angles [a0, a1] (radians), given the whole
 /// arc `at(a)` on the scalp for a in [lo, hi]: the run of inside samples through the highest point,
 /// each end refined by bisection on the hairline's margin.
-std::pair<float, float> inside_arc(const HairRegion& region, float lo, float hi, int row, const std::function<float3(float)>& at)
+std::pair<float, float> inside_arc(const HairRegion& region, float lo, float hi, int row, const float3& up, const std::function<float3(float)>& at)
 {
     constexpr int kSamples = 512;
     std::vector<char> inside(kSamples + 1);
     int top = -1;
     float best = -std::numeric_limits<float>::infinity();
-    const float3 up(0.0f, 1.0f, 0.0f);
     for (int k = 0; k <= kSamples; ++k) {
         const float3 p = at(lo + (hi - lo) * float(k) / float(kSamples));
         inside[size_t(k)] = region.inside_hairline(p);
@@ -234,6 +373,12 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     // world's axes, so a +Y-up head's guides are the same bits as before the frame was an option.
     const float3 Y = normalize(params.up), Z = normalize(params.forward - Y * dot(params.forward, Y)), X = cross(Y, Z);
     std::vector<std::vector<float3>> paths(static_cast<size_t>(n));  // each row's dense path on the scalp
+    const float3 pivot = params.center - Y * params.pivot;
+    std::vector<RowCircle> circles(static_cast<size_t>(n));
+    std::vector<float> from(static_cast<size_t>(n)), to(static_cast<size_t>(n));  // each row's arc, as angles on its circle
+    // Straight-back rows (their planes never meet) between a hairline's ends are walked on the scalp
+    // and spread at the nape (below); other rows are their circles' arcs projected onto it.
+    const bool spread_rows = region != nullptr && n >= 3 && params.pivot >= params.radius;
     parallel_for(n, 1, [&](int64_t b, int64_t e) {
         for (int64_t i = b; i < e; ++i) {
             const float u = n == 1 ? 0.0f : -1.0f + 2.0f * float(i) / float(n - 1);  // -1 .. 1 across the head
@@ -242,17 +387,16 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
             // pivot point c - h Y and w along Z, the sphere |p - c| = R is the circle
             // (s - h cos phi)^2 + w^2 = R^2 - h^2 sin^2 phi.
             const float h = params.pivot;
-            const float3 lean = X * std::sin(phi) + Y * std::cos(phi);
-            const float3 pivot = params.center - Y * h;
-            const float s0 = h * std::cos(phi);
-            const float rho = std::sqrt(params.radius * params.radius - h * h * std::sin(phi) * std::sin(phi));
+            RowCircle& circle = circles[size_t(i)];
+            circle.base = pivot;
+            circle.upward = X * std::sin(phi) + Y * std::cos(phi);
+            circle.front = Z;
+            circle.s0 = h * std::cos(phi);
+            circle.rho = std::sqrt(params.radius * params.radius - h * h * std::sin(phi) * std::sin(phi));
             // The arc runs from the hairline (front, +Z) over the top to the nape: an angle from +Z
             // towards `lean`, from front_angle to 180 - back_angle.
-            const auto at = [&](float a) {
-                return on_scalp(scalp, pivot + lean * (s0 + rho * std::sin(a)) + Z * (rho * std::cos(a)), 0.0f);
-            };
-            float a0 = (params.front_angle + params.hairline_curve * u * u) * kDeg;
-            float a1 = (180.0f - params.back_angle) * kDeg;
+            from[size_t(i)] = (params.front_angle + params.hairline_curve * u * u) * kDeg;
+            to[size_t(i)] = (180.0f - params.back_angle) * kDeg;
             if (region != nullptr) {
                 // As far as the rows can go before they crowd. Neighbouring rows' planes are dphi
                 // apart about the axis, so at distance d from it they are d dphi apart, and over
@@ -262,9 +406,16 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
                 // head: 8 of 10 rows ended at one point, their braids through each other). A
                 // deep axis (pivot >= radius) may leave the whole circle: all but its lowest point.
                 const float d_min = params.min_spacing * (params.radius + h);
-                const float reach = std::asin(std::clamp((s0 - d_min) / rho, -1.0f, 1.0f));
-                std::tie(a0, a1) = inside_arc(*region, -reach + 1e-3f, kPi + reach - 1e-3f, int(i), at);
+                const float reach = std::asin(std::clamp((circle.s0 - d_min) / circle.rho, -1.0f, 1.0f));
+                std::tie(from[size_t(i)], to[size_t(i)]) = inside_arc(*region, -reach + 1e-3f, kPi + reach - 1e-3f, int(i), Y, on_circle(scalp, circle));
             }
+        }
+    });
+    parallel_for(n, 1, [&](int64_t b, int64_t e) {
+        for (int64_t i = b; i < e; ++i) {
+            const RowCircle& circle = circles[size_t(i)];
+            const auto at = on_circle(scalp, circle);
+            const float a0 = from[size_t(i)], a1 = to[size_t(i)];
             std::vector<float3> path(static_cast<size_t>(dense));
             for (int k = 0; k < dense; ++k) {
                 const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
@@ -278,17 +429,17 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
             // goes over the fold, if that path jumps less.
             const Jump jump = largest_step(path);
             if (jump.ratio > kJumpRatio) {
-                const float3 o = pivot + lean * s0;
+                const float3 o = circle.centre();
                 std::vector<float3> rays(path);
                 int missed = 0;
                 for (int k = 0; k < dense; ++k) {
                     const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
-                    const float3 dir = normalize(lean * std::sin(a) + Z * std::cos(a));
+                    const float3 dir = circle.direction(a);
                     float3 hit;
                     // The outermost surface along the ray, coming in from far out; a ray that
                     // meets none (the centre itself outside the head, at the side) keeps its
                     // nearest point.
-                    if (!scalp.first_intersection(o + dir * (4.0f * (rho + params.radius)), o, hit)) {
+                    if (!scalp.first_intersection(o + dir * (4.0f * (circle.rho + params.radius)), o, hit)) {
                         ++missed;
                         continue;
                     }
@@ -306,6 +457,70 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
             paths[size_t(i)] = std::move(path);
         }
     });
+    if (spread_rows) {
+        // Straight-back rows are walked on the scalp both ways from the highest point of their
+        // arc's path, along the cut of the row's plane (moved parallel through that point) with the
+        // scalp, to the hairline. Projected to its nearest scalp points, the arc jumped from the
+        // back of the skull to the neck under Lee Perry-Smith's occiput (chords 9-15 times the
+        // median) and at the brow, and the fan's reach had stopped the rows above the occiput
+        // anyway. The planes all contain the fan's axis, so down the back the rows converge, and a
+        // real head's nape is narrower than the sphere: on Lee Perry-Smith six rows ended within 1.0
+        // of each other at the nape, in a V, and the two beside them were cut 1.5 short, high on
+        // the back of the head, leaving it bare. So every row is steered down the back to end on
+        // the hairline, the rows evenly spaced in arc length round the back of the head from behind
+        // one ear to behind the other, as a stylist parts rows that reach the nape side by side.
+        // The steer grows smoothly (smoothstep of the length walked over the plane's own length
+        // down the back), so a row leaves its highest point in its plane; the rows keep their
+        // order. Each walk's step is the arc's dense spacing, pi R / dense.
+        const float step = kPi * params.radius / float(dense);
+        const double max_length = 4.0 * kPi * double(params.radius);
+        const auto walk = [&](size_t i, const float3* target) {
+            std::vector<float3>& path = paths[i];
+            size_t top = 0;
+            for (size_t k = 1; k < path.size(); ++k) {
+                if (dot(path[k], Y) > dot(path[top], Y)) top = k;
+            }
+            const RowCircle& circle = circles[i];
+            const float3 start = on_scalp(scalp, path[top], 0.0f);
+            const float3 forth = normalize(top > 0 ? path[top - 1] - path[top] : circle.front, circle.front);
+            const float3 back = normalize(top + 1 < path.size() ? path[top + 1] - path[top] : -circle.front, -circle.front);
+            const Walk ahead = walk_row(scalp, *region, circle, start, forth, step, max_length);
+            Walk behind = walk_row(scalp, *region, circle, start, back, step, max_length);
+            if (target != nullptr) behind = walk_row(scalp, *region, circle, start, back, step, max_length, target, behind.length);
+            std::vector<float3> walked(ahead.points.rbegin(), ahead.points.rend());
+            walked.push_back(start);
+            walked.insert(walked.end(), behind.points.begin(), behind.points.end());
+            if (params.offset > 0.0f) {
+                for (float3& q : walked) q = q + scalp.normal(q) * params.offset;
+            }
+            path = std::move(walked);
+        };
+        // The ends: the hairline's points 120 degrees round from the face either way (azimuth
+        // about its centroid; behind the ears on every head tried), and evenly between them round
+        // the back.
+        const std::span<const float3> loop = region->hairline_points();
+        const float3 mid = region->centroid();
+        const auto at_azimuth = [&](float degrees) {
+            const float want = degrees * kDeg;
+            size_t best = 0;
+            float off = std::numeric_limits<float>::infinity();
+            for (size_t k = 0; k < loop.size(); ++k) {
+                const float az = std::atan2(dot(loop[k] - mid, X), dot(loop[k] - mid, Z));
+                const float d = std::fabs(std::remainder(az - want, 2.0f * kPi));
+                if (d < off) off = d, best = k;
+            }
+            return loop[best];
+        };
+        const std::vector<float3> ends = spread_along_hairline(loop, at_azimuth(-kBackArcStart), at_azimuth(kBackArcStart), Z, n);
+        parallel_for(n, 1, [&](int64_t b, int64_t e) {
+            for (int64_t i = b; i < e; ++i) {
+                walk(size_t(i), &ends[size_t(i)]);
+                // Walked, not projected: the jumps measured on the arc's path are gone (a step is
+                // never more than two steps long).
+                out.rows[size_t(i)] = CornrowGuides::Row{};
+            }
+        });
+    }
     if (region != nullptr && n > 1) {
         // The spacing rule above holds in the rows' planes on the sphere; laid on the scalp, rows can
         // come closer (a scalp narrower than the sphere at the nape, rows laid along rays over a

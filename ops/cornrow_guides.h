@@ -74,6 +74,10 @@ struct CornrowGuides {
         /// With a hairline: the length cut off the row's ends where, laid on the scalp, it came
         /// within min_spacing of its crown spacing of a neighbouring row (scene units; else 0).
         float trimmed = 0.0f;
+        /// With a hairline: how far the row's end moved when it was bent from its plane to end on
+        /// the hairline between the outer rows' ends, spread round the back of the head with the
+        /// others (scene units; 0 for the outer rows and rows not bent).
+        float end_moved = 0.0f;
     };
     std::vector<Row> rows;
 };

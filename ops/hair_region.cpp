@@ -70,6 +70,7 @@ HairRegion::HairRegion(const Surface& scalp, const CurveSet& hairline, const Cur
 
     if (hairline.num_curves() > 0) {
         const auto pts = check_hairline(hairline, "hairline");
+        hairline_.assign(pts.begin(), pts.end());
         centroid_ = std::accumulate(pts.begin(), pts.end(), float3{}) * (1.0f / float(pts.size()));
         // Azimuths must turn one way once around the axis: the hairline is then a height function
         // of the azimuth, and inside/outside is a comparison of elevations.

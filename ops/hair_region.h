@@ -54,6 +54,9 @@ public:
     HairRegion(const Surface& scalp, const CurveSet& hairline, const CurveSet& partings, const HairRegionParams& params);
 
     bool has_hairline() const { return !elevation_.empty(); }
+    /// The hairline's points in its own order (a closed curve, the first point not repeated), or
+    /// empty: cornrow-guides spreads its rows' ends along it.
+    std::span<const float3> hairline_points() const { return hairline_; }
     size_t num_partings() const { return partings_.size(); }
 
     /// Inside the hairline (true when there is none).
@@ -83,6 +86,7 @@ private:
     HairRegionParams params_;
     float3 centroid_{}, e1_{}, e2_{};
     std::vector<float> azimuth_, elevation_;  ///< hairline samples sorted by azimuth in [-pi, pi)
+    std::vector<float3> hairline_;
     std::vector<Parting> partings_;
 };
 

@@ -171,6 +171,56 @@ TEST(CornrowGuides, ConvergingRowsStopBeforeTheyCrowd)
     }
 }
 
+// Straight-back rows (the default fan, whose planes never meet) between a hairline's ends reach the
+// hairline at the nape side by side, as a person sees them from behind: on a sphere of radius 8 with
+// a level hairline half a radius below the centre, each row starts on the hairline at the front and
+// ends on it at the back, the ends spaced evenly in arc length round the back from 120 degrees on
+// one side to 120 on the other (the closed form: azimuth -120 - 120 i / (n - 1)); every point lies on
+// the sphere; neighbouring rows never come closer than min_spacing of their crown spacing, so none is
+// cut; and a row's steps stay even (a walk, not a projection that jumps). The fan's planes alone
+// ended the rows from 135 degrees round, closer in the middle: neighbouring ends 1.27 apart at the
+// nape against 1.95 behind the ears (1.81 each now), and every row's end 0.5-1.3 from the closed form.
+TEST(CornrowGuides, StraightBackRowsEndSideBySideAlongTheNapeHairline)
+{
+    const float3 c{0.0f, 3.0f, -1.0f};
+    const float R = 8.0f;
+    const AnalyticSphere sphere(c, R);
+    const float below = -0.5f * R;
+    const CurveSet hairline = test::circle_on_sphere(c, R, float3(0, 1, 0), below, 1440);
+    const HairRegion region(sphere, hairline, CurveSet(), HairRegionParams{});
+    CornrowGuidesParams p;
+    p.center = c;
+    p.radius = R;
+    p.pivot = 2.0f * R;
+    p.count = 9;
+    p.samples = 120;
+    const CornrowGuides g = cornrow_guides(sphere, p, &region);
+    ASSERT_EQ(g.guides.num_curves(), 9u);
+    const auto P = g.guides.positions();
+    const float r = std::sqrt(R * R - below * below);
+    const float dphi = 2.0f * p.spread * kDeg / float(p.count - 1);
+    const float want = p.min_spacing * (p.radius + p.pivot) * std::sin(dphi);
+    for (size_t i = 0; i < 9; ++i) {
+        const IndexRange rg = g.guides.points_of(i);
+        EXPECT_NEAR(P[rg.begin].y - c.y, below, 0.01f * R) << "row " << i << " starts on the hairline";
+        EXPECT_GT(P[rg.begin].z, c.z) << "row " << i << " starts at the front";
+        const float az = (-120.0f - 120.0f * float(i) / 8.0f) * kDeg;
+        const float3 end = c + float3(std::sin(az) * r, below, std::cos(az) * r);
+        EXPECT_LT(distance(P[rg.end - 1], end), 0.01f * R) << "row " << i << " ends at " << P[rg.end - 1].x << "," << P[rg.end - 1].y << "," << P[rg.end - 1].z << ", expected " << end.x << "," << end.y << "," << end.z;
+        float shortest = 1e30f, longest = 0.0f;
+        for (int64_t k = rg.begin; k < rg.end; ++k) {
+            EXPECT_NEAR(distance(P[size_t(k)], c), R, 1e-3f) << "row " << i << " point " << k;
+            if (k + 1 < rg.end) {
+                shortest = std::min(shortest, distance(P[size_t(k)], P[size_t(k) + 1]));
+                longest = std::max(longest, distance(P[size_t(k)], P[size_t(k) + 1]));
+            }
+        }
+        EXPECT_LT(longest, 1.05f * shortest) << "row " << i << ": even steps";
+        EXPECT_EQ(g.rows[i].trimmed, 0.0f) << "row " << i;
+        if (i + 1 < 9) EXPECT_GE(row_gap(g.guides, i), want) << "rows " << i << " and " << i + 1;
+    }
+}
+
 // The same rule measured on the rows as laid on the scalp, not in their planes on the sphere: on a
 // scalp smaller than the rows' sphere (radius 7 under a sphere of 9) every row lands 7/9 as far from
 // its neighbours, so where the planes' rule ends them they are only 0.78 of the spacing asked apart

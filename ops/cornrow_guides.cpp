@@ -471,8 +471,10 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
         // one ear to behind the other, as a stylist parts rows that reach the nape side by side.
         // The steer grows smoothly (smoothstep of the length walked over the plane's own length
         // down the back), so a row leaves its highest point in its plane; the rows keep their
-        // order. Each walk's step is the arc's dense spacing, pi R / dense.
-        const float step = kPi * params.radius / float(dense);
+        // order. Each walk's step is the arc's dense spacing, pi R / dense, but no finer than
+        // pi R / 1024: a step costs about six closest-point queries, and `samples` 100,000 would
+        // have walked 1.6 M steps a row; the re-spaced points are put back on the scalp anyway.
+        const float step = kPi * params.radius / float(std::min(dense, 1024));
         const double max_length = 4.0 * kPi * double(params.radius);
         const auto walk = [&](size_t i, const float3* target) {
             std::vector<float3>& path = paths[i];

@@ -7,6 +7,7 @@
 #include "kernel/io/curve_io.h"
 #include "kernel/math/polyline.h"
 #include "ops/cornrow_guides.h"
+#include "ops/cranium.h"
 
 #include <chrono>
 #include <cstdio>
@@ -52,14 +53,13 @@ void setup(CommandContext& ctx)
         ->capture_default_str();
     app->add_option("--samples", p.samples, "Points per guide, >= 2")->capture_default_str();
     app->add_option("--offset", p.offset, "Height of the guides above the scalp, scene units")->capture_default_str();
-    app->add_option("--tail-length", p.tail_length, "Length of each tail past the nape, scene units (needs --tails-out; default 12)")
+    app->add_option("--tail-length", p.tail_length, "Length of each tail past the nape, scene units (needs --tails-out; default 1.2 x --radius: 12)")
         ->needs(tails);
     app->add_option("--tail-samples", p.tail_samples, "Points per tail, >= 2")->capture_default_str();
     const CommonOptions& common = *ctx.common;
     ctx.run = [args, &common, app] {
         Args& a = *args;
         check_outputs({{"-o", a.output}, {"--tails-out", a.tails_out}}, {a.scalp, a.hairline}, common);
-        if (!a.tails_out.empty() && a.params.tail_length <= 0.0f) a.params.tail_length = 12.0f;
         // The default pivot is twice the default radius: on another head (its own --radius) the
         // rows keep the default's shape. A fixed 7.5 was reported back to a user who had given only
         // --radius 1.8 ("pivot ... got 7.5": a trial on a scan in other units).
@@ -74,13 +74,19 @@ void setup(CommandContext& ctx)
         const auto start = std::chrono::steady_clock::now();
         auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
+        // The hairline is read around the same up direction the rows are laid with.
+        RegionOptions region_options;
+        region_options.hairline = a.hairline;
+        region_options.up = a.up;
+        const std::unique_ptr<HairRegion> region = make_region(region_options, *scalp);
         // The default sphere is the default head's cranium (`groom head`: centimetres, +Y up, its top
         // at y = 13). On another head it lays rows somewhere else without a word (a trial on a scan
-        // in other units ran them onto the shoulders): refuse unless the scalp lies about on that
-        // sphere. The top's height alone let MakeHuman's body through (decimetres, its head's top at
-        // y 8.5, 4.5 from 13 by chance: rows over the chest), so the scalp's distance is asked at 17
-        // points of the sphere's upper half too: within 0.22 R on the default head, 0.25 R on ICT's
-        // face and Sintel's (cm), 0.44-0.88 R on MakeHuman's body.
+        // in other units ran them onto the shoulders): unless the scalp lies about on that sphere,
+        // the cranium is fitted to the scalp inside the hairline, or without one the command
+        // refuses. The top's height alone let MakeHuman's body through (decimetres, its head's top
+        // at y 8.5, 4.5 from 13 by chance: rows over the chest), so the scalp's distance is asked at
+        // 17 points of the sphere's upper half too: within 0.22 R on the default head, 0.25 R on
+        // ICT's face and Sintel's (cm), 0.44-0.88 R on MakeHuman's body.
         const Bounds3 box = scalp->bounds();
         if (app->count("--center") == 0 && app->count("--radius") == 0 && !box.empty()) {
             const float3 c = a.params.center;
@@ -96,21 +102,32 @@ void setup(CommandContext& ctx)
             std::nth_element(off.begin(), off.begin() + off.size() / 2, off.end());
             const float median = off[off.size() / 2];
             const bool top_off = std::fabs(box.hi.y - top) > 0.5f * r;
-            if (top_off || median > 0.4f * r) {
+            if ((top_off || median > 0.4f * r) && region != nullptr && region->has_hairline()) {
+                // A user with a scan and its hairline had to measure its cranium to get any rows (a
+                // trial on Lee Perry-Smith: --center 0,2.3,0 --radius 1.7 found by hand).
+                const Cranium fit = fit_cranium(*scalp, *region, a.params.up);
+                a.params.center = fit.center;
+                a.params.radius = fit.radius;
+                if (app->count("--pivot") == 0) a.params.pivot = 2.0f * fit.radius;
+                a.params.validate(true);
+                note(common, "cornrow-guides: the default sphere does not fit " + a.scalp + "; fitted the cranium to the scalp inside the hairline (" +
+                                 std::to_string(fit.samples) + " points): --center " + format_xyz(fit.center) + " --radius " +
+                                 format_number(fit.radius) + (app->count("--pivot") == 0 ? " --pivot " + format_number(a.params.pivot) : std::string()));
+            }
+            else if (top_off || median > 0.4f * r) {
                 throw InvalidParam("cornrow-guides: the default --center " + format_xyz(c) + " and --radius " + format_number(r) +
                                    " are the default head's cranium (top at y " + format_number(top) + ", centimetres, +Y up), but " + a.scalp +
                                    (top_off ? " reaches y " + format_number(box.hi.y)
                                             : " lies " + format_number(median) + " from that sphere (the median over its upper half; within " +
                                                   format_number(0.4f * r) + " on a head it fits)") +
                                    " (bounds " + format_xyz(box.lo) + " to " + format_xyz(box.hi) +
-"): pass --center (the middle of this head's cranium) and --radius (about half its width)");
+                                   "): pass --center (the middle of this head's cranium) and --radius (about half its width), or a --hairline "
+                                   "(`groom hairline`) to fit them to the scalp inside it");
             }
         }
-        // The hairline is read around the same up direction the rows are laid with.
-        RegionOptions region_options;
-        region_options.hairline = a.hairline;
-        region_options.up = a.up;
-        const std::unique_ptr<HairRegion> region = make_region(region_options, *scalp);
+        // The default tail is 1.2 radii of the rows' sphere (12 on the default head): a fixed 12
+        // hung tails 6 heads long from a bust modelled in metres (a trial on Demosthenes).
+        if (!a.tails_out.empty() && a.params.tail_length <= 0.0f) a.params.tail_length = 1.2f * a.params.radius;
         const CornrowGuides g = cornrow_guides(*scalp, a.params, region.get());
         OutputBatch outputs;  // both files land together, or neither
         write_curves(g.guides, a.output, outputs);

@@ -223,4 +223,25 @@ TEST(CornrowGuidesCliReal, StraightBackRowsReachTheNapeSideBySideOnAScan)
     EXPECT_GT(distance(ends.front(), ends.back()), 2.5f);
     const float crown = 5.1f * std::sin(2.0f * 24.0f * 3.14159265f / 180.0f / float(n - 1));  // (R + pivot) sin(dphi)
     for (size_t i = 0; i + 1 < ends.size(); ++i) EXPECT_GT(distance(ends[i], ends[i + 1]), crown / 3.0f) << "rows " << i << " and " << i + 1;
+
+    // Without --center and --radius (which a user had measured by hand) the cranium is fitted to
+    // the scalp inside the hairline and noted; the rows are as good: on the hairline, no warning.
+    const auto fitted = run_groom({"cornrow-guides", "--scalp", dir.file("s.vdb"), "-o", dir.file("f.usda"), "--count", std::to_string(n),
+                                   "--hairline", dir.file("h.usda"), "--tails-out", dir.file("t.usda")});
+    ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
+    EXPECT_NE(fitted.err.find("fitted the cranium to the scalp inside the hairline"), std::string::npos) << fitted.err;
+    EXPECT_EQ(fitted.err.find("warning"), std::string::npos) << fitted.err;
+    const CurveSet f = read_curves(dir.file("f.usda"));
+    ASSERT_EQ(f.num_curves(), size_t(n));
+    for (size_t i = 0; i < size_t(n); ++i) {
+        const float3 end = f.positions()[size_t(f.points_of(i).end - 1)];
+        float near = 1e30f;
+        for (const float3& q : H) near = std::min(near, distance(q, end));
+        EXPECT_LT(near, tol) << "fitted: row " << i << " ends on the hairline";
+    }
+    // The tails are 1.2 fitted radii long (about 2.2 here), not the default head's 12.
+    const CurveSet t = read_curves(dir.file("t.usda"));
+    const float tail = polyline_length(t.positions().subspan(0, size_t(t.points_of(0).size())));
+    EXPECT_GT(tail, 1.2f * 1.5f);
+    EXPECT_LT(tail, 1.2f * 2.1f);
 }

@@ -19,6 +19,7 @@ struct Args {
     ScalpBuildParams scalp_params;
     std::string scalp, output, tails_out, center, hairline, up = "0,1,0", forward = "0,0,1";
     CornrowGuidesParams params;
+    bool fit_cranium = false;
 };
 
 void setup(CommandContext& ctx)
@@ -31,8 +32,10 @@ void setup(CommandContext& ctx)
     auto* tails = app->add_option("--tails-out", args->tails_out, "Also write a free tail per guide past the nape here");
     CornrowGuidesParams& p = args->params;
     app->add_option("--count", p.count, "Guides (rows), [1, 256]")->capture_default_str();
-    app->add_option("--center", args->center, "Centre X,Y,Z of the sphere the rows are laid on (default: the default head's cranium, 0,3,-1)");
-    app->add_option("--radius", p.radius, "Radius of that sphere, scene units")->capture_default_str();
+    auto* center = app->add_option("--center", args->center,
+                                   "Centre X,Y,Z of the sphere the rows are laid on (default: the default head's cranium, 0,3,-1; on a "
+                                   "head it does not fit, with --hairline, fitted to the scalp inside it)");
+    auto* radius = app->add_option("--radius", p.radius, "Radius of that sphere, scene units")->capture_default_str();
     app->add_option("--up", args->up, "X,Y,Z: the head's up direction")->capture_default_str();
     app->add_option("--forward", args->forward, "X,Y,Z: the direction the face looks (rows run from the front to the nape)")
         ->capture_default_str();
@@ -44,9 +47,15 @@ void setup(CommandContext& ctx)
     app->add_option("--hairline-curve", p.hairline_curve, "How much further back the outermost rows start, degrees")->capture_default_str();
     app->add_option("--back-angle", p.back_angle, "Where rows end at the nape (negative = below the horizontal), degrees")
         ->capture_default_str();
-    app->add_option("--hairline", args->hairline,
-                    "Hairline: one closed curve around the head (`groom hairline`); rows then run from it at the front to it at the "
-                    "nape, in place of --front-angle, --hairline-curve and --back-angle");
+    auto* hairline = app->add_option("--hairline", args->hairline,
+                                     "Hairline: one closed curve around the head (`groom hairline`); rows then run from it at the front "
+                                     "to it at the nape, in place of --front-angle, --hairline-curve and --back-angle");
+    app->add_flag("--fit-cranium", args->fit_cranium,
+                  "Fit --center and --radius to the scalp inside --hairline even where the default head's sphere would fit (a "
+                  "head not in centimetres +Y up, or one near the default head's place by chance)")
+        ->needs(hairline)
+        ->excludes(center)
+        ->excludes(radius);
     app->add_option("--min-spacing", p.min_spacing,
                     "With --hairline: a row ends where its neighbours come within this fraction of their spacing over the crown, "
                     "(0, 1]")
@@ -102,7 +111,7 @@ void setup(CommandContext& ctx)
             std::nth_element(off.begin(), off.begin() + off.size() / 2, off.end());
             const float median = off[off.size() / 2];
             const bool top_off = std::fabs(box.hi.y - top) > 0.5f * r;
-            if ((top_off || median > 0.4f * r) && region != nullptr && region->has_hairline()) {
+            if ((a.fit_cranium || top_off || median > 0.4f * r) && region != nullptr && region->has_hairline()) {
                 // A user with a scan and its hairline had to measure its cranium to get any rows (a
                 // trial on Lee Perry-Smith: --center 0,2.3,0 --radius 1.7 found by hand).
                 const Cranium fit = fit_cranium(*scalp, *region, a.params.up);
@@ -110,7 +119,8 @@ void setup(CommandContext& ctx)
                 a.params.radius = fit.radius;
                 if (app->count("--pivot") == 0) a.params.pivot = 2.0f * fit.radius;
                 a.params.validate(true);
-                note(common, "cornrow-guides: the default sphere does not fit " + a.scalp + "; fitted the cranium to the scalp inside the hairline (" +
+                note(common, "cornrow-guides: " + (a.fit_cranium ? std::string("--fit-cranium") : "the default sphere does not fit " + a.scalp) +
+                                 ": fitted the cranium to the scalp inside the hairline (" +
                                  std::to_string(fit.samples) + " points): --center " + format_xyz(fit.center) + " --radius " +
                                  format_number(fit.radius) + (app->count("--pivot") == 0 ? " --pivot " + format_number(a.params.pivot) : std::string()));
             }

@@ -1,5 +1,5 @@
-"""The operators (bpy.ops.groom.braid, .partition, .curl, .puff, .generate, .hairline, .edges, .sections,
-.gather) and their settings.
+"""The operators (bpy.ops.groom.braid, .partition, .curl, .puff, .generate, .hairline, .cornrows, .edges,
+.sections, .gather) and their settings.
 
 Each setting is named like the command-line option it feeds (knot_length -> --knot-length) and only
 settings the artist changed are passed on, so an untouched panel runs with groom's own defaults; the
@@ -135,6 +135,10 @@ class GroomSettings(bpy.types.PropertyGroup):
     parting: PointerProperty(name="Parting", type=bpy.types.Object, poll=_curves_poll,
                              description="Parting curves on the scalp: bare lines no hair crosses")
     parting_gap: FloatProperty(name="Parting gap", default=0.3, min=0.0, description="Bare width along each parting" + _CM)
+    # cornrows
+    cornrow_count: IntProperty(name="Rows", default=8, min=1, max=256, description="Cornrow rows, hairline to nape")
+    cornrow_spread: FloatProperty(name="Spread", default=24.0, min=0.0, max=89.0,
+                                  description="How far the outermost rows lean from vertical, degrees (smaller keeps them off the ears)")
     # edges
     edge_count: IntProperty(name="Edge hairs", default=0, min=0, description="Exact number of baby hairs (0 = from the density)")
     edge_length: FloatProperty(name="Edge length", default=2.4, min=0.0, description="Arc length of one baby hair" + _CM)
@@ -343,6 +347,23 @@ class GROOM_OT_hairline(_GroomOperator, bpy.types.Operator):
         return groom.hairline(scalp=scalp, **kw)
 
 
+class GROOM_OT_cornrows(_GroomOperator, bpy.types.Operator):
+    """Cornrow guide rows over the scalp from the hairline to the nape (braid them with Orient = Scalp)"""
+    bl_idname = "groom.cornrows"
+    bl_label = "Groom Cornrows"
+    needs_guides = False
+
+    def run(self, s, guides, scalp, kw):
+        kw.update(_head(s))
+        # No Hairline object: the head's default one, as Gather does; the rows run between its ends
+        # and the cranium is fitted inside it, so no sphere need be measured in the scene.
+        hairline = _region(s).get("hairline")
+        if hairline is None:
+            hairline = groom.hairline(scalp=scalp, **_head(s))
+        kw.update(_given(s, ("cornrow_count", "cornrow_spread"), {"cornrow_count": "count", "cornrow_spread": "spread"}))
+        return groom.cornrow_guides(scalp=scalp, hairline=hairline, fit_cranium=True, **kw)
+
+
 class GROOM_OT_edges(_GroomOperator, bpy.types.Operator):
     """Edges (baby hairs) laid flat in swirls along the hairline"""
     bl_idname = "groom.edges"
@@ -390,4 +411,4 @@ class GROOM_OT_gather(_GroomOperator, bpy.types.Operator):
 
 
 CLASSES = [GroomSettings, GROOM_OT_braid, GROOM_OT_partition, GROOM_OT_curl, GROOM_OT_generate, GROOM_OT_puff,
-           GROOM_OT_hairline, GROOM_OT_edges, GROOM_OT_sections, GROOM_OT_gather]
+           GROOM_OT_hairline, GROOM_OT_cornrows, GROOM_OT_edges, GROOM_OT_sections, GROOM_OT_gather]

@@ -75,6 +75,9 @@ class GROOM_PT_panel(bpy.types.Panel):
         for name in ("up", "forward", "hairline", "parting", "parting_gap"):
             _prop(box, s, name)
         box.operator("groom.hairline")
+        for name in ("cornrow_count", "cornrow_spread"):
+            box.prop(s, name)
+        box.operator("groom.cornrows")
         for name in ("edge_count", "edge_length", "edge_radius"):
             _prop(box, s, name)
         box.operator("groom.edges")
@@ -92,7 +95,7 @@ class GROOM_MT_menu(bpy.types.Menu):
     bl_idname = "GROOM_MT_menu"
 
     def draw(self, context):
-        for op in ("braid", "partition", "curl", "generate", "puff", "hairline", "edges", "sections", "gather"):
+        for op in ("braid", "partition", "curl", "generate", "puff", "hairline", "cornrows", "edges", "sections", "gather"):
             self.layout.operator("groom." + op)
 
 

@@ -305,6 +305,31 @@ if hairline_ob is not None:
     check("hairline: forehead above the nape", p[np.argmin(p[:, 1]), 2] > p[np.argmax(p[:, 1]), 2] + 2.0)
     settings.hairline = hairline_ob
     hairline = convert.curveset_from_object(hairline_ob)
+    # Cornrow rows from the hairline over the crown to the nape, the cranium fitted inside the
+    # hairline (the CLI's defaults are a +Y-up head's): what the module makes, and what an artist
+    # sees: every row on the head, from the forehead (-Y) over the top to the back (+Y).
+    settings.cornrow_count = 7
+    rows_ob = run_op("cornrows")
+    if rows_ob is not None:
+        expected = groom.cornrow_guides(scalp=head_field, up=up, forward=forward, hairline=hairline, count=7, fit_cranium=True)
+        same_as("cornrows", rows_ob, expected)
+        rows = expected.points.reshape(7, -1, 3)
+        off = float(np.abs(np.linalg.norm(rows, axis=2) - 10.0).max())
+        check("cornrows: on the head", off < 0.1, f"farthest {off} from the sphere of radius 10")
+        check("cornrows: forehead to the back", all(r[0, 1] < -2.0 and r[-1, 1] > 2.0 for r in rows), str(rows[:, [0, -1], 1]))
+        # The middle row over the crown, the others beside it in order across the head (-X first).
+        check("cornrows: the middle row over the top", rows[3][:, 2].max() > 9.5, str(rows[:, :, 2].max(axis=1)))
+        tops = [float(r[np.argmax(r[:, 2]), 0]) for r in rows]
+        check("cornrows: rows side by side across the head", all(a + 1.0 < b for a, b in zip(tops, tops[1:])), str(tops))
+    # No Hairline object: the head's default one, as Gather.
+    settings.hairline = None
+    rows_ob = run_op("cornrows")
+    if rows_ob is not None:
+        same_as("cornrows without a hairline", rows_ob,
+                groom.cornrow_guides(scalp=head_field, up=up, forward=forward, count=7, fit_cranium=True,
+                                     hairline=groom.hairline(scalp=head_field, up=up, forward=forward)))
+    settings.hairline = hairline_ob
+    settings.property_unset("cornrow_count")
     settings.edge_count = 40
     edges_ob = run_op("edges")
     if edges_ob is not None:

@@ -133,6 +133,21 @@ TEST(CornrowGuidesCli, BadOptionsAreUsageErrors)
     EXPECT_FALSE(std::filesystem::exists(dir.file("g.usda")));
     const auto onto_input = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("head.obj")});
     EXPECT_EQ(onto_input.exit_code, 2) << onto_input.err;
+    // --fit-cranium fits inside a hairline, and replaces --center and --radius.
+    const auto no_hairline = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g.usda"), "--fit-cranium"});
+    EXPECT_EQ(no_hairline.exit_code, 2);
+    EXPECT_NE(no_hairline.err.find("--fit-cranium requires --hairline"), std::string::npos) << no_hairline.err;
+    ASSERT_EQ(run_groom({"hairline", "--scalp", dir.file("head.obj"), "-o", dir.file("h.usda"), "-q"}).exit_code, 0);
+    const auto both = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g.usda"), "--fit-cranium", "--hairline",
+                                 dir.file("h.usda"), "--radius", "9"});
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_NE(both.err.find("--radius excludes --fit-cranium"), std::string::npos) << both.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("g.usda")));
+    // On the default head, where the default sphere passes its check, it fits anyway and says so.
+    const auto fit = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g.usda"), "--fit-cranium", "--hairline",
+                                dir.file("h.usda")});
+    EXPECT_EQ(fit.exit_code, 0) << fit.err;
+    EXPECT_NE(fit.err.find("--fit-cranium: fitted the cranium to the scalp inside the hairline"), std::string::npos) << fit.err;
 }
 
 // The default --center and --radius are the default head's cranium. A head whose top happens to be

@@ -9,6 +9,7 @@
 #include "ops/cornrow_guides.h"
 #include "ops/cranium.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -163,6 +164,16 @@ void setup(CommandContext& ctx)
             // the ponytail head: braids through each other at the nape).
             note(common, "cornrow-guides: rows " + trimmed + " were cut short by that length where, on the scalp, they came closer to the next row than " +
                              "--min-spacing " + format_number(a.params.min_spacing) + " of the rows' spacing over the crown");
+        }
+        // Straight-back rows whose walk never left the hairline keep their arcs: say which.
+        std::string arcs;
+        const bool any_walked = std::any_of(g.rows.begin(), g.rows.end(), [](const CornrowGuides::Row& r) { return r.walked; });
+        for (size_t c = 0; any_walked && c < g.rows.size(); ++c) {
+            if (!g.rows[c].walked) arcs += (arcs.empty() ? "" : ", ") + std::to_string(c);
+        }
+        if (!arcs.empty()) {
+            note(common, "cornrow-guides: rows " + arcs + " were laid as arcs: walked along their planes' cut with the scalp they "
+                             "never left the hairline");
         }
         if (!along.empty()) {
             note(common, "cornrow-guides: rows " + along + " jumped across a fold of the scalp when projected to its nearest point; " +

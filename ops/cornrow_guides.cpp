@@ -120,8 +120,8 @@ struct RowCircle {
     float3 point(float a) const { return base + upward * (s0 + rho * std::sin(a)) + front * (rho * std::cos(a)); }
     float3 centre() const { return base + upward * s0; }
     float3 direction(float a) const { return normalize(upward * std::sin(a) + front * std::cos(a)); }
-    /// The angle of p's direction from the centre, in the plane, (-pi, pi].
-    float angle_of(const float3& p) const { return std::atan2(dot(p - centre(), upward), dot(p - centre(), front)); }
+    /// The plane's unit normal.
+    float3 normal() const { return normalize(cross(front, upward)); }
 };
 
 /// The circle's point at an angle, on the scalp.
@@ -130,55 +130,58 @@ auto on_circle(const Surface& scalp, const RowCircle& circle)
     return [&scalp, circle](float a) { return on_scalp(scalp, circle.point(a), 0.0f); };
 }
 
-/// One way along a row from the top of its circle, walked on the scalp (see trace_row).
+/// One way along a row from its start, walked on the scalp (walk_row).
 struct Walk {
     std::vector<float3> points;  ///< after the start, in walking order
-    double length = 0.0;
-    bool left_hairline = false;  ///< it ended where it leaves the hairline (else it stalled or ran its full length)
+    /// It ended on the hairline (or at its target, which is on it); else it stalled at a crease,
+    /// came back round to its start (a plane cut that never leaves the hairline) or ran max_length.
+    bool left_hairline = false;
 };
 
-/// Walks on the scalp from `start` (on it, inside the hairline) in steps of `step`, along the cut of
-/// the row's plane with the scalp (the direction in both the plane and the scalp's tangent plane
-/// that goes on the way `heading` points), until it leaves the hairline; the last point is on the
-/// hairline (bisected to 2^-20 of a step). With a `target`, the heading turns from the plane's way
-/// towards the target as the walk goes, by smoothstep(length / steer_length), and the walk ends at
-/// the target when it comes within a step of it. Stops after `max_length`, or where a step gains
-/// less than a quarter of a step (a crease).
-Walk walk_row(const Surface& scalp, const HairRegion& region, const RowCircle& circle, const float3& start, float3 heading, float step,
-              double max_length, const float3* target = nullptr, double steer_length = 0.0)
+/// Walks on the scalp from `start` (on it, inside the hairline) in steps of `step` until it leaves
+/// the hairline; the last point is on the hairline (bisected to 2^-20 of a step). Without a target
+/// it follows the cut of the plane through `start` with normal `normal` (the direction in both the
+/// plane and the scalp's tangent plane that goes on the way `heading` points). With a `target`
+/// (on the hairline) the direction turns from the plane's towards the target's, by smoothstep of
+/// the walk's progress, length / (length + distance to the target): from nothing at the start to
+/// all of it at the target, however far the plane's own cut would have gone (a steer scheduled
+/// by that cut's length came too late for rows whose cut ran past their target, and their ends
+/// hooked back up towards it: up to 142 degrees, the review); the walk ends at the target when it
+/// comes within a step of it. A step that lands more than two steps away (across to another sheet
+/// of the scalp: an ear's rim) is taken again shorter; the walk stops where that does not help,
+/// where a step gains less than a quarter of a step (a crease), back within a step of its start
+/// after going four steps, or after max_length.
+Walk walk_row(const Surface& scalp, const HairRegion& region, const float3& normal, const float3& start, float3 heading, float step,
+              double max_length, const float3* target = nullptr)
 {
-    // The plane parallel to the row's through the start: a row projected to its nearest scalp
-    // points lies up to a tenth of a radius off its plane where the scalp slopes across it.
-    const float3 normal = normalize(cross(circle.front, circle.upward));
-    const float3 centre = start;
     // Onto the scalp and, while the walk keeps to its plane, the plane: alternating projections.
     const auto onto = [&](float3 q, bool plane) {
         for (int it = 0; plane && it < 4; ++it) {
             q = scalp.closest_point(q);
-            q = q - normal * dot(q - centre, normal);
+            q = q - normal * dot(q - start, normal);
         }
         return scalp.closest_point(q);
     };
     Walk walk;
+    double walked = 0.0;
     float3 p = start;
-    while (walk.length < max_length) {
+    while (walked < max_length) {
         const float3 n = scalp.normal(p);
         float3 t = cross(normal, n);
         if (dot(t, heading) < 0.0f) t = -t;
         t = normalize(t, heading);
         bool plane = true;
-        if (target != nullptr && steer_length > 0.0) {
-            const float x = float(std::min(walk.length / steer_length, 1.0));
-            const float w = x * x * (3.0f - 2.0f * x);
+        if (target != nullptr) {
             float3 to = *target - p;
             to = to - n * dot(to, n);
+            const float left = distance(p, *target);
+            const float x = float(walked / (walked + double(left)));
+            const float w = x * x * (3.0f - 2.0f * x);
             if (w > 0.0f && length(to) > 0.0f) {
                 t = normalize(t * (1.0f - w) + normalize(to) * w, t);
                 plane = false;
             }
         }
-        // A step that lands more than two steps away has crossed to another sheet of the scalp (an
-        // ear's rim): it is taken again shorter, and the walk stops where that does not help.
         float3 q = onto(p + t * step, plane);
         for (float part = 0.5f; part > 0.05f && distance(q, p) > 2.0f * step; part *= 0.5f) q = onto(p + t * (step * part), plane);
         const float gained = distance(q, p);
@@ -194,7 +197,7 @@ Walk walk_row(const Surface& scalp, const HairRegion& region, const RowCircle& c
             break;
         }
         walk.points.push_back(q);
-        walk.length += double(gained);
+        walked += double(gained);
         heading = (q - p) * (1.0f / gained);
         p = q;
         if (target != nullptr && distance(p, *target) < step) {
@@ -202,8 +205,29 @@ Walk walk_row(const Surface& scalp, const HairRegion& region, const RowCircle& c
             walk.left_hairline = true;
             break;
         }
+        if (walked > 4.0 * double(step) && distance(p, start) < step) break;  // round its plane's cut and back
     }
     return walk;
+}
+
+/// The point of the closed `loop` at `degrees` of azimuth about `mid` in the head's frame (0 the
+/// face, towards +X positive), interpolated on the segment that crosses it: a hairline goes once
+/// round its centroid (HairRegion), so one segment does. The nearest point alone had put a row's
+/// end at -107.8 degrees on a 16-point hairline (the review).
+float3 hairline_at_azimuth(std::span<const float3> loop, const float3& mid, const float3& X, const float3& Z, float degrees)
+{
+    const float want = degrees * kDeg;
+    const auto off = [&](const float3& q) { return std::remainder(std::atan2(dot(q - mid, X), dot(q - mid, Z)) - want, 2.0f * kPi); };
+    size_t best = 0;
+    float nearest = std::numeric_limits<float>::infinity();
+    for (size_t k = 0; k < loop.size(); ++k) {
+        const float3 &a = loop[k], &b = loop[(k + 1) % loop.size()];
+        const float da = off(a), db = off(b);
+        if (da == 0.0f) return a;
+        if ((da < 0.0f) != (db < 0.0f) && std::fabs(da - db) < kPi) return a + (b - a) * (da / (da - db));
+        if (std::fabs(da) < nearest) nearest = std::fabs(da), best = k;
+    }
+    return loop[best];
 }
 
 /// `n` points spread evenly in arc length along the closed `loop`, the first its point nearest
@@ -245,10 +269,14 @@ std::vector<float3> spread_along_hairline(std::span<const float3> loop, const fl
     return out;
 }
 
-/// The part of a row's arc inside the hairline, as arc angles [a0, a1] (radians), given the whole
-/// arc `at(a)` on the scalp for a in [lo, hi]: the run of inside samples through the highest point,
-/// each end refined by bisection on the hairline's margin.
-std::pair<float, float> inside_arc(const HairRegion& region, float lo, float hi, int row, const float3& up, const std::function<float3(float)>& at)
+/// The part of a row's arc inside the hairline, as arc angles (radians), given the whole arc `at(a)`
+/// on the scalp for a in [lo, hi]: the run of inside samples through the highest point, each end
+/// refined by bisection on the hairline's margin.
+struct ArcRun {
+    float from = 0.0f, to = 0.0f;
+    float top = 0.0f;  ///< the highest of the 513 samples
+};
+ArcRun inside_arc(const HairRegion& region, float lo, float hi, int row, const float3& up, const std::function<float3(float)>& at)
 {
     constexpr int kSamples = 512;
     std::vector<char> inside(kSamples + 1);
@@ -275,9 +303,11 @@ std::pair<float, float> inside_arc(const HairRegion& region, float lo, float hi,
     while (b > 0 && inside[size_t(b - 1)]) --b;
     while (e < kSamples && inside[size_t(e + 1)]) ++e;
     const float step = (hi - lo) / float(kSamples);
-    const float a0 = b == 0 ? lo : refine(lo + step * float(b), lo + step * float(b - 1));
-    const float a1 = e == kSamples ? hi : refine(lo + step * float(e), lo + step * float(e + 1));
-    return {a0, a1};
+    ArcRun run;
+    run.from = b == 0 ? lo : refine(lo + step * float(b), lo + step * float(b - 1));
+    run.to = e == kSamples ? hi : refine(lo + step * float(e), lo + step * float(e + 1));
+    run.top = lo + step * float(top);
+    return run;
 }
 
 /// Cuts each row to the run through its highest point (along `up`) where every point stays `want`
@@ -375,7 +405,8 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     std::vector<std::vector<float3>> paths(static_cast<size_t>(n));  // each row's dense path on the scalp
     const float3 pivot = params.center - Y * params.pivot;
     std::vector<RowCircle> circles(static_cast<size_t>(n));
-    std::vector<float> from(static_cast<size_t>(n)), to(static_cast<size_t>(n));  // each row's arc, as angles on its circle
+    // Each row's arc, as angles on its circle; with a hairline, the angle of its highest point.
+    std::vector<float> from(static_cast<size_t>(n)), to(static_cast<size_t>(n)), top(static_cast<size_t>(n));
     // Straight-back rows (their planes never meet) between a hairline's ends are walked on the scalp
     // and spread at the nape (below); other rows are their circles' arcs projected onto it.
     const bool spread_rows = region != nullptr && n >= 3 && params.pivot >= params.radius;
@@ -407,12 +438,16 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
                 // deep axis (pivot >= radius) may leave the whole circle: all but its lowest point.
                 const float d_min = params.min_spacing * (params.radius + h);
                 const float reach = std::asin(std::clamp((circle.s0 - d_min) / circle.rho, -1.0f, 1.0f));
-                std::tie(from[size_t(i)], to[size_t(i)]) = inside_arc(*region, -reach + 1e-3f, kPi + reach - 1e-3f, int(i), Y, on_circle(scalp, circle));
+                const ArcRun run = inside_arc(*region, -reach + 1e-3f, kPi + reach - 1e-3f, int(i), Y, on_circle(scalp, circle));
+                from[size_t(i)] = run.from;
+                to[size_t(i)] = run.to;
+                top[size_t(i)] = run.top;
             }
         }
     });
-    parallel_for(n, 1, [&](int64_t b, int64_t e) {
-        for (int64_t i = b; i < e; ++i) {
+    // The arc projected onto the scalp, as dense points.
+    const auto lay_arc = [&](size_t i) {
+        {
             const RowCircle& circle = circles[size_t(i)];
             const auto at = on_circle(scalp, circle);
             const float a0 = from[size_t(i)], a1 = to[size_t(i)];
@@ -456,70 +491,62 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
             }
             paths[size_t(i)] = std::move(path);
         }
-    });
-    if (spread_rows) {
-        // Straight-back rows are walked on the scalp both ways from the highest point of their
-        // arc's path, along the cut of the row's plane (moved parallel through that point) with the
-        // scalp, to the hairline. Projected to its nearest scalp points, the arc jumped from the
-        // back of the skull to the neck under Lee Perry-Smith's occiput (chords 9-15 times the
-        // median) and at the brow, and the fan's reach had stopped the rows above the occiput
-        // anyway. The planes all contain the fan's axis, so down the back the rows converge, and a
-        // real head's nape is narrower than the sphere: on Lee Perry-Smith six rows ended within 1.0
-        // of each other at the nape, in a V, and the two beside them were cut 1.5 short, high on
-        // the back of the head, leaving it bare. So every row is steered down the back to end on
-        // the hairline, the rows evenly spaced in arc length round the back of the head from behind
-        // one ear to behind the other, as a stylist parts rows that reach the nape side by side.
-        // The steer grows smoothly (smoothstep of the length walked over the plane's own length
-        // down the back), so a row leaves its highest point in its plane; the rows keep their
-        // order. Each walk's step is the arc's dense spacing, pi R / dense, but no finer than
-        // pi R / 1024: a step costs about six closest-point queries, and `samples` 100,000 would
-        // have walked 1.6 M steps a row; the re-spaced points are put back on the scalp anyway.
+    };
+    if (!spread_rows) {
+        parallel_for(n, 1, [&](int64_t b, int64_t e) {
+            for (int64_t i = b; i < e; ++i) lay_arc(size_t(i));
+        });
+    }
+    else {
+        // Straight-back rows are walked on the scalp both ways from the highest point of their arc,
+        // along the cut of the row's plane (moved parallel through that point) with the scalp, to
+        // the hairline. Projected to its nearest scalp points, the arc jumped from the back of the
+        // skull to the neck under Lee Perry-Smith's occiput (chords 9-15 times the median) and at
+        // the brow, and the fan's reach had stopped the rows above the occiput anyway. The planes
+        // all contain the fan's axis, so down the back the rows converge, and a real head's nape
+        // is narrower than the sphere: on Lee Perry-Smith six rows ended within 1.0 of each other
+        // at the nape, in a V, and the two beside them were cut 1.5 short, high on the back of the
+        // head, leaving it bare. So every row is steered down the back to end on the hairline, the
+        // rows' ends evenly spaced in arc length round the back of the head from behind one ear to
+        // behind the other, as a stylist parts rows that reach the nape side by side; the steer
+        // grows with the walk's progress towards the row's end (walk_row), so a row leaves its
+        // highest point in its plane. Neighbouring rows head for neighbouring ends; the spacing
+        // check below still measures them. A row whose walk does not reach the hairline (its plane
+        // cut runs round inside it: a hairline far down a sphere) keeps its arc. Each walk's step
+        // is the arc's dense spacing, pi R / dense, but no finer than pi R / 1024: a step costs
+        // about six closest-point queries, and `samples` 100,000 would have walked 1.6 M steps a
+        // row; the re-spaced points are put back on the scalp anyway.
         const float step = kPi * params.radius / float(std::min(dense, 1024));
         const double max_length = 4.0 * kPi * double(params.radius);
-        const auto walk = [&](size_t i, const float3* target) {
-            std::vector<float3>& path = paths[i];
-            size_t top = 0;
-            for (size_t k = 1; k < path.size(); ++k) {
-                if (dot(path[k], Y) > dot(path[top], Y)) top = k;
-            }
-            const RowCircle& circle = circles[i];
-            const float3 start = on_scalp(scalp, path[top], 0.0f);
-            const float3 forth = normalize(top > 0 ? path[top - 1] - path[top] : circle.front, circle.front);
-            const float3 back = normalize(top + 1 < path.size() ? path[top + 1] - path[top] : -circle.front, -circle.front);
-            const Walk ahead = walk_row(scalp, *region, circle, start, forth, step, max_length);
-            Walk behind = walk_row(scalp, *region, circle, start, back, step, max_length);
-            if (target != nullptr) behind = walk_row(scalp, *region, circle, start, back, step, max_length, target, behind.length);
-            std::vector<float3> walked(ahead.points.rbegin(), ahead.points.rend());
-            walked.push_back(start);
-            walked.insert(walked.end(), behind.points.begin(), behind.points.end());
-            if (params.offset > 0.0f) {
-                for (float3& q : walked) q = q + scalp.normal(q) * params.offset;
-            }
-            path = std::move(walked);
-        };
-        // The ends: the hairline's points 120 degrees round from the face either way (azimuth
-        // about its centroid; behind the ears on every head tried), and evenly between them round
-        // the back.
         const std::span<const float3> loop = region->hairline_points();
         const float3 mid = region->centroid();
-        const auto at_azimuth = [&](float degrees) {
-            const float want = degrees * kDeg;
-            size_t best = 0;
-            float off = std::numeric_limits<float>::infinity();
-            for (size_t k = 0; k < loop.size(); ++k) {
-                const float az = std::atan2(dot(loop[k] - mid, X), dot(loop[k] - mid, Z));
-                const float d = std::fabs(std::remainder(az - want, 2.0f * kPi));
-                if (d < off) off = d, best = k;
-            }
-            return loop[best];
-        };
-        const std::vector<float3> ends = spread_along_hairline(loop, at_azimuth(-kBackArcStart), at_azimuth(kBackArcStart), Z, n);
+        const std::vector<float3> ends = spread_along_hairline(loop, hairline_at_azimuth(loop, mid, X, Z, -kBackArcStart),
+                                                               hairline_at_azimuth(loop, mid, X, Z, kBackArcStart), Z, n);
         parallel_for(n, 1, [&](int64_t b, int64_t e) {
-            for (int64_t i = b; i < e; ++i) {
-                walk(size_t(i), &ends[size_t(i)]);
-                // Walked, not projected: the jumps measured on the arc's path are gone (a step is
-                // never more than two steps long).
-                out.rows[size_t(i)] = CornrowGuides::Row{};
+            for (int64_t k = b; k < e; ++k) {
+                const size_t i = size_t(k);
+                const RowCircle& circle = circles[i];
+                const float3 start = on_circle(scalp, circle)(top[i]);
+                // Both ways from the plane's cut at the start, told apart by the face: directions
+                // taken from the arc's neighbouring points could point the same way, and a row
+                // walked up to an ear and back down its own track (the review).
+                const float3 normal = circle.normal();
+                float3 forth = normalize(cross(normal, scalp.normal(start)), circle.front);
+                if (dot(forth, circle.front) < 0.0f) forth = -forth;
+                const Walk ahead = walk_row(scalp, *region, normal, start, forth, step, max_length);
+                const Walk behind = walk_row(scalp, *region, normal, start, -forth, step, max_length, &ends[i]);
+                if (!ahead.left_hairline || !behind.left_hairline) {
+                    lay_arc(i);
+                    continue;
+                }
+                std::vector<float3> walked(ahead.points.rbegin(), ahead.points.rend());
+                walked.push_back(start);
+                walked.insert(walked.end(), behind.points.begin(), behind.points.end());
+                if (params.offset > 0.0f) {
+                    for (float3& q : walked) q = q + scalp.normal(q) * params.offset;
+                }
+                paths[i] = std::move(walked);
+                out.rows[i].walked = true;
             }
         });
     }

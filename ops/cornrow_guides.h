@@ -9,8 +9,11 @@
 // arc length. pivot = 0 gives great circles (rows meeting at the front and back); a pivot below the
 // radius gives rows that converge to where its axis pierces the sphere; the default, twice the
 // radius with a 24 degree spread, gives nearly parallel straight-back rows whose outer ones run
-// above the ears (7.5 and 55 had every row end in one point at the nape: a trial). Optionally each guide continues past the nape as a free-hanging tail (the loose
-// ends of the braids), which the demo curls.
+// above the ears (7.5 and 55 had every row end in one point at the nape: a trial). With a hairline,
+// straight-back rows are instead walked on the scalp along their planes' cuts and steered to end
+// side by side along the hairline round the back of the head (see cornrow_guides' doc).
+// Optionally each guide continues past the nape as a free-hanging tail (the loose ends of the
+// braids), which the demo curls.
 //
 // Frame: `up` and `forward` (the direction the face looks), by default +Y up and the face towards +Z
 // (the convention of `groom head`). Below, Y and Z name those two axes and X = Y x Z.
@@ -74,21 +77,26 @@ struct CornrowGuides {
         /// With a hairline: the length cut off the row's ends where, laid on the scalp, it came
         /// within min_spacing of its crown spacing of a neighbouring row (scene units; else 0).
         float trimmed = 0.0f;
-        /// With a hairline: how far the row's end moved when it was bent from its plane to end on
-        /// the hairline between the outer rows' ends, spread round the back of the head with the
-        /// others (scene units; 0 for the outer rows and rows not bent).
-        float end_moved = 0.0f;
+        /// Walked on the scalp and steered to its end on the hairline (straight-back rows with a
+        /// hairline, see cornrow_guides); then along_rays and jump are false and 0.
+        bool walked = false;
     };
     std::vector<Row> rows;
 };
 
 /// Makes the guides on `scalp` (any Surface: an exact sphere in tests, a ScalpField for real heads).
 /// With a `region` that has a hairline, every row runs from the hairline at the front to the
-/// hairline at the nape instead of between front_angle (+ hairline_curve) and back_angle: its arc is
-/// laid as far as min_spacing lets it (neighbouring rows no closer than that fraction of their
-/// crown spacing) and cut where it leaves the hairline (found to 1e-4 of the arc's angle), keeping
-/// the part through the row's highest point. Throws InvalidParam, and InvalidGeometry when a row
-/// never enters the hairline.
+/// hairline at the nape instead of between front_angle (+ hairline_curve) and back_angle:
+/// - straight-back rows (pivot >= radius, 3 rows or more) are walked on the scalp both ways from
+///   the highest point of their arc along the cut of their plane with it, to the hairline, the
+///   back walk steered so the rows end on the hairline evenly spaced in arc length from 120
+///   degrees round from the face on one side to 120 on the other (Row::walked); a row whose walk
+///   never leaves the hairline keeps its arc;
+/// - other rows' arcs are laid as far as min_spacing lets them (neighbouring rows no closer than
+///   that fraction of their crown spacing) and cut where they leave the hairline (found to 1e-4 of
+///   the arc's angle), keeping the part through the row's highest point.
+/// Either way rows that come closer than min_spacing on the scalp are then cut (Row::trimmed).
+/// Throws InvalidParam, and InvalidGeometry when a row never enters the hairline.
 CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& params, const HairRegion* region = nullptr);
 
 }  // namespace groom

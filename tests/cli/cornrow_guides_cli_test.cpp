@@ -234,6 +234,11 @@ TEST(CornrowGuidesCliReal, StraightBackRowsReachTheNapeSideBySideOnAScan)
         std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
         const float median = steps[steps.size() / 2];
         EXPECT_LT(*std::max_element(steps.begin(), steps.end()), 2.0f * median) << "row " << i;
+        // Down the back to its end: no hook back up (a steer scheduled by the plane's own length had
+        // the outer rows climb 0.12 after their lowest point, tails setting off towards the face).
+        float lowest = end.y;
+        for (int64_t k = rg.begin; k < rg.end; ++k) lowest = std::min(lowest, P[size_t(k)].y);
+        EXPECT_LT(end.y - lowest, 0.01f) << "row " << i << " climbs after its lowest point";
     }
     EXPECT_GT(distance(ends.front(), ends.back()), 2.5f);
     const float crown = 5.1f * std::sin(2.0f * 24.0f * 3.14159265f / 180.0f / float(n - 1));  // (R + pivot) sin(dphi)

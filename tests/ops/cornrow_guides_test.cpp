@@ -217,8 +217,26 @@ TEST(CornrowGuides, StraightBackRowsEndSideBySideAlongTheNapeHairline)
         }
         EXPECT_LT(longest, 1.05f * shortest) << "row " << i << ": even steps";
         EXPECT_EQ(g.rows[i].trimmed, 0.0f) << "row " << i;
+        EXPECT_TRUE(g.rows[i].walked) << "row " << i;
         if (i + 1 < 9) EXPECT_GE(row_gap(g.guides, i), want) << "rows " << i << " and " << i + 1;
     }
+
+    // A hairline nearly at the bottom of the sphere (-0.95 R): the outer rows' plane cuts are small
+    // circles that never leave it. Their walks had run round them to 4 pi R, rows 159.5 long wound
+    // three times round (the review); such a row keeps its arc, and no row is as long as a great
+    // circle (the middle row, from under the front round the top to under the back, is 324 degrees
+    // of one).
+    const CurveSet low = test::circle_on_sphere(c, R, float3(0, 1, 0), -0.95f * R, 1440);
+    const HairRegion low_region(sphere, low, CurveSet(), HairRegionParams{});
+    const CornrowGuides d = cornrow_guides(sphere, p, &low_region);
+    int arcs = 0;
+    for (size_t i = 0; i < 9; ++i) {
+        const IndexRange rg = d.guides.points_of(i);
+        arcs += !d.rows[i].walked;
+        EXPECT_LT(polyline_length(d.guides.positions().subspan(size_t(rg.begin), size_t(rg.size()))), 2.0f * 3.14159265f * R) << "row " << i;
+        for (int64_t k = rg.begin; k < rg.end; ++k) EXPECT_NEAR(distance(d.guides.positions()[size_t(k)], c), R, 1e-3f) << "row " << i;
+    }
+    EXPECT_GE(arcs, 2) << "the outer rows keep their arcs";
 }
 
 // The same rule measured on the rows as laid on the scalp, not in their planes on the sphere: on a

@@ -82,7 +82,8 @@ if have cornrow-guides; then
         --count 12 --tails-out "$out/alisha_tails.usda" --tail-length 14 ${hairline:+--hairline "$hairline"}
     if have braid; then
         step "braid" groom braid "$out/alisha_guides.usda" --scalp "$scalp" -o "$out/alisha_braids.usda" \
-            --orient scalp --strands 3 --knot-length "$knot" --rest --clearance 0.05 --fibers 40 --feed-in 0.8
+            --orient scalp --strands 3 --knot-length "$knot" --rest --clearance 0.05 --fibers 40 --feed-in 0.8 \
+            --loose-length 1.1 --flare 0.6
         alisha+=("$out/alisha_braids.usda")
     else
         skip "groom braid is not in this build"
@@ -97,7 +98,9 @@ if have cornrow-guides; then
     fi
     tails="$out/alisha_tails.usda"
     if have populate; then
-        step "populate tails" groom populate "$tails" -o "$out/alisha_tail_hairs.usda" --count 60 --radius 0.45
+        # As many hairs as the braid's fibers, as wide as its unbraided end: the braids had stopped
+        # in a blunt wad above a bundle half their width (a trial: "a rope glued to a stick").
+        step "populate tails" groom populate "$tails" -o "$out/alisha_tail_hairs.usda" --count 120 --radius 0.6
         tails="$out/alisha_tail_hairs.usda"
     else
         skip "groom populate (hairs around each tail) is not in this build"

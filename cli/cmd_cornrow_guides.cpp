@@ -89,6 +89,7 @@ void setup(CommandContext& ctx)
         region_options.hairline = a.hairline;
         region_options.up = a.up;
         const std::unique_ptr<HairRegion> region = make_region(region_options, *scalp);
+        if (!a.hairline.empty()) warn_if_hairline_faces_away("cornrow-guides", a.hairline, read_hairline(a.hairline), a.params.up, a.params.forward, common);
         // The default sphere is the default head's cranium (`groom head`: centimetres, +Y up, its top
         // at y = 13). On another head it lays rows somewhere else without a word (a trial on a scan
         // in other units ran them onto the shoulders): unless the scalp lies about on that sphere,

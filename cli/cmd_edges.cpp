@@ -105,6 +105,7 @@ void setup(CommandContext& ctx)
 
         const auto start = std::chrono::steady_clock::now();
         CurveSet hairline = args->hairline.empty() ? CurveSet() : read_hairline(args->hairline, &common);
+        if (!args->hairline.empty()) warn_if_hairline_faces_away("edges", args->hairline, hairline, params.up, params.forward, common);
         const CurveSet partings = args->parting.empty() ? CurveSet() : read_curve_input(args->parting, common, false);
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());

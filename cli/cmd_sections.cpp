@@ -102,6 +102,7 @@ void setup(CommandContext& ctx)
         }
         else {
             hairline = read_hairline(args->hairline, &common);
+            warn_if_hairline_faces_away("sections", args->hairline, hairline, params.up, params.forward, common);
         }
         const RootSampler sampler = scalp_root_sampler(*scalp);
         const SectionsResult r = [&] {

@@ -4,6 +4,9 @@
 #include "kernel/error.h"
 #include "kernel/io/curve_io.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace groom::cli {
 
 void add_region_options(CLI::App* app, RegionOptions& o)
@@ -29,6 +32,40 @@ CurveSet reported_hairline(const std::string& command, const Surface& scalp, con
     CurveSet hairline = make_hairline(scalp, bounds, params, &report);
     for (const auto& [is_warning, m] : report.messages(command, params.forward)) is_warning ? warn(common, m) : note(common, m);
     return hairline;
+}
+
+void warn_if_hairline_faces_away(const std::string& command, const std::string& file, const CurveSet& hairline, const float3& up,
+                                 const float3& forward, const CommonOptions& common)
+{
+    const auto P = hairline.positions();
+    if (P.size() < 8) return;  // the region refuses it, naming what is wrong
+    const float3 U = normalize(up);
+    const float3 F = normalize(forward - U * dot(forward, U));
+    if (!(length(F) > 0.0f)) return;
+    float3 mid{};
+    for (const float3& p : P) mid = mid + p;
+    mid = mid * (1.0f / float(P.size()));
+    float reach = 0.0f;
+    for (const float3& p : P) reach = std::max(reach, std::fabs(dot(p - mid, F)));
+    // Mean heights of the points in the front and back halves of the hairline's reach along F.
+    double front = 0.0, back = 0.0;
+    int nf = 0, nb = 0;
+    for (const float3& p : P) {
+        const float a = dot(p - mid, F);
+        if (a > 0.5f * reach) front += dot(p - mid, U), ++nf;
+        if (a < -0.5f * reach) back += dot(p - mid, U), ++nb;
+    }
+    if (nf == 0 || nb == 0) return;
+    front /= nf;
+    back /= nb;
+    // A tenth of the reach: every head tried has its forehead well above its nape (Lee Perry-Smith's
+    // hairline 2.4 higher at the front, for a reach of 1.9).
+    if (back > front + 0.1 * double(reach)) {
+        warn(common, command + ": warning: " + file + " lies higher behind the head than in front of it along --forward " + format_xyz(forward) +
+                         " (" + format_number(float(back)) + " against " + format_number(float(front)) +
+                         " above its centroid; a hairline runs higher over the forehead than at the nape), so the face may look the other way: "
+                         "pass --forward " + format_xyz(float3(0.0f, 0.0f, 0.0f) - F));
+    }
 }
 
 std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp, const CurveSet* hairline_if_none)

@@ -39,6 +39,14 @@ CurveSet read_hairline(const std::string& path, const CommonOptions* common = nu
 CurveSet reported_hairline(const std::string& command, const Surface& scalp, const Bounds3& bounds, const HairlineParams& params,
                            const CommonOptions& common);
 
+/// A --hairline runs higher over the forehead than at the nape. When the given one's part ahead of
+/// its centroid along `forward` lies lower than its part behind, the face probably looks the other
+/// way: warn, as `command`, naming `file` and the --forward that would fit (a trial: baby hairs on
+/// the back of the ponytail head, which faces -Z, with no word, while the same command without
+/// --hairline, making the default one, said the head seemed to face away).
+void warn_if_hairline_faces_away(const std::string& command, const std::string& file, const CurveSet& hairline, const float3& up,
+                                 const float3& forward, const CommonOptions& common);
+
 /// The region the options describe, or null when neither --hairline nor --parting is given.
 /// `hairline_if_none`: the hairline to use when no --hairline is given (gather's default one).
 /// Throws InvalidParam / InvalidGeometry naming the option or file.

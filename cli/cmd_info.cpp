@@ -206,6 +206,7 @@ void info_scalp(const Args& a)
         j["mesh"] = {{"faces", scalp.num_faces()}, {"vertices", mesh.points.size()}, {"source", scalp.has_source_mesh() ? "stored" : "zero crossing"}};
         j["uvs"] = scalp.has_uvs();
         j["seam_voxels"] = seams;
+        j["surface_tolerance"] = json_number(scalp.surface_tolerance());
         o << j.dump(2) << "\n";
     }
     else {
@@ -226,6 +227,8 @@ void info_scalp(const Args& a)
           << (seams == 0 ? std::string("none (the band is 1-Lipschitz)")
                          : std::to_string(seams) + " voxels beside a jump of the distance (an open rim, or shells that disagree on inside; answered from the mesh)")
           << "\n";
+        o << "  surface off     " << num(scalp.surface_tolerance())
+          << " (75th percentile of the level set's distance at the mesh's vertices and triangle centres; hair laid on the scalp is lifted by it)\n";
     }
     std::cout << o.str();
 }

@@ -189,6 +189,24 @@ Bounds3 ScalpField::bounds() const
     return b;
 }
 
+float ScalpField::surface_tolerance() const
+{
+    std::call_once(impl_->tolerance_once, [this] {
+        const auto& g = impl_->geometry;
+        std::vector<float3> at(g.points);
+        for (const auto& t : g.tris) at.push_back((g.points[size_t(t[0])] + g.points[size_t(t[1])] + g.points[size_t(t[2])]) * (1.0f / 3.0f));
+        if (at.empty()) return;
+        std::vector<float> off(at.size());
+        parallel_for(int64_t(at.size()), 4096, [&](int64_t b, int64_t e) {
+            for (int64_t i = b; i < e; ++i) off[size_t(i)] = std::fabs(distance(at[size_t(i)]));
+        });
+        const size_t k = std::min(off.size() - 1, size_t(0.75 * double(off.size())));
+        std::nth_element(off.begin(), off.begin() + std::ptrdiff_t(k), off.end());
+        impl_->tolerance = std::min(off[k], 0.5f * impl_->voxel);
+    });
+    return impl_->tolerance;
+}
+
 PolygonSoup ScalpField::mesh() const
 {
     PolygonSoup soup;

@@ -100,6 +100,13 @@ public:
     /// False when the band holds a seam (neighbouring voxels differing by more than 1.2 voxels):
     /// an open mesh's rims, overlapping shells that disagree on inside.
     bool lipschitz() const override;
+    /// The 75th percentile of |distance| at the repaired mesh's vertices and triangle centroids
+    /// (points on the mesh, where the exact answer is 0), at most half a voxel; worked out on the
+    /// first call. A hair's half width on Lee Perry-Smith is 0.0007, and laid on the field at the
+    /// default voxel (0.05) 7.9% of its edge hairs' points were under the scan's skin by more than
+    /// that (a trial, measured against a field at a fifth the voxel); lifted by the median none
+    /// were but 0.16%, by the 75th percentile none, the hair 0.0037 above the fine field (0.2 mm).
+    float surface_tolerance() const override;
 
     /// True when the mesh had texture coordinates (OBJ `vt`, PLY u/v, s/t or texcoord), kept in
     /// the .vdb `groom scalp` writes. surface_uv: the UV at the closest point of the user's mesh

@@ -175,6 +175,9 @@ struct ScalpField::Impl {
     detail::MeshGeometry geometry;
     std::unique_ptr<detail::MeshQuery> query;
     bool mesh_exact = true;              ///< false when the mesh was extracted from a loaded .vdb
+    /// surface_tolerance(), worked out once.
+    mutable std::once_flag tolerance_once;
+    mutable float tolerance = 0.0f;
     /// The source mesh's texture coordinates (null when it had none), from the mesh or the .vdb's
     /// grid metadata "groom_uv_mesh" (fields/scalp_file.cpp).
     std::shared_ptr<const detail::UvMap> uv;

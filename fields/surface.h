@@ -42,6 +42,12 @@ public:
     /// bound must ask this first.
     virtual bool lipschitz() const { return true; }
 
+    /// How far this surface may lie from the mesh it stands for, scene units: 0 for the analytic
+    /// surfaces and a mesh answered exactly; for a level set, how far its interpolated zero crossing
+    /// strays from the user's mesh where that has detail finer than a voxel (ScalpField). Hair laid
+    /// on the scalp is lifted by it, so that it lies on the mesh a renderer draws, not under it.
+    virtual float surface_tolerance() const { return 0.0f; }
+
     /// First point where the segment a->b enters the surface (sign change from outside to inside),
     /// accurate to `tolerance` (scene units; 0 = a default relative to the segment). Returns false
     /// when the segment never crosses into the inside. The default marches by the distance bound.

@@ -321,6 +321,9 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
     // trial measured 74-91% of edge-hair points inside a finer field of the same head).
     const HairWidths taper = params.widths.resolved(params.units_per_cm);
     const float root_half = 0.5f * *taper.root, tip_half = 0.5f * *taper.tip;
+    // And on the mesh, not the field: a level set's surface strays from a scan's finer detail by
+    // more than a hair's width (Surface::surface_tolerance).
+    const float lift = scalp.surface_tolerance();
     // Its own step: most of the op's time is here, and -v showed only the planning ("segments done
     // in 2.52s" of a 17 s run: a trial).
     const ProgressStep lay(progress, "partition: points on the scalp", int64_t(nc));
@@ -358,7 +361,7 @@ CurveSet partition(const CurveSet& guides, const Surface& scalp, const Partition
                         // which the lifts themselves shift from the sample fraction u by up to a
                         // sample (2% of a width at 10 samples); the wider one keeps the surface out.
                         const float v = std::max(0.0f, u - 1.0f / float(samples - 1));
-                        keep_outside(x, scalp, KeepOutside{0.0f, 0.0f, 2}, u * end_height + (1.0f - v) * root_half + v * tip_half);
+                        keep_outside(x, scalp, KeepOutside{0.0f, 0.0f, 2}, u * end_height + (1.0f - v) * root_half + v * tip_half + lift);
                     }
                     out_P[first + j] = x;
                 }

@@ -8,6 +8,7 @@
 #include "kernel/math/polyline.h"
 #include "ops/cornrow_guides.h"
 #include "ops/cranium.h"
+#include "ops/scene_length.h"
 
 #include <algorithm>
 #include <chrono>
@@ -80,7 +81,19 @@ void setup(CommandContext& ctx)
         }
         a.params.up = parse_float3("--up", a.up);
         a.params.forward = parse_float3("--forward", a.forward);
-        a.params.validate(!a.hairline.empty());
+        {
+            // Where the cranium may be fitted, its radius is not known yet: the checks that weigh
+            // --pivot and --spread against it wait for it (they had refused --pivot 30 against the
+            // default radius 10 on a head whose fitted radius was 29.1: a hostile trial).
+            CornrowGuidesParams early = a.params;
+            if (!a.hairline.empty() && app->count("--center") == 0 && app->count("--radius") == 0) early.radius = kMaxSceneLength;
+            early.validate(!a.hairline.empty());
+        }
+        if (!a.tails_out.empty() && app->count("--tail-length") > 0 && !(a.params.tail_length > 0.0f)) {
+            throw InvalidParam("cornrow-guides: --tail-length " + format_number(a.params.tail_length) +
+                               " with --tails-out would write tails of no length (0 had given the default length): give a length > 0, or "
+                               "drop --tails-out");
+        }
         const auto start = std::chrono::steady_clock::now();
         auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(a.scalp, a.scalp_params, progress.get());
@@ -89,7 +102,11 @@ void setup(CommandContext& ctx)
         region_options.hairline = a.hairline;
         region_options.up = a.up;
         const std::unique_ptr<HairRegion> region = make_region(region_options, *scalp);
-        if (!a.hairline.empty()) warn_if_hairline_faces_away("cornrow-guides", a.hairline, read_hairline(a.hairline), a.params.up, a.params.forward, common);
+        if (!a.hairline.empty()) {
+            const CurveSet hairline = read_hairline(a.hairline);
+            check_hairline_on_scalp(a.hairline, hairline, *scalp);
+            warn_if_hairline_faces_away("cornrow-guides", a.hairline, hairline, a.params.up, a.params.forward, common);
+        }
         // The default sphere is the default head's cranium (`groom head`: centimetres, +Y up, its top
         // at y = 13). On another head it lays rows somewhere else without a word (a trial on a scan
         // in other units ran them onto the shoulders): unless the scalp lies about on that sphere,
@@ -137,6 +154,7 @@ void setup(CommandContext& ctx)
                                    "(`groom hairline`) to fit them to the scalp inside it");
             }
         }
+        a.params.validate(!a.hairline.empty());  // with the radius the rows are laid on
         // The default tail is 1.2 radii of the rows' sphere (12 on the default head): a fixed 12
         // hung tails 6 heads long from a bust modelled in metres (a trial on Demosthenes).
         if (!a.tails_out.empty() && a.params.tail_length <= 0.0f) a.params.tail_length = 1.2f * a.params.radius;

@@ -110,6 +110,7 @@ void setup(CommandContext& ctx)
         const auto progress = make_progress(common);
         const std::shared_ptr<const ScalpField> scalp = load_scalp(args->scalp, args->scalp_params, progress.get());
         warn_scene_scale(common, "edges", scalp->bounds(), u, "the defaults (lengths, radii, widths, the hairline's)");
+        if (!args->hairline.empty()) check_hairline_on_scalp(args->hairline, hairline, *scalp);
         if (args->hairline.empty()) {
             HairlineParams hp;
             hp.up = params.up;

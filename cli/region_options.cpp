@@ -22,7 +22,42 @@ CurveSet read_hairline(const std::string& path, const CommonOptions* common)
     CurveReadOptions ro;
     ro.closed_loops = true;
     if (common) ro.warn = [common](const std::string& w) { warn(*common, "warning: " + w); };
-    return read_curves(path, ro);
+    CurveSet hairline = read_curves(path, ro);
+    // An empty file had been taken for "no hairline", with --fit-cranium too (a hostile trial).
+    if (hairline.num_curves() == 0) {
+        throw InvalidGeometry(path + ": holds no curve; a hairline is one closed curve around the head (`groom hairline` writes one)");
+    }
+    return hairline;
+}
+
+void check_hairline_on_scalp(const std::string& file, const CurveSet& hairline, const Surface& scalp)
+{
+    // What is wrong with its shape first (two curves, too few points), named as every command names it.
+    std::span<const float3> P;
+    try {
+        P = check_hairline(hairline, "hairline");
+    }
+    catch (const InvalidGeometry& e) {
+        throw InvalidGeometry(file + ": " + e.what());
+    }
+    if (P.empty()) return;
+    float3 mid{};
+    for (const float3& p : P) mid = mid + p;
+    mid = mid * (1.0f / float(P.size()));
+    float reach = 0.0f;
+    std::vector<float> off;
+    off.reserve(P.size());
+    for (const float3& p : P) {
+        reach = std::max(reach, distance(p, mid));
+        off.push_back(std::fabs(scalp.distance(p)));
+    }
+    std::nth_element(off.begin(), off.begin() + std::ptrdiff_t(off.size() / 2), off.end());
+    const float median = off[off.size() / 2];
+    if (median > 0.15f * reach) {
+        throw InvalidGeometry(file + ": the hairline lies a median " + format_number(median) + " off the scalp, for a hairline " +
+                              format_number(2.0f * reach) + " across (expected on it, within 0.15 of its half width): a hairline of another "
+                              "head, or in other units? (`groom hairline --scalp` makes this head's)");
+    }
 }
 
 CurveSet reported_hairline(const std::string& command, const Surface& scalp, const Bounds3& bounds, const HairlineParams& params,

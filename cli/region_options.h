@@ -39,6 +39,12 @@ CurveSet read_hairline(const std::string& path, const CommonOptions* common = nu
 CurveSet reported_hairline(const std::string& command, const Surface& scalp, const Bounds3& bounds, const HairlineParams& params,
                            const CommonOptions& common);
 
+/// A --hairline must be one (check_hairline, named by `file`) and lie on the scalp: one whose points lie a median of more than 0.15 of its half
+/// width off it (another head's, or one in other units) throws InvalidGeometry naming `file` (it
+/// had laid rows 6 from their hairline on a head 8 across, and fitted a cranium to nothing: a
+/// hostile trial).
+void check_hairline_on_scalp(const std::string& file, const CurveSet& hairline, const Surface& scalp);
+
 /// A --hairline runs higher over the forehead than at the nape. When the given one's part ahead of
 /// its centroid along `forward` lies lower than its part behind, the face probably looks the other
 /// way: warn, as `command`, naming `file` and the --forward that would fit (a trial: baby hairs on

@@ -84,6 +84,8 @@ void CornrowGuidesParams::validate(bool hairline) const
             "`forward` " + format_xyz(forward) + " must be at least 10 degrees from `up` " + format_xyz(up) + " (the direction the face looks)");
     require(pivot >= 0.0f && pivot <= kMaxSceneLength, "`pivot` must be in [0, 1e15] (got " + fmt(pivot) + ")");
     require(std::isfinite(spread) && spread >= 0.0f && spread < 90.0f, "`spread` must be in [0, 90) degrees (got " + fmt(spread) + ")");
+    require(count == 1 || spread > 0.0f, "`spread` 0 lays all " + std::to_string(count) +
+                                             " rows in one plane, on top of each other: give a `spread` > 0 or one row");
     require(pivot * std::sin(spread * kDeg) < radius, "`pivot` " + fmt(pivot) + " x sin(`spread` " + fmt(spread) + ") must be below `radius` " +
                                                           fmt(radius) + " (the outermost rows' planes would miss the sphere): lower one of them");
     require(std::isfinite(min_spacing) && min_spacing > 0.0f && min_spacing <= 1.0f,
@@ -575,6 +577,8 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
         id[size_t(i)] = i;
         guide[size_t(i)] = i;
     }
+    // Before the tails: the rows' root UVs had been written only with --tails-out (a hostile trial).
+    add_root_uvs(out.guides, scalp);
     if (params.tail_length <= 0.0f) return out;
 
     std::vector<int64_t> tail_counts(size_t(n), params.tail_samples);
@@ -608,7 +612,6 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
         tid[size_t(i)] = i;
         tguide[size_t(i)] = i;
     }
-    add_root_uvs(out.guides, scalp);
     return out;
 }
 

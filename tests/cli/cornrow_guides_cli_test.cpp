@@ -11,6 +11,7 @@
 
 using namespace groom;
 using groom::test::run_groom;
+using groom::test::write_text;
 
 TEST(CornrowGuidesCli, GuidesAndTailsOnTheDefaultHead)
 {
@@ -148,6 +149,37 @@ TEST(CornrowGuidesCli, BadOptionsAreUsageErrors)
                                 dir.file("h.usda")});
     EXPECT_EQ(fit.exit_code, 0) << fit.err;
     EXPECT_NE(fit.err.find("--fit-cranium: fitted the cranium to the scalp inside the hairline"), std::string::npos) << fit.err;
+
+    // From a hostile trial: each was accepted, and gave something else than asked.
+    const auto flat = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g2.usda"), "--spread", "0", "--count", "5"});
+    EXPECT_EQ(flat.exit_code, 2);  // five rows on top of each other
+    EXPECT_NE(flat.err.find("--spread 0 lays all 5 rows in one plane"), std::string::npos) << flat.err;
+    const auto no_tail = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g2.usda"), "--tails-out", dir.file("t2.usda"),
+                                    "--tail-length", "0"});
+    EXPECT_EQ(no_tail.exit_code, 2);  // it had written default-length tails
+    EXPECT_NE(no_tail.err.find("--tail-length 0 with --tails-out"), std::string::npos) << no_tail.err;
+    write_text(dir.file("empty.obj"), "# no curve\nv 0 0 0\n");
+    const auto empty = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g2.usda"), "--hairline", dir.file("empty.obj"),
+                                  "--fit-cranium"});
+    EXPECT_NE(empty.exit_code, 0);  // it had run as if no hairline were given
+    EXPECT_NE(empty.err.find("empty.obj: holds no curve"), std::string::npos) << empty.err;
+    // Another head's hairline: the demo head's, scaled up three times about its centroid.
+    CurveSet wide = read_curves(dir.file("h.usda"));
+    float3 mid{};
+    for (const float3& p : wide.positions()) mid = mid + p;
+    mid = mid * (1.0f / float(wide.num_points()));
+    for (float3& p : wide.positions_for_write()) p = mid + (p - mid) * 3.0f;
+    write_curves(wide, dir.file("wide.usda"));
+    const auto off = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g2.usda"), "--hairline", dir.file("wide.usda")});
+    EXPECT_NE(off.exit_code, 0);  // rows had been laid 6 from their hairline
+    EXPECT_NE(off.err.find("wide.usda: the hairline lies a median"), std::string::npos) << off.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("g2.usda")));
+    // --pivot weighed against the fitted radius, not the default 10: a head of radius 30.
+    write_mesh(icosphere(float3(0, 0, 0), 30.0f, 5), dir.file("big.obj"));
+    ASSERT_EQ(run_groom({"hairline", "--scalp", dir.file("big.obj"), "-o", dir.file("bh.usda"), "-q"}).exit_code, 0);
+    const auto pivot = run_groom({"cornrow-guides", "--scalp", dir.file("big.obj"), "-o", dir.file("g3.usda"), "--hairline", dir.file("bh.usda"),
+                                  "--fit-cranium", "--pivot", "40"});
+    EXPECT_EQ(pivot.exit_code, 0) << pivot.err;  // 40 sin 24 = 16.3: below 30, not below 10
 }
 
 // The default --center and --radius are the default head's cranium. A head whose top happens to be
@@ -217,6 +249,8 @@ TEST(CornrowGuidesCliReal, StraightBackRowsReachTheNapeSideBySideOnAScan)
     const CurveSet g = read_curves(dir.file("g.usda"));
     const CurveSet h = read_curves(dir.file("h.usda"));
     ASSERT_EQ(g.num_curves(), size_t(n));
+    // The scan has UVs: each row's root gets one, tails or not (only --tails-out had written them).
+    EXPECT_EQ(g.find<float3>(Domain::Curve, "root_uv").size(), size_t(n));
     const auto P = g.positions();
     const auto H = h.positions();
     const float tol = 0.02f * 8.0f;  // the scan is about 8 high

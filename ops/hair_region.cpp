@@ -74,26 +74,48 @@ HairRegion::HairRegion(const Surface& scalp, const CurveSet& hairline, const Cur
         centroid_ = std::accumulate(pts.begin(), pts.end(), float3{}) * (1.0f / float(pts.size()));
         // Azimuths must turn one way once around the axis: the hairline is then a height function
         // of the azimuth, and inside/outside is a comparison of elevations.
-        std::vector<float> az(pts.size()), el(pts.size());
-        for (size_t i = 0; i < pts.size(); ++i) azimuth_elevation(pts[i], az[i], el[i]);
-        double turn = 0.0;
-        int sign = 0;
-        for (size_t i = 0; i < pts.size(); ++i) {
-            double d = az[(i + 1) % pts.size()] - az[i];
+        std::vector<float> all_az(pts.size()), all_el(pts.size());
+        for (size_t i = 0; i < pts.size(); ++i) azimuth_elevation(pts[i], all_az[i], all_el[i]);
+        const auto step = [](double from, double to) {
+            double d = to - from;
             if (d > kPi) d -= 2 * kPi;
             if (d < -kPi) d += 2 * kPi;
-            const int s = d > 0 ? 1 : d < 0 ? -1 : 0;
-            if (s == 0 || (sign != 0 && s != sign)) {
-                throw InvalidGeometry("hairline: it must go once around the head (around the `up` axis through its centroid) without "
-                                      "turning back; point " + std::to_string(i) + " turns back");
+            return d;
+        };
+        // The way it turns, from all its steps; a point that steps back against it by no more than
+        // a fifth of a degree (a vertex repeated, a scan's wobble: `edges` took such hairlines and
+        // this refused them, a hostile trial) is left out, a larger step back refused.
+        double total = 0.0;
+        for (size_t i = 0; i < pts.size(); ++i) total += step(all_az[i], all_az[(i + 1) % pts.size()]);
+        const int sign = total >= 0.0 ? 1 : -1;
+        constexpr double kWobble = 0.2 * kPi / 180.0;
+        std::vector<float> az, el;
+        for (size_t i = 0; i < pts.size(); ++i) {
+            if (!az.empty()) {
+                const double d = step(az.back(), all_az[i]) * sign;
+                if (!(d > 0.0)) {
+                    if (d >= -kWobble) continue;
+                    throw InvalidGeometry("hairline: it must go once around the head (around the `up` axis through its centroid) without "
+                                          "turning back; point " + std::to_string(i) + " turns back");
+                }
             }
-            sign = s;
-            turn += d;
+            az.push_back(all_az[i]);
+            el.push_back(all_el[i]);
         }
+        while (az.size() > 1 && !(step(az.back(), az.front()) * sign > 0.0)) {
+            if (step(az.back(), az.front()) * sign < -kWobble) {
+                throw InvalidGeometry("hairline: it must go once around the head (around the `up` axis through its centroid) without "
+                                      "turning back; point " + std::to_string(pts.size() - 1) + " turns back");
+            }
+            az.pop_back();
+            el.pop_back();
+        }
+        double turn = 0.0;
+        for (size_t i = 0; i < az.size(); ++i) turn += step(az[i], az[(i + 1) % az.size()]);
         if (std::fabs(std::fabs(turn) - 2 * kPi) > 0.1) {
             throw InvalidGeometry("hairline: it must go once around the head; it turns " + format_number(turn * 180 / kPi) + " degrees");
         }
-        std::vector<size_t> order(pts.size());
+        std::vector<size_t> order(az.size());
         std::iota(order.begin(), order.end(), size_t(0));
         std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return az[a] < az[b]; });
         for (size_t i : order) {

@@ -133,7 +133,15 @@ void setup(CommandContext& ctx)
             if ((a.fit_cranium || top_off || median > 0.4f * r) && region != nullptr && region->has_hairline()) {
                 // A user with a scan and its hairline had to measure its cranium to get any rows (a
                 // trial on Lee Perry-Smith: --center 0,2.3,0 --radius 1.7 found by hand).
-                const Cranium fit = fit_cranium(*scalp, *region, a.params.up);
+                // Its errors name the command and the hairline, not only "cranium" (a hostile trial).
+                const Cranium fit = [&] {
+                    try {
+                        return fit_cranium(*scalp, *region, a.params.up);
+                    }
+                    catch (const InvalidGeometry& e) {
+                        throw InvalidGeometry("cornrow-guides: fitting the cranium inside --hairline " + a.hairline + ": " + e.what());
+                    }
+                }();
                 a.params.center = fit.center;
                 a.params.radius = fit.radius;
                 if (app->count("--pivot") == 0) a.params.pivot = 2.0f * fit.radius;

@@ -106,6 +106,11 @@ void CornrowGuidesParams::validate(bool hairline) const
                                    " or a larger `pivot`");
     require(samples >= 2 && samples <= 100000, "`samples` must be in [2, 100000] (got " + std::to_string(samples) + ")");
     require(std::isfinite(offset) && offset >= 0.0f, "`offset` must be >= 0 (got " + fmt(offset) + ")");
+    // Lifted along the normals that far, the rows bunch and tear where the head curves (--offset 5
+    // on the default head: steps from 0.29 to 2.2 times the median; 100 on Lee Perry-Smith: jumps of
+    // 34, silently: a hostile trial). Guides lie on the scalp; a braid's own height lifts it.
+    require(offset <= 0.2f * radius, "`offset` " + fmt(offset) + " must be at most a fifth of `radius` " + fmt(radius) +
+                                         " (guides lie on the scalp; lifted that far along its normals they bunch and tear where it curves)");
     require(std::isfinite(tail_length) && tail_length >= 0.0f, "`tail_length` must be >= 0 (got " + fmt(tail_length) + ")");
     require(tail_samples >= 2 && tail_samples <= 100000, "`tail_samples` must be in [2, 100000] (got " + std::to_string(tail_samples) + ")");
 }

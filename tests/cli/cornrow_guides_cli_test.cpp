@@ -154,6 +154,10 @@ TEST(CornrowGuidesCli, BadOptionsAreUsageErrors)
     const auto flat = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g2.usda"), "--spread", "0", "--count", "5"});
     EXPECT_EQ(flat.exit_code, 2);  // five rows on top of each other
     EXPECT_NE(flat.err.find("--spread 0 lays all 5 rows in one plane"), std::string::npos) << flat.err;
+    const auto lifted = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g2.usda"), "--offset", "5"});
+    EXPECT_EQ(lifted.exit_code, 2);  // rows bunched and torn by the lift
+    EXPECT_NE(lifted.err.find("--offset 5 must be at most a fifth of --radius 10"), std::string::npos) << lifted.err;
+    EXPECT_EQ(run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g4.usda"), "--offset", "2", "-q"}).exit_code, 0);
     const auto no_tail = run_groom({"cornrow-guides", "--scalp", dir.file("head.obj"), "-o", dir.file("g2.usda"), "--tails-out", dir.file("t2.usda"),
                                     "--tail-length", "0"});
     EXPECT_EQ(no_tail.exit_code, 2);  // it had written default-length tails

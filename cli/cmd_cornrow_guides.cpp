@@ -101,12 +101,13 @@ void setup(CommandContext& ctx)
         RegionOptions region_options;
         region_options.hairline = a.hairline;
         region_options.up = a.up;
-        const std::unique_ptr<HairRegion> region = make_region(region_options, *scalp);
+        // Read once: checked, then made the region.
+        const CurveSet hairline = a.hairline.empty() ? CurveSet() : read_hairline(a.hairline);
         if (!a.hairline.empty()) {
-            const CurveSet hairline = read_hairline(a.hairline);
             check_hairline_on_scalp(a.hairline, hairline, *scalp);
             warn_if_hairline_faces_away("cornrow-guides", a.hairline, hairline, a.params.up, a.params.forward, common);
         }
+        const std::unique_ptr<HairRegion> region = make_region(region_options, *scalp, a.hairline.empty() ? nullptr : &hairline);
         // The default sphere is the default head's cranium (`groom head`: centimetres, +Y up, its top
         // at y = 13). On another head it lays rows somewhere else without a word (a trial on a scan
         // in other units ran them onto the shoulders): unless the scalp lies about on that sphere,

@@ -103,14 +103,14 @@ void warn_if_hairline_faces_away(const std::string& command, const std::string& 
     }
 }
 
-std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp, const CurveSet* hairline_if_none)
+std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp, const CurveSet* hairline_at_hand)
 {
     HairRegionParams params = o.params;
     params.up = parse_float3("--up", o.up);
     params.validate();
-    if (!o.given() && !hairline_if_none) return nullptr;
+    if (!o.given() && !hairline_at_hand) return nullptr;
     // Readers name the file in their own errors.
-    const CurveSet hairline = !o.hairline.empty() ? read_hairline(o.hairline) : hairline_if_none ? *hairline_if_none : CurveSet();
+    const CurveSet hairline = hairline_at_hand ? *hairline_at_hand : !o.hairline.empty() ? read_hairline(o.hairline) : CurveSet();
     const CurveSet partings = o.parting.empty() ? CurveSet() : read_curves(o.parting);
     try {
         return std::make_unique<HairRegion>(scalp, hairline, partings, params);

@@ -54,8 +54,9 @@ void warn_if_hairline_faces_away(const std::string& command, const std::string& 
                                  const float3& forward, const CommonOptions& common);
 
 /// The region the options describe, or null when neither --hairline nor --parting is given.
-/// `hairline_if_none`: the hairline to use when no --hairline is given (gather's default one).
-/// Throws InvalidParam / InvalidGeometry naming the option or file.
-std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp, const CurveSet* hairline_if_none = nullptr);
+/// `hairline_at_hand`: the hairline to use instead of reading --hairline: the one the caller has
+/// already read from it (cornrow-guides checks it first), or the default one when none is given
+/// (gather). Throws InvalidParam / InvalidGeometry naming the option or file.
+std::unique_ptr<HairRegion> make_region(const RegionOptions& o, const Surface& scalp, const CurveSet* hairline_at_hand = nullptr);
 
 }  // namespace groom::cli

@@ -454,50 +454,48 @@ CornrowGuides cornrow_guides(const Surface& scalp, const CornrowGuidesParams& pa
     });
     // The arc projected onto the scalp, as dense points.
     const auto lay_arc = [&](size_t i) {
-        {
-            const RowCircle& circle = circles[size_t(i)];
-            const auto at = on_circle(scalp, circle);
-            const float a0 = from[size_t(i)], a1 = to[size_t(i)];
-            std::vector<float3> path(static_cast<size_t>(dense));
+        const RowCircle& circle = circles[size_t(i)];
+        const auto at = on_circle(scalp, circle);
+        const float a0 = from[size_t(i)], a1 = to[size_t(i)];
+        std::vector<float3> path(static_cast<size_t>(dense));
+        for (int k = 0; k < dense; ++k) {
+            const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
+            const float3 q = at(a);
+            path[size_t(k)] = params.offset > 0.0f ? q + scalp.normal(q) * params.offset : q;
+        }
+        // Where the nearest-point projection jumps across a fold, the row would cut through
+        // the head along the jump's chord (ICT's forehead with the default --center: a chord
+        // 2.6 long and 1.1 deep under the skin, its braid and edge hairs inside the head). The
+        // row is laid instead on the outermost scalp along rays from its circle's centre, which
+        // goes over the fold, if that path jumps less.
+        const Jump jump = largest_step(path);
+        if (jump.ratio > kJumpRatio) {
+            const float3 o = circle.centre();
+            std::vector<float3> rays(path);
+            int missed = 0;
             for (int k = 0; k < dense; ++k) {
                 const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
-                const float3 q = at(a);
-                path[size_t(k)] = params.offset > 0.0f ? q + scalp.normal(q) * params.offset : q;
-            }
-            // Where the nearest-point projection jumps across a fold, the row would cut through
-            // the head along the jump's chord (ICT's forehead with the default --center: a chord
-            // 2.6 long and 1.1 deep under the skin, its braid and edge hairs inside the head). The
-            // row is laid instead on the outermost scalp along rays from its circle's centre, which
-            // goes over the fold, if that path jumps less.
-            const Jump jump = largest_step(path);
-            if (jump.ratio > kJumpRatio) {
-                const float3 o = circle.centre();
-                std::vector<float3> rays(path);
-                int missed = 0;
-                for (int k = 0; k < dense; ++k) {
-                    const float a = a0 + (a1 - a0) * float(k) / float(dense - 1);
-                    const float3 dir = circle.direction(a);
-                    float3 hit;
-                    // The outermost surface along the ray, coming in from far out; a ray that
-                    // meets none (the centre itself outside the head, at the side) keeps its
-                    // nearest point.
-                    if (!scalp.first_intersection(o + dir * (4.0f * (circle.rho + params.radius)), o, hit)) {
-                        ++missed;
-                        continue;
-                    }
-                    const float3 q = on_scalp(scalp, hit, 0.0f);
-                    rays[size_t(k)] = params.offset > 0.0f ? q + scalp.normal(q) * params.offset : q;
+                const float3 dir = circle.direction(a);
+                float3 hit;
+                // The outermost surface along the ray, coming in from far out; a ray that
+                // meets none (the centre itself outside the head, at the side) keeps its
+                // nearest point.
+                if (!scalp.first_intersection(o + dir * (4.0f * (circle.rho + params.radius)), o, hit)) {
+                    ++missed;
+                    continue;
                 }
-                const bool laid = missed < dense;
-                const Jump ray_jump = laid ? largest_step(rays) : Jump{};
-                CornrowGuides::Row& row = out.rows[size_t(i)];
-                row.along_rays = laid && ray_jump.ratio < jump.ratio;
-                if (row.along_rays) path = std::move(rays);
-                const Jump left = row.along_rays ? ray_jump : jump;
-                row.jump = left.ratio > kJumpRatio ? left.chord : 0.0f;
+                const float3 q = on_scalp(scalp, hit, 0.0f);
+                rays[size_t(k)] = params.offset > 0.0f ? q + scalp.normal(q) * params.offset : q;
             }
-            paths[size_t(i)] = std::move(path);
+            const bool laid = missed < dense;
+            const Jump ray_jump = laid ? largest_step(rays) : Jump{};
+            CornrowGuides::Row& row = out.rows[size_t(i)];
+            row.along_rays = laid && ray_jump.ratio < jump.ratio;
+            if (row.along_rays) path = std::move(rays);
+            const Jump left = row.along_rays ? ray_jump : jump;
+            row.jump = left.ratio > kJumpRatio ? left.chord : 0.0f;
         }
+        paths[size_t(i)] = std::move(path);
     };
     if (!spread_rows) {
         parallel_for(n, 1, [&](int64_t b, int64_t e) {
